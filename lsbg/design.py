@@ -1,0 +1,379 @@
+"""Design parameters of a bevel gear pair and the quantities derived from them.
+
+The defaults are the paper's Table 1: a 9:37 pair, outer transverse module
+4.5 mm, shaft angle 90 deg, normal pressure angle 20 deg, mean spiral angle
+35 deg, left-hand pinion. All lengths are in metres and all angles in radians
+inside; :meth:`GearPairDesign.from_config` reads the paper's units (``*_mm``,
+``*_deg``) used by the workflow configuration.
+
+Every derived quantity here is closed form (standard bevel gear geometry with
+tooth depth tapering to the common apex). The flank surfaces built on top of
+these numbers live in :mod:`lsbg.geometry`.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+TRACES = ("logarithmic", "circular")
+BASE_CONE_RULES = ("involute", "paper")
+HANDS = ("left", "right")
+
+#: Density of steel [kg/m^3], used for the mass properties of the solids.
+STEEL_DENSITY = 7850.0
+
+
+class DesignError(ValueError):
+    """A design parameter is invalid, or the design gives unusable teeth.
+
+    The message always names the offending parameter and its value.
+    """
+
+
+@dataclass(frozen=True)
+class GearPairDesign:
+    """Design parameters of a spiral bevel gear pair (pinion = member 1).
+
+    Parameters
+    ----------
+    pinion_teeth, gear_teeth : int
+        Numbers of teeth z1 and z2 [-]; the pinion is the smaller member.
+    module : float
+        Outer transverse module m [m].
+    shaft_angle : float
+        Angle between the two axes, Sigma [rad].
+    normal_pressure_angle : float
+        Normal pressure angle at the mean point, alpha_n [rad].
+    spiral_angle : float
+        Mean spiral angle on the pitch cone, beta_m [rad].
+    pinion_hand : {"left", "right"}
+        Hand of spiral of the pinion; the gear has the other hand.
+    addendum, dedendum : float
+        Outer addendum h_a and dedendum h_f, equal for both members [m].
+    trace : {"logarithmic", "circular"}
+        Generating curve in the plane of action: a plane logarithmic spiral
+        (LSBG) or a circular arc of the face-mill cutter (conventional SBG).
+    face_width : float
+        Face width b along the pitch cone generator [m].
+    cutter_radius : float
+        Radius of the circular generating arc, used for ``trace="circular"`` [m].
+    base_cone_rule : {"involute", "paper"}
+        How the base cones are chosen: ``"involute"`` gives the normal pressure
+        angle ``normal_pressure_angle`` at the mean point; ``"paper"`` is the
+        paper's Eq. 6, sin(delta_b) = sin(beta) sin(delta).
+    backlash : float
+        Circumferential backlash on the mean pitch circle [m], split equally
+        between the two members' tooth thicknesses.
+    density : float
+        Density of both gears [kg/m^3].
+    pinion_bore, gear_bore : float
+        Bore diameters of the pinion and gear hubs [m].
+    """
+
+    pinion_teeth: int = 9
+    gear_teeth: int = 37
+    module: float = 4.5e-3
+    shaft_angle: float = math.radians(90.0)
+    normal_pressure_angle: float = math.radians(20.0)
+    spiral_angle: float = math.radians(35.0)
+    pinion_hand: str = "left"
+    addendum: float = 3.825e-3
+    dedendum: float = 4.671e-3
+    trace: str = "logarithmic"
+    face_width: float = 25e-3
+    cutter_radius: float = 76.2e-3
+    base_cone_rule: str = "involute"
+    backlash: float = 0.1e-3
+    density: float = STEEL_DENSITY
+    pinion_bore: float = 12e-3
+    gear_bore: float = 60e-3
+
+    def __post_init__(self):
+        self._validate()
+
+    # ------------------------------------------------------------------ input
+    def _validate(self):
+        def fail(name, value, why):
+            raise DesignError(f"{name} = {value!r}: {why}")
+
+        for name in ("pinion_teeth", "gear_teeth"):
+            z = getattr(self, name)
+            if isinstance(z, bool) or not float(z).is_integer() or z < 1:
+                fail(name, z, "must be a positive whole number of teeth")
+        if self.pinion_teeth < 5:
+            fail("pinion_teeth", self.pinion_teeth, "a bevel pinion needs at least 5 teeth")
+        if self.pinion_teeth > self.gear_teeth:
+            fail("pinion_teeth", self.pinion_teeth,
+                 f"the pinion is the smaller member, but gear_teeth = {self.gear_teeth}")
+        for name in ("module", "face_width", "addendum", "dedendum", "cutter_radius",
+                     "density", "pinion_bore", "gear_bore"):
+            v = getattr(self, name)
+            if not (np.isfinite(v) and v > 0):
+                fail(name, v, "must be a positive, finite number")
+        if not (0 < self.shaft_angle < math.pi):
+            fail("shaft_angle", math.degrees(self.shaft_angle), "must lie in (0, 180) deg")
+        if not (0 < self.spiral_angle < math.radians(60)):
+            fail("spiral_angle", math.degrees(self.spiral_angle), "must lie in (0, 60) deg")
+        if not (math.radians(10) <= self.normal_pressure_angle <= math.radians(30)):
+            fail("normal_pressure_angle", math.degrees(self.normal_pressure_angle),
+                 "must lie in [10, 30] deg")
+        if self.trace not in TRACES:
+            fail("trace", self.trace, f"must be one of {TRACES}")
+        if self.base_cone_rule not in BASE_CONE_RULES:
+            fail("base_cone_rule", self.base_cone_rule, f"must be one of {BASE_CONE_RULES}")
+        if self.pinion_hand not in HANDS:
+            fail("pinion_hand", self.pinion_hand, f"must be one of {HANDS}")
+        if self.face_width > self.outer_cone_distance / 2:
+            fail("face_width", self.face_width,
+                 f"exceeds half the outer cone distance R_e/2 = {self.outer_cone_distance / 2:.6g} m")
+        if self.addendum > 1.25 * self.module:
+            fail("addendum", self.addendum, f"exceeds 1.25 module = {1.25 * self.module:.6g} m")
+        if self.dedendum <= self.addendum:
+            fail("dedendum", self.dedendum,
+                 f"must exceed the addendum {self.addendum:.6g} m to leave tip clearance")
+        if self.dedendum > 1.6 * self.module:
+            fail("dedendum", self.dedendum, f"exceeds 1.6 module = {1.6 * self.module:.6g} m")
+        if not (0 <= self.backlash < 0.1 * self.mean_circular_pitch):
+            fail("backlash", self.backlash,
+                 f"must lie in [0, 0.1 mean circular pitch = {0.1 * self.mean_circular_pitch:.6g} m)")
+        for member, bore in ((1, self.pinion_bore), (2, self.gear_bore)):
+            root_radius = self.inner_cone_distance * math.sin(self.root_angle(member))
+            if bore / 2 >= 0.9 * root_radius:
+                name = "pinion_bore" if member == 1 else "gear_bore"
+                fail(name, bore, f"leaves no hub under the teeth (inner root radius "
+                     f"{root_radius:.6g} m)")
+        if self.trace == "circular":
+            # The arc must not turn radial inside the face (the angle to the
+            # ray reaches 90 deg where sin(beta_p) = 1).
+            from lsbg import geometry  # local: geometry builds on this module
+
+            s_max = np.max(np.abs(geometry.circular_arc_sin_angle(
+                self, np.array([self.inner_cone_distance, self.outer_cone_distance]))))
+            if s_max >= 0.98:
+                fail("cutter_radius", self.cutter_radius,
+                     "is too small: the cutter arc turns nearly radial within the face width")
+
+    @classmethod
+    def from_config(cls, config: dict) -> "GearPairDesign":
+        """Build a design from configuration keys in the paper's units.
+
+        Parameters
+        ----------
+        config : dict
+            Keys as written in the workflow configuration and ``design.json``:
+            ``pinion_teeth``, ``gear_teeth``, ``module_mm``, ``shaft_angle_deg``,
+            ``normal_pressure_angle_deg``, ``spiral_angle_deg``, ``pinion_hand``,
+            ``addendum_mm``, ``dedendum_mm``, ``trace``, ``face_width_mm``,
+            ``cutter_radius_mm``, ``base_cone_rule``, ``backlash_mm``,
+            ``density_kg_m3``, ``pinion_bore_mm``, ``gear_bore_mm``. Missing
+            keys take the paper's values. Unknown keys are an error.
+
+        Returns
+        -------
+        GearPairDesign
+        """
+        kwargs = {}
+        for key, value in config.items():
+            name, scale = _config_key(key)
+            if key not in CONFIG_KEYS:
+                raise DesignError(f"{key} = {value!r}: unknown design parameter "
+                                  f"(known: {sorted(CONFIG_KEYS)})")
+            if scale is not None:
+                try:
+                    value = scale[0](float(value))
+                except (TypeError, ValueError):
+                    raise DesignError(f"{key} = {value!r}: must be a number") from None
+            kwargs[name] = value
+        return cls(**kwargs)
+
+    def to_config(self) -> dict:
+        """The design parameters as configuration keys in the paper's units."""
+        out = {}
+        for key in CONFIG_KEYS:
+            name, scale = _config_key(key)
+            value = getattr(self, name)
+            out[key] = scale[1](value) if scale is not None else value
+        return out
+
+    def replace(self, **changes) -> "GearPairDesign":
+        """A copy with some parameters changed (SI units), validated again."""
+        return dataclasses.replace(self, **changes)
+
+    # --------------------------------------------------------------- derived
+    @property
+    def teeth(self) -> tuple[int, int]:
+        """(z1, z2) [-]."""
+        return int(self.pinion_teeth), int(self.gear_teeth)
+
+    def pitch_angle(self, member: int) -> float:
+        """Pitch cone angle delta_i of member 1 (pinion) or 2 (gear) [rad].
+
+        tan(delta_1) = sin(Sigma) / (z2/z1 + cos(Sigma)), delta_2 = Sigma - delta_1.
+        """
+        z1, z2 = self.teeth
+        d1 = math.atan2(math.sin(self.shaft_angle), z2 / z1 + math.cos(self.shaft_angle))
+        return d1 if member == 1 else self.shaft_angle - d1
+
+    def pitch_diameter(self, member: int) -> float:
+        """Outer pitch diameter d_i = m z_i [m]."""
+        return self.module * self.teeth[member - 1]
+
+    @property
+    def outer_cone_distance(self) -> float:
+        """Outer cone distance R_e = d1 / (2 sin delta_1) [m]."""
+        return self.pitch_diameter(1) / (2 * math.sin(self.pitch_angle(1)))
+
+    @property
+    def mean_cone_distance(self) -> float:
+        """Mean cone distance R_m = R_e - b/2 [m]."""
+        return self.outer_cone_distance - self.face_width / 2
+
+    @property
+    def inner_cone_distance(self) -> float:
+        """Inner cone distance R_i = R_e - b [m]."""
+        return self.outer_cone_distance - self.face_width
+
+    @property
+    def mean_module(self) -> float:
+        """Mean transverse module m_m = m R_m / R_e [m]."""
+        return self.module * self.mean_cone_distance / self.outer_cone_distance
+
+    @property
+    def mean_circular_pitch(self) -> float:
+        """Circular pitch on the mean pitch circle, pi m_m [m]."""
+        return math.pi * self.mean_module
+
+    def mean_pitch_radius(self, member: int) -> float:
+        """Mean pitch radius r_m,i = R_m sin delta_i [m]."""
+        return self.mean_cone_distance * math.sin(self.pitch_angle(member))
+
+    def mean_tooth_thickness(self, member: int) -> float:
+        """Circular tooth thickness on the mean pitch circle, (pi m_m - j)/2 [m]."""
+        return (self.mean_circular_pitch - self.backlash) / 2
+
+    @property
+    def addendum_angle(self) -> float:
+        """Addendum angle theta_a = atan(h_a / R_e) [rad] (depth tapers to the apex)."""
+        return math.atan(self.addendum / self.outer_cone_distance)
+
+    @property
+    def dedendum_angle(self) -> float:
+        """Dedendum angle theta_f = atan(h_f / R_e) [rad]."""
+        return math.atan(self.dedendum / self.outer_cone_distance)
+
+    def tip_angle(self, member: int) -> float:
+        """Face (tip) cone angle delta_a,i = delta_i + theta_a [rad]."""
+        return self.pitch_angle(member) + self.addendum_angle
+
+    def root_angle(self, member: int) -> float:
+        """Root cone angle delta_f,i = delta_i - theta_f [rad]."""
+        return self.pitch_angle(member) - self.dedendum_angle
+
+    @property
+    def plane_of_action_tilt(self) -> float:
+        """Tilt gamma of the plane of action from the pitch-cone tangent plane [rad].
+
+        Both base cones satisfy sin(delta_b,i) = c sin(delta_i) with c = cos(gamma).
+        The "involute" rule is the helical-gear relation tan(gamma) =
+        tan(alpha_n) / cos(beta_m) (gamma plays the transverse pressure angle);
+        the "paper" rule (Eq. 6) is c = sin(beta_m), i.e. gamma = 90 deg - beta_m.
+        """
+        if self.base_cone_rule == "paper":
+            return math.pi / 2 - self.spiral_angle
+        return math.atan(math.tan(self.normal_pressure_angle) / math.cos(self.spiral_angle))
+
+    @property
+    def base_cone_constant(self) -> float:
+        """c = sin(delta_b,i) / sin(delta_i), the same for both members [-]."""
+        return math.cos(self.plane_of_action_tilt)
+
+    def base_cone_angle(self, member: int) -> float:
+        """Base cone angle delta_b,i = asin(c sin delta_i) [rad]."""
+        return math.asin(self.base_cone_constant * math.sin(self.pitch_angle(member)))
+
+    @property
+    def plane_spiral_angle(self) -> float:
+        """Angle beta_p between the generating curve and the ray at the mean point [rad].
+
+        The flank normal on the pitch line lies in the plane of action, so the
+        pitch-cone spiral angle beta obeys tan(beta) = tan(beta_p) / cos(gamma)
+        (as the base helix angle of a helical gear); solved here for beta_p
+        so that beta = beta_m at the mean point.
+        """
+        return math.atan(math.tan(self.spiral_angle) * math.cos(self.plane_of_action_tilt))
+
+    @property
+    def mean_normal_pressure_angle(self) -> float:
+        """Normal pressure angle that the base-cone rule gives at the mean point [rad].
+
+        sin(alpha_n) = cos(beta_p) sin(gamma); equals ``normal_pressure_angle``
+        under the "involute" rule.
+        """
+        return math.asin(math.cos(self.plane_spiral_angle) * math.sin(self.plane_of_action_tilt))
+
+    @property
+    def base_pitch_angle(self) -> float:
+        """Angular pitch of the contact lines in the plane of action,
+        Psi_p = 2 pi sin(delta_b,1) / z1 = 2 pi sin(delta_b,2) / z2 [rad]."""
+        return 2 * math.pi * math.sin(self.base_cone_angle(1)) / self.pinion_teeth
+
+    def derived(self) -> dict:
+        """Every derived quantity, keys carrying their unit (paper's units).
+
+        Returns
+        -------
+        dict
+            e.g. ``pitch_angle_pinion_deg``, ``outer_cone_distance_mm``,
+            ``base_cone_angle_gear_deg``, ``plane_of_action_tilt_deg``.
+        """
+        out = {}
+        for member, name in ((1, "pinion"), (2, "gear")):
+            out[f"pitch_angle_{name}_deg"] = math.degrees(self.pitch_angle(member))
+            out[f"pitch_diameter_{name}_mm"] = 1e3 * self.pitch_diameter(member)
+            out[f"mean_pitch_diameter_{name}_mm"] = 2e3 * self.mean_pitch_radius(member)
+            out[f"base_cone_angle_{name}_deg"] = math.degrees(self.base_cone_angle(member))
+            out[f"tip_angle_{name}_deg"] = math.degrees(self.tip_angle(member))
+            out[f"root_angle_{name}_deg"] = math.degrees(self.root_angle(member))
+            out[f"outer_tip_diameter_{name}_mm"] = 2e3 * self.outer_cone_distance * math.sin(
+                self.tip_angle(member)) / math.cos(self.addendum_angle)
+            out[f"mean_tooth_thickness_{name}_mm"] = 1e3 * self.mean_tooth_thickness(member)
+        out.update(
+            outer_cone_distance_mm=1e3 * self.outer_cone_distance,
+            mean_cone_distance_mm=1e3 * self.mean_cone_distance,
+            inner_cone_distance_mm=1e3 * self.inner_cone_distance,
+            mean_module_mm=1e3 * self.mean_module,
+            addendum_angle_deg=math.degrees(self.addendum_angle),
+            dedendum_angle_deg=math.degrees(self.dedendum_angle),
+            base_cone_constant=self.base_cone_constant,
+            plane_of_action_tilt_deg=math.degrees(self.plane_of_action_tilt),
+            plane_spiral_angle_mean_deg=math.degrees(self.plane_spiral_angle),
+            normal_pressure_angle_mean_deg=math.degrees(self.mean_normal_pressure_angle),
+            base_pitch_angle_deg=math.degrees(self.base_pitch_angle),
+            gear_ratio=self.gear_teeth / self.pinion_teeth,
+        )
+        return out
+
+
+# Configuration key suffix (paper's units) -> (to SI, from SI).
+_SCALES = {
+    "_mm": (lambda v: v / 1000.0, lambda v: v * 1000.0),
+    "_deg": (math.radians, math.degrees),
+    "_kg_m3": (float, float),
+}
+CONFIG_KEYS = (
+    "pinion_teeth", "gear_teeth", "module_mm", "shaft_angle_deg",
+    "normal_pressure_angle_deg", "spiral_angle_deg", "pinion_hand", "addendum_mm",
+    "dedendum_mm", "trace", "face_width_mm", "cutter_radius_mm", "base_cone_rule",
+    "backlash_mm", "density_kg_m3", "pinion_bore_mm", "gear_bore_mm",
+)
+
+
+def _config_key(key: str):
+    for suffix, scale in _SCALES.items():
+        if key.endswith(suffix):
+            return key[: -len(suffix)], scale
+    return key, None

@@ -1,0 +1,97 @@
+"""Design parameters and closed-form bevel gear quantities (paper Table 1)."""
+
+import math
+
+import pytest
+
+from lsbg.design import DesignError, GearPairDesign
+
+
+@pytest.fixture(scope="module")
+def paper():
+    return GearPairDesign()
+
+
+def test_pitch_angles_match_closed_form(paper):
+    # tan(delta_1) = sin(Sigma) / (z2/z1 + cos(Sigma)); for Sigma = 90 deg: atan(9/37).
+    assert math.degrees(paper.pitch_angle(1)) == pytest.approx(13.6713, abs=5e-5)
+    assert math.degrees(paper.pitch_angle(2)) == pytest.approx(76.3287, abs=5e-5)
+    assert paper.pitch_angle(1) == pytest.approx(math.atan(9 / 37), rel=1e-14)
+
+
+def test_cone_distances_and_pitch_diameters(paper):
+    assert paper.outer_cone_distance * 1e3 == pytest.approx(85.677, abs=5e-4)
+    # R_e = sqrt(d1^2 + d2^2) / 2 for a right-angle pair.
+    assert paper.outer_cone_distance == pytest.approx(math.hypot(40.5e-3, 166.5e-3) / 2, rel=1e-13)
+    assert paper.pitch_diameter(1) == pytest.approx(40.5e-3)
+    assert paper.pitch_diameter(2) == pytest.approx(166.5e-3)
+    assert paper.mean_cone_distance == pytest.approx(paper.outer_cone_distance - 12.5e-3)
+
+
+def test_base_cones_share_one_constant(paper):
+    c = paper.base_cone_constant
+    for member in (1, 2):
+        assert math.sin(paper.base_cone_angle(member)) == pytest.approx(c * math.sin(paper.pitch_angle(member)))
+    # Contact lines repeat with the same pitch on both members.
+    assert 2 * math.pi * math.sin(paper.base_cone_angle(2)) / 37 == pytest.approx(paper.base_pitch_angle)
+
+
+def test_involute_rule_is_the_helical_gear_relation(paper):
+    # gamma plays the transverse pressure angle and beta_p the base helix angle:
+    # tan(alpha_t) = tan(alpha_n)/cos(beta), sin(beta_b) = sin(beta) cos(alpha_n).
+    an, b = math.radians(20), math.radians(35)
+    assert paper.plane_of_action_tilt == pytest.approx(math.atan(math.tan(an) / math.cos(b)))
+    assert paper.plane_spiral_angle == pytest.approx(math.asin(math.sin(b) * math.cos(an)))
+    assert math.degrees(paper.mean_normal_pressure_angle) == pytest.approx(20.0, abs=1e-12)
+
+
+def test_paper_base_cone_rule_is_eq6():
+    d = GearPairDesign.__new__(GearPairDesign)  # skip validation: only the closed forms
+    object.__setattr__(d, "base_cone_rule", "paper")
+    for name in ("pinion_teeth", "gear_teeth", "shaft_angle", "spiral_angle", "normal_pressure_angle"):
+        object.__setattr__(d, name, getattr(GearPairDesign, name))
+    for member in (1, 2):
+        assert math.sin(d.base_cone_angle(member)) == pytest.approx(
+            math.sin(d.spiral_angle) * math.sin(d.pitch_angle(member)))
+    # Effective pressure angle at the mean point is far above 20 deg.
+    assert math.degrees(d.mean_normal_pressure_angle) > 45
+
+
+def test_config_round_trip_in_paper_units(paper):
+    cfg = paper.to_config()
+    assert cfg["module_mm"] == pytest.approx(4.5)
+    assert cfg["spiral_angle_deg"] == pytest.approx(35)
+    assert GearPairDesign.from_config(cfg) == paper
+    assert GearPairDesign.from_config({"spiral_angle_deg": 40}).spiral_angle == pytest.approx(math.radians(40))
+
+
+@pytest.mark.parametrize("changes, key", [
+    (dict(module=0.0), "module"),
+    (dict(module=-1e-3), "module"),
+    (dict(pinion_teeth=0), "pinion_teeth"),
+    (dict(gear_teeth=-3), "gear_teeth"),
+    (dict(pinion_teeth=9.5), "pinion_teeth"),
+    (dict(pinion_teeth=40), "pinion_teeth"),
+    (dict(spiral_angle=0.0), "spiral_angle"),
+    (dict(spiral_angle=math.radians(61)), "spiral_angle"),
+    (dict(face_width=45e-3), "face_width"),
+    (dict(addendum=6e-3), "addendum"),
+    (dict(dedendum=3.0e-3), "dedendum"),
+    (dict(dedendum=8e-3), "dedendum"),
+    (dict(trace="helical"), "trace"),
+    (dict(base_cone_rule="other"), "base_cone_rule"),
+    (dict(pinion_hand="up"), "pinion_hand"),
+    (dict(backlash=-1e-4), "backlash"),
+    (dict(gear_bore=0.2), "gear_bore"),
+    (dict(trace="circular", cutter_radius=10e-3), "cutter_radius"),
+])
+def test_invalid_parameters_are_named(changes, key):
+    with pytest.raises(DesignError, match=rf"^{key} = "):
+        GearPairDesign(**changes)
+
+
+def test_unknown_or_non_numeric_config_keys_are_named():
+    with pytest.raises(DesignError, match="module = "):
+        GearPairDesign.from_config({"module": 4.5})  # a length without its unit
+    with pytest.raises(DesignError, match="spiral_angle_deg = 'steep'"):
+        GearPairDesign.from_config({"spiral_angle_deg": "steep"})
