@@ -4,16 +4,16 @@ The paper post-processes four simulated time series (gear angular velocity and
 tangential contact force, for SBG and LSBG) in four steps, all reproduced here:
 
 1. the steady state: the 400 samples after 0.2 s (:func:`steady_state`);
-2. normality: Anderson–Darling A² and its p-value with a normal probability plot,
-   a histogram with the fitted normal pdf and a box plot (§4.1, §4.2);
+2. normality: Anderson–Darling A² and its p-value with a normal probability
+   plot, a histogram with the fitted normal pdf and a box plot (§4.1, §4.2);
 3. an Xbar-R control chart of 0.8–1.0 s in 25 subgroups of 4 (§4.3, Eq. 14–22),
    whose constants (Table 2) are computed here for any subgroup size;
 4. the comparison of the simulated means with Eq. 12–13 (§4.4, Table 3).
 
 The paper only *looks* at the plots to conclude that the LSBG fluctuates less
-than the SBG. :func:`compare_fluctuation` puts a number on that: the ratio of the
-standard deviations with a block-bootstrap confidence interval (the samples are
-autocorrelated, so an i.i.d. test alone would be overconfident), the
+than the SBG. :func:`compare_fluctuation` puts a number on that: the ratio of
+the standard deviations with a block-bootstrap confidence interval (the samples
+are autocorrelated, so an i.i.d. test alone would be overconfident), the
 Brown–Forsythe test and the effective sample sizes.
 
 Statistics are unit-agnostic: values keep whatever unit the caller gives them
@@ -69,7 +69,7 @@ __all__ = [
 # ---------------------------------------------------------------------------
 
 def _as_1d(values, name="values", min_size=1):
-    """Return ``values`` as a finite 1-D float array of at least ``min_size``."""
+    """``values`` as a finite 1-D float array of at least ``min_size``."""
     x = np.asarray(values, dtype=float)
     if x.ndim != 1:
         raise ValueError(f"{name} must be 1-D, got shape {x.shape}")
@@ -237,10 +237,10 @@ def describe(values):
     """
     x = _as_1d(values, min_size=2)
     q1, median, q3 = np.percentile(x, [25.0, 50.0, 75.0])
-    return Description(n=x.size, mean=float(x.mean()), std=float(x.std(ddof=1)),
-                       min=float(x.min()), q1=float(q1), median=float(median),
-                       q3=float(q3), max=float(x.max()),
-                       range=float(np.ptp(x)))
+    return Description(n=x.size, mean=float(x.mean()),
+                       std=float(x.std(ddof=1)), min=float(x.min()),
+                       q1=float(q1), median=float(median), q3=float(q3),
+                       max=float(x.max()), range=float(np.ptp(x)))
 
 
 @dataclass(frozen=True)
@@ -275,10 +275,10 @@ def ad_pvalue(a2, n):
 
     Examples
     --------
-    The paper's SBG angular velocity, A² = 0.293 with n = 400:
+    The paper's SBG tangential force, A² = 0.514 with n = 400 (p = 0.192):
 
-    >>> round(ad_pvalue(0.293, 400), 3)
-    0.601
+    >>> round(ad_pvalue(0.514, 400), 3)
+    0.192
     """
     a2 = np.asarray(a2, dtype=float)
     n = np.asarray(n, dtype=float)
@@ -314,7 +314,9 @@ def anderson_darling(values):
     -----
     The paper reports, for the 400 steady-state samples, A² = 0.293 / 0.264
     (angular velocity, SBG / LSBG) and 0.514 / 0.581 (tangential force), with
-    p = 0.601 / 0.697 / 0.192 / 0.130; :func:`ad_pvalue` maps A² to p.
+    p = 0.601 / 0.697 / 0.192 / 0.130. :func:`ad_pvalue` maps A² to p: it
+    gives the last two exactly and 0.6015 / 0.6963 for the first two, within
+    what the rounding of the printed A² allows.
     """
     x = _as_1d(values, min_size=3)
     a2, p = normal_ad(x)
@@ -325,7 +327,8 @@ def anderson_darling(values):
 _PLOTTING_POSITION_A = {"blom": 0.375, "benard": 0.3, "hazen": 0.5}
 
 
-@dataclass(frozen=True)
+# eq=False: field-wise == on arrays has no single truth value.
+@dataclass(frozen=True, eq=False)
 class NormalProbability:
     """Data of a normal probability plot.
 
@@ -365,8 +368,9 @@ def normal_probability(values, method="blom"):
     try:
         a = _PLOTTING_POSITION_A[method]
     except KeyError:
-        raise ValueError(f"method must be one of {sorted(_PLOTTING_POSITION_A)},"
-                         f" got {method!r}") from None
+        raise ValueError(f"method must be one of "
+                         f"{sorted(_PLOTTING_POSITION_A)}, got {method!r}"
+                         ) from None
     n = x.size
     p = (np.arange(1, n + 1) - a) / (n + 1.0 - 2.0 * a)
     z = special.ndtri(p)
@@ -419,7 +423,6 @@ class ControlChartConstants:
 _QUAD = {"epsabs": 1e-13, "epsrel": 1e-12, "limit": 200}
 
 
-@functools.lru_cache(maxsize=None)
 def _range_moments(n):
     """(E[W], sd[W]) of the range W of n i.i.d. standard normal samples."""
     ndtr = special.ndtr
@@ -441,8 +444,11 @@ def _range_moments(n):
     return d2, math.sqrt(ew2 - d2 * d2)
 
 
+# Cached: charts and notebooks ask for the same n over and over, and each
+# call costs a double integral (a few tens of ms).
 @functools.lru_cache(maxsize=None)
 def _constants(n):
+    """ControlChartConstants for a validated integer n >= 2."""
     d2, d3 = _range_moments(n)
     return ControlChartConstants(
         n=n, d2=d2, d3=d3, A2=3.0 / (d2 * math.sqrt(n)),
@@ -494,7 +500,7 @@ def control_chart_constants(n):
 # Xbar-R control chart (Eq. 14–22)
 # ---------------------------------------------------------------------------
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class XbarRChart:
     """An Xbar-R control chart; levels and limits in the unit of the data.
 
@@ -860,6 +866,16 @@ def std_ratio_ci(a, b, confidence=0.95, n_boot=2000, block_length=None,
     -------
     StdRatioCI
         Ratio std(a)/std(b) (ddof = 1), the interval and the settings used.
+
+    Notes
+    -----
+    Percentile block-bootstrap intervals run a little narrow when the
+    effective sample size is small. In simulations of two AR(1) series of 400
+    samples with a true ratio of 2 (200 pairs, 1000 replicates each) the 95 %
+    interval covered the truth in 93 % of the pairs for φ = 0, 0.5 and 0.7,
+    but in 88 % for φ = 0.9 (about 20 effective samples per series) and in
+    90 % for φ = 0.9 with 2000 samples. Longer blocks do not fix this; treat
+    intervals from strongly autocorrelated series as approximate.
     """
     x = _as_1d(a, "a", 4)
     y = _as_1d(b, "b", 4)
@@ -979,7 +995,7 @@ def compare_fluctuation(a, b, names=("SBG", "LSBG"), units="",
 # Box-plot statistics and figures (Fig. 13–18)
 # ---------------------------------------------------------------------------
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class BoxplotStats:
     """What a box plot draws, in the unit of the data."""
 
@@ -1129,12 +1145,14 @@ def plot_histogram(series, label="", units="", bins="auto", overlay=False,
                 color=f"C{i}", label=name)
         grid = np.linspace(d.mean - 4.0 * d.std, d.mean + 4.0 * d.std, 200)
         ax.plot(grid, sps.norm.pdf(grid, d.mean, d.std), color=f"C{i}",
-                label=f"{name}: normal, mean {_fmt(d.mean)}{unit}, "
+                label=f"normal: mean {_fmt(d.mean)}{unit}, "
                       f"std {_fmt(d.std)}{unit}")
         ax.set_xlabel(_axis_label(label, units))
         ax.legend(fontsize="small")
+    # 1/deg/s would read as (1/deg)/s
+    inverse = f"1/({units})" if set("/ ·*") & set(units) else f"1/{units}"
     for ax in axes:
-        ax.set_ylabel(f"density [1/{units}]" if units else "density")
+        ax.set_ylabel(f"density [{inverse}]" if units else "density")
         if xlim is not None:
             ax.set_xlim(xlim)
     return fig
