@@ -350,3 +350,118 @@ def test_hertz_approach_paper_load(params):
 def test_hertz_approach_rejects_pull():
     with pytest.raises(ValueError, match="force"):
         hertz_approach([1.0, -1.0], *MATERIAL)
+
+
+# ---------------------------------------------------------------------------
+# Contact kernel: tooth-pair forces from the exact geometry
+# ---------------------------------------------------------------------------
+import math  # noqa: E402
+
+import pytest  # noqa: E402
+from scipy.optimize import least_squares  # noqa: E402
+
+from lsbg.contact import MeshContact  # noqa: E402
+from lsbg.design import GearPairDesign  # noqa: E402
+from lsbg.geometry import GearPair, rotate  # noqa: E402
+
+LOAD = 1964.99
+
+
+@pytest.fixture(scope="module", params=["logarithmic", "circular"])
+def kernel(request):
+    return MeshContact(GearPair(GearPairDesign(trace=request.param)))
+
+
+def _normal_line_hit(pair, member, side, rotation, origin, direction, rho0):
+    """Where the line origin + s direction pierces the member's flank (any tooth).
+
+    Brute force on the flank surfaces themselves: solve
+    flank(R, theta) rotated by the member's rotation + 2 pi j / z = origin + s direction
+    for every tooth j, and keep the hit nearest the origin.
+    """
+    z = pair.design.teeth[member - 1]
+    u = pair.rotation_axis[member]
+    lo, hi = pair.flank_polar_range(member)
+    # the tooth whose flank lies nearest in azimuth, and its neighbours
+    body0, _ = pair.flank(member, side, rho0, math.acos(origin @ pair.axis[member] / (origin @ origin) ** 0.5))
+    offset = (pair.azimuth(member, origin) - pair.azimuth(member, body0) - rotation) / (2 * math.pi / z)
+    best = None
+    for j in (round(offset) - 1, round(offset), round(offset) + 1):
+        turn = rotation + 2 * math.pi * j / z
+
+        def residual(v):
+            p, _ = pair.flank(member, side, v[0], v[1])
+            return rotate(p, u, turn) - (origin + v[2] * direction)
+
+        polar0 = math.acos(origin @ pair.axis[member] / (origin @ origin) ** 0.5)
+        fit = least_squares(residual, [rho0, polar0, 0.0], xtol=1e-15, ftol=1e-15, gtol=1e-15,
+                            x_scale=[1e-3, 1e-2, 1e-6])
+        # the deepest point may sit on the tip edge, and the line through it
+        # pierces the flank slightly beyond
+        if fit.cost < 1e-24 and lo - 1e-3 <= fit.x[1] <= hi + 1e-3 and (best is None or abs(fit.x[2]) < abs(best[0])):
+            _, n = pair.flank(member, side, fit.x[0], fit.x[1])
+            best = (fit.x[2], rotate(n, u, turn))
+    return best
+
+
+@pytest.mark.parametrize("mismatch", [2e-6, 4e-5])
+def test_kernel_matches_brute_force_flank_surfaces(kernel, mismatch):
+    """Normal approach and direction of every pair agree with closest points of
+    the rotated flank surfaces."""
+    pair = kernel.pair
+    for pinion_angle in (0.013, 0.21):
+        gear_angle = (pinion_angle * kernel.e1 - mismatch) / kernel.e2
+        details = []
+        kernel.evaluate(pinion_angle, gear_angle, 0.0, 0.0, details)
+        assert len(details) >= 2
+        for pc in details:
+            plane = pair.planes[pc.side]
+            rho = pc.cone_distance
+            point = plane.point(rho, pc.phase + plane.curve.polar_angle(rho))
+            normal = plane.in_plane_normal(rho, pc.phase + plane.curve.polar_angle(rho))
+            s1, n1 = _normal_line_hit(pair, 1, pc.side, pinion_angle, point, normal, rho)
+            s2, n2 = _normal_line_hit(pair, 2, pc.side, gear_angle, point, normal, rho)
+            approach = s1 - s2  # pinion flank beyond the gear flank along pinion -> gear
+            assert approach == pytest.approx(pc.penetration, rel=2e-3, abs=1e-11)
+            # the flank normals are the contact normal (outward: pinion along n)
+            assert abs(n1 @ normal) == pytest.approx(1.0, abs=1e-8)
+            assert abs(n2 @ normal) == pytest.approx(1.0, abs=1e-8)
+
+
+def test_static_preload_carries_the_load(kernel):
+    gear_angle = kernel.static_gear_angle(LOAD)
+    torque, pinion_torque, deepest = kernel.evaluate(0.0, gear_angle, 0.0, 0.0)
+    assert torque == pytest.approx(LOAD, rel=1e-9)
+    # without friction the torques on the two members are in the ratio z1/z2
+    assert -pinion_torque / torque == pytest.approx(9 / 37, rel=1e-12)
+    # the approach is a few micrometres (Hertz with the paper's k)
+    assert 1e-6 < deepest < 6e-6
+
+
+def test_no_force_with_clearance_and_backlash(kernel):
+    # pinion behind by less than the backlash: neither side touches
+    gap = kernel.pair.design.backlash * kernel.pair.design.base_cone_constant / kernel.pair.design.mean_cone_distance
+    eps = -0.5 * gap
+    torque, _, deepest = kernel.evaluate(0.0, -eps / kernel.e2, 0.0, 0.0)
+    assert torque == 0.0 and deepest < 0
+    # behind by more than the backlash: coast flanks push the gear backwards
+    eps = -1.2 * gap
+    details = []
+    torque, _, _ = kernel.evaluate(0.0, -eps / kernel.e2, 0.0, 0.0, details)
+    assert torque < 0 and {p.side for p in details} == {"coast"}
+
+
+def test_force_never_negative_and_friction_opposes_sliding(kernel):
+    w1 = math.radians(7703.0)
+    gear_angle = kernel.static_gear_angle(LOAD)
+    for w2 in (w1 * 9 / 37 * 1.01, w1 * 9 / 37 * 0.99):
+        details = []
+        kernel.evaluate(0.1, gear_angle + 0.1 * 9 / 37, w1, w2, details)
+        for pc in details:
+            assert pc.normal_force >= 0
+            assert pc.friction_coefficient == pytest.approx(0.05) or pc.sliding_speed < 0.01
+    # separating fast: the damping term would pull, the law clips it to zero
+    details = []
+    kernel.evaluate(0.1, gear_angle + 0.1 * 9 / 37, 0.0, 1e4, details)
+    assert details
+    assert all(pc.normal_force == 0.0 for pc in details)

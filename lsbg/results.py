@@ -1,0 +1,135 @@
+"""Time series of a meshing run as a CF-annotated NetCDF dataset.
+
+Inside lsbg the record is SI; the dataset speaks the paper's units: speeds in
+deg/s, forces in N, penetration in µm and the transmission error in µrad,
+each variable with ``units`` and ``long_name`` (CF-1.11).
+"""
+
+from __future__ import annotations
+
+import datetime
+import math
+import os
+import platform
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+import lsbg
+from lsbg import theory
+
+#: Variables of a run dataset: name -> (units, long_name).
+VARIABLES = {
+    "pinion_speed": ("deg/s", "pinion angular velocity"),
+    "gear_speed": ("deg/s", "gear angular velocity"),
+    "tangential_force": ("N", "contact force on the gear along its circumferential "
+                              "direction at each point of action, summed over tooth pairs"),
+    "tangential_force_outer": ("N", "contact torque on the gear divided by the outer pitch "
+                                    "radius d2/2 (the quantity of Eq. 13)"),
+    "contact_torque": ("N m", "contact torque on the gear about its axis"),
+    "normal_force": ("N", "sum of the IMPACT normal forces of all tooth pairs"),
+    "contact_pairs": ("1", "number of tooth pairs in contact"),
+    "max_penetration": ("um", "deepest normal approach of the flanks"),
+    "transmission_error": ("urad", "gear rotation behind its kinematic position "
+                                   "phi1 z1/z2 - phi2"),
+}
+
+
+def _library_versions():
+    import importlib.metadata as md
+
+    out = {}
+    for name in ("numpy", "scipy", "pybullet", "xarray", "netCDF4"):
+        try:
+            out[f"version_{name}"] = md.version(name)
+        except md.PackageNotFoundError:
+            out[f"version_{name}"] = "not installed"
+    return out
+
+
+def run_dataset(record, model, settings, command=""):
+    """Build the dataset of one run.
+
+    Parameters
+    ----------
+    record : lsbg.dynamics.RunRecord
+        Raw SI time series.
+    model : lsbg.dynamics.MeshingModel
+        The simulated system (design, contact parameters, inertias).
+    settings : lsbg.dynamics.SimulationSettings
+    command : str
+        Command line that produced the run, for ``history``.
+
+    Returns
+    -------
+    xarray.Dataset
+        Coordinate ``time`` [s] and the variables of :data:`VARIABLES`.
+    """
+    design = model.pair.design
+    z1, z2 = design.teeth
+    outer_radius = design.pitch_diameter(2) / 2
+    te = record.pinion_angle * z1 / z2 - record.gear_angle
+    data = {
+        "pinion_speed": np.degrees(record.pinion_speed),
+        "gear_speed": np.degrees(record.gear_speed),
+        "tangential_force": record.tangential_force,
+        "tangential_force_outer": record.gear_torque / outer_radius,
+        "contact_torque": record.gear_torque,
+        "normal_force": record.normal_force,
+        "contact_pairs": record.contact_pairs,
+        "max_penetration": record.max_penetration * 1e6,
+        "transmission_error": te * 1e6,
+    }
+    ds = xr.Dataset(coords={"time": ("time", record.time, {"units": "s", "long_name": "time",
+                                                           "standard_name": "time"})})
+    for name, (units, long_name) in VARIABLES.items():
+        ds[name] = ("time", data[name], {"units": units, "long_name": long_name})
+    attrs = {
+        "Conventions": "CF-1.11",
+        "title": f"Meshing simulation of a {design.trace} spiral bevel gear pair "
+                 f"({z1}:{z2}, spiral angle {math.degrees(design.spiral_angle):g} deg)",
+        "source": f"lsbg {lsbg.__version__}, engine {settings.engine}",
+        "institution": "lsbg reproducible research workflow",
+        "history": f"{datetime.datetime.now(datetime.timezone.utc).isoformat(timespec='seconds')} "
+                   f"{command or 'lsbg.results.run_dataset'}",
+        "lsbg_version": lsbg.__version__,
+        "python_version": platform.python_version(),
+        "theory_gear_speed_deg_s": theory.gear_speed(math.degrees(settings.pinion_speed), z1, z2),
+        "theory_tangential_force_N": theory.tangential_force(settings.load_torque,
+                                                             design.pitch_diameter(2)),
+        "axial_inertia_gear_kg_m2": model.gear_inertia,
+        "axial_inertia_pinion_kg_m2": model.pinion_inertia,
+        "wall_time_s": record.wall_time,
+        "integrator_steps": record.steps,
+    }
+    attrs.update({f"design_{k}": v for k, v in design.to_config().items()})
+    attrs.update({f"design_{k}": v for k, v in design.derived().items()})
+    attrs.update({f"contact_{k}": v for k, v in model.contact.params.to_dict().items()})
+    attrs.update({f"solver_{k}": v for k, v in settings.to_dict().items()})
+    attrs.update(_library_versions())
+    ds.attrs.update({k: (float(v) if isinstance(v, (np.floating, np.integer)) else v)
+                     for k, v in attrs.items()})
+    return ds
+
+
+def write_dataset(ds, path):
+    """Write a dataset to NetCDF atomically (a temporary file renamed at the end).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+    path : str or pathlib.Path
+        Target file; its folder is created if needed.
+    """
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(suffix=".nc.part", dir=path.parent)
+    os.close(fd)
+    try:
+        ds.to_netcdf(tmp, engine="netcdf4")
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
