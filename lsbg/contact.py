@@ -199,6 +199,50 @@ class ContactParameters:
                    mu_s=mu_s, mu_d=mu_d, v_s=v_s * _MM, v_d=v_d * _MM)
 
     @classmethod
+    def from_config(cls, config):
+        """Build parameters from the workflow's ``contact`` section (paper units).
+
+        Parameters
+        ----------
+        config : dict
+            Keys of :data:`CONTACT_CONFIG_KEYS` (``stiffness_N_per_mm1_5``,
+            ``exponent``, ``damping_N_s_per_mm``, ``penetration_depth_mm``,
+            ``static_friction``, ``dynamic_friction``,
+            ``stiction_velocity_mm_s``, ``friction_velocity_mm_s``); missing
+            keys take the paper's values.
+
+        Returns
+        -------
+        ContactParameters
+
+        Raises
+        ------
+        ValueError
+            Naming the configuration key and value, for unknown keys and
+            invalid values.
+        """
+        paper = cls()
+        values = {
+            "stiffness_N_per_mm1_5": paper.k * _MM**paper.e, "exponent": paper.e,
+            "damping_N_s_per_mm": paper.c_max * _MM, "penetration_depth_mm": paper.d / _MM,
+            "static_friction": paper.mu_s, "dynamic_friction": paper.mu_d,
+            "stiction_velocity_mm_s": paper.v_s / _MM, "friction_velocity_mm_s": paper.v_d / _MM,
+        }
+        for key, value in config.items():
+            if key not in values:
+                raise ValueError(f"contact.{key} = {value!r}: unknown key "
+                                 f"(known: {sorted(values)})")
+            if isinstance(value, bool) or not isinstance(value, (int, float)):
+                raise ValueError(f"contact.{key} = {value!r}: must be a number")
+            values[key] = value
+        try:
+            return cls.from_paper_units(*values.values())
+        except ValueError as err:
+            field = str(err).split(".", 1)[1].split(" ", 1)[0]
+            key = CONTACT_CONFIG_KEYS[field]
+            raise ValueError(f"contact.{key} = {values[key]!r}: {err}") from None
+
+    @classmethod
     def paper(cls):
         """The paper's contact law (§3.1), i.e. the defaults.
 
@@ -229,6 +273,14 @@ class ContactParameters:
             "stiction_transition_velocity_m_per_s": self.v_s,
             "friction_transition_velocity_m_per_s": self.v_d,
         }
+
+
+#: Field of :class:`ContactParameters` -> key of the workflow's ``contact`` section.
+CONTACT_CONFIG_KEYS = {
+    "k": "stiffness_N_per_mm1_5", "e": "exponent", "c_max": "damping_N_s_per_mm",
+    "d": "penetration_depth_mm", "mu_s": "static_friction", "mu_d": "dynamic_friction",
+    "v_s": "stiction_velocity_mm_s", "v_d": "friction_velocity_mm_s",
+}
 
 
 # ---------------------------------------------------------------------------

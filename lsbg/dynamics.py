@@ -15,7 +15,8 @@ Two independent integrators solve it:
   both links every fixed step (semi-implicit Euler, 1 µs by default).
 * ``"scipy"``: the gear's equation of motion J2 phi2'' = T_contact - T_load
   with the pinion's prescribed motion in closed form, solved by
-  :func:`scipy.integrate.solve_ivp` (DOP853, rtol 1e-8 by default).
+  :func:`scipy.integrate.solve_ivp` (LSODA, rtol 1e-8 by default; DOP853
+  agrees to 0.02 % in the standard deviations and takes 3x longer).
 
 Angles are forward rotations [rad] (``GearPair.rotation_axis``), speeds [rad/s].
 The state starts at rest with the drive flanks pressed together by the
@@ -87,7 +88,7 @@ class SimulationSettings:
     rtol: float = 1e-8
     atol_angle: float = 1e-12
     atol_speed: float = 1e-8
-    method: str = "DOP853"
+    method: str = "LSODA"
     runaway_factor: float = 2.0
     progress_interval: float = 5.0
 
@@ -119,6 +120,44 @@ class SimulationSettings:
         if self.rtol < 1e-13:
             fail("rtol", "is below what double precision can deliver (1e-13)")
 
+    @classmethod
+    def from_config(cls, config, **overrides) -> "SimulationSettings":
+        """Settings from the workflow's ``simulation`` section (paper units).
+
+        Parameters
+        ----------
+        config : dict
+            Keys of :data:`SIMULATION_CONFIG_KEYS`, e.g. ``duration_s``,
+            ``pinion_speed_deg_s``, ``load_torque_N_m``, ``time_step_s``,
+            ``method``, ``rtol``; missing keys take the paper's values.
+        **overrides
+            Dataclass fields (SI) that take precedence, e.g. ``engine``.
+
+        Raises
+        ------
+        ValueError
+            Naming the configuration key and value.
+        """
+        kwargs = {}
+        for key, value in config.items():
+            if key not in SIMULATION_CONFIG_KEYS:
+                raise ValueError(f"simulation.{key} = {value!r}: unknown key "
+                                 f"(known: {sorted(SIMULATION_CONFIG_KEYS)})")
+            field, to_si = SIMULATION_CONFIG_KEYS[key]
+            try:
+                kwargs[field] = to_si(value) if to_si is not None else value
+            except (TypeError, ValueError):
+                raise ValueError(f"simulation.{key} = {value!r}: must be a number") from None
+        kwargs.update(overrides)
+        try:
+            return cls(**kwargs)
+        except ValueError as err:
+            field = str(err).split(" ", 1)[0]
+            keys = [k for k, (f, _) in SIMULATION_CONFIG_KEYS.items() if f == field]
+            if keys and keys[0] in config:
+                raise ValueError(f"simulation.{keys[0]} = {config[keys[0]]!r}: {err}") from None
+            raise
+
     def replace(self, **changes) -> "SimulationSettings":
         """A copy with some settings changed, validated again."""
         return dataclasses.replace(self, **changes)
@@ -138,6 +177,20 @@ class SimulationSettings:
             "atol_speed_rad_s": self.atol_speed, "method": self.method,
             "runaway_factor": self.runaway_factor,
         }
+
+
+#: Key of the workflow's ``simulation`` section -> (settings field, conversion to SI).
+SIMULATION_CONFIG_KEYS = {
+    "duration_s": ("duration", float),
+    "samples": ("samples", None),
+    "pinion_speed_deg_s": ("pinion_speed", lambda v: math.radians(float(v))),
+    "ramp_time_s": ("ramp_time", float),
+    "load_torque_N_m": ("load_torque", float),
+    "time_step_s": ("time_step", float),
+    "method": ("method", None),
+    "rtol": ("rtol", float),
+    "engine": ("engine", None),
+}
 
 
 def pinion_motion(t, settings: SimulationSettings):
@@ -403,3 +456,63 @@ class MeshingModel:
             self.check_state(t, w2, lists[-1][-1], settings)
             last = self._progress(t, settings, start, last)
         return self._record(lists, time.monotonic() - start, n)
+
+
+def load_model(geometry_dir, contact_params=None) -> MeshingModel:
+    """The meshing model of a geometry directory written by ``lsbg geometry``.
+
+    Parameters
+    ----------
+    geometry_dir : str or pathlib.Path
+        Directory with ``design.json`` (design and inertias) and ``pair.urdf``.
+    contact_params : lsbg.contact.ContactParameters, optional
+        Contact law; the paper's by default.
+
+    Returns
+    -------
+    MeshingModel
+    """
+    import json
+    from pathlib import Path
+
+    from lsbg.export import FILE_NAMES, read_design
+    from lsbg.geometry import GearPair
+
+    geometry_dir = Path(geometry_dir)
+    record = json.loads((geometry_dir / FILE_NAMES["design"]).read_text())
+    pair = GearPair(read_design(geometry_dir))
+    return MeshingModel(MeshContact(pair, contact_params), record["axial_inertia_gear_kg_m2"],
+                        record["axial_inertia_pinion_kg_m2"], urdf=geometry_dir / FILE_NAMES["urdf"])
+
+
+def simulate(geometry_dir, settings: SimulationSettings, contact_params=None, command=""):
+    """Run one meshing simulation and return its CF dataset.
+
+    Parameters
+    ----------
+    geometry_dir : str or pathlib.Path
+        Output directory of ``lsbg geometry``.
+    settings : SimulationSettings
+    contact_params : lsbg.contact.ContactParameters, optional
+    command : str
+        Command line, recorded in the dataset's ``history``.
+
+    Returns
+    -------
+    xarray.Dataset
+        See :mod:`lsbg.results`.
+
+    Raises
+    ------
+    SimulationError
+        If the integration blows up; nothing is returned then.
+    """
+    from lsbg.results import run_dataset
+
+    model = load_model(geometry_dir, contact_params)
+    log.info("%s engine, %s trace, spiral angle %.4g deg: %.4g s simulated",
+             settings.engine, model.pair.design.trace,
+             math.degrees(model.pair.design.spiral_angle), settings.duration)
+    record = model.run(settings)
+    log.info("done: %d steps in %.1f s wall", record.steps, record.wall_time)
+    return run_dataset(record, model, settings, command)
