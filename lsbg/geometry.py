@@ -379,14 +379,16 @@ class GearPair:
         Returns
         -------
         numpy.ndarray
-            chi [rad].
+            chi [rad]; NaN below the base cone, where no flank point exists.
         """
         delta_b = self.design.base_cone_angle(member)
         theta = np.asarray(polar_angle, dtype=float)
         # atan2 form: arccos(cos(theta)/cos(delta_b)) loses half the digits
         # near the base cone, where sin(chi)^2 = sin(theta-delta_b) sin(theta+delta_b) / cos(delta_b)^2.
-        sin_chi = np.sqrt(np.clip(np.sin(theta - delta_b) * np.sin(theta + delta_b), 0.0, None))
-        return np.arctan2(sin_chi, np.cos(theta))
+        product = np.sin(theta - delta_b) * np.sin(theta + delta_b)
+        # A few ulps below the base cone is rounding; further below is an error.
+        product = np.where(product > -1e-15, np.maximum(product, 0.0), np.nan)
+        return np.arctan2(np.sqrt(product), np.cos(theta))
 
     # ---------------------------------------------------------------- flanks
     def axis_normal_component(self, member, side):
@@ -544,7 +546,8 @@ class GearPair:
         Returns
         -------
         numpy.ndarray
-            Spiral angle [rad], positive for the member's own hand.
+            Spiral angle [rad], in [0, pi/2]; the hand is given by the sign of
+            :meth:`trace_azimuth_rate`.
         """
         rho = np.asarray(cone_distance, dtype=float)
         h = 1e-6 * self.design.outer_cone_distance

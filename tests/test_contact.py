@@ -355,8 +355,6 @@ def test_hertz_approach_rejects_pull():
 # ---------------------------------------------------------------------------
 # Contact kernel: tooth-pair forces from the exact geometry
 # ---------------------------------------------------------------------------
-import math  # noqa: E402
-
 import pytest  # noqa: E402
 from scipy.optimize import least_squares  # noqa: E402
 

@@ -95,3 +95,9 @@ def test_unknown_or_non_numeric_config_keys_are_named():
         GearPairDesign.from_config({"module": 4.5})  # a length without its unit
     with pytest.raises(DesignError, match="spiral_angle_deg = 'steep'"):
         GearPairDesign.from_config({"spiral_angle_deg": "steep"})
+
+
+@pytest.mark.parametrize("angle", [36.2, 25.1, 44.7, 17.3, 59.9])
+def test_config_round_trip_is_exact_for_awkward_angles(angle):
+    design = GearPairDesign.from_config({"spiral_angle_deg": angle, "normal_pressure_angle_deg": 22.3})
+    assert GearPairDesign.from_config(design.to_config()) == design

@@ -99,10 +99,9 @@ def test_normal_pressure_angle_at_mean_point(pair, member):
 
 def test_flank_normals_are_surface_normals(pair):
     """The analytic normals equal the cross product of the parameter derivatives."""
-    d = pair.design
     for member in (1, 2):
         lo, hi = pair.flank_polar_range(member)
-        rho, theta = np.meshgrid(face(d, 7), np.linspace(lo + 1e-3, hi, 7))
+        rho, theta = np.meshgrid(face(pair.design, 7), np.linspace(lo + 1e-3, hi, 7))
         h = 1e-7
         p, n = pair.flank(member, "drive", rho, theta)
         dr = pair.flank(member, "drive", rho + h, theta)[0] - pair.flank(member, "drive", rho - h, theta)[0]
@@ -116,7 +115,6 @@ def test_flank_normals_are_surface_normals(pair):
 def test_conjugacy_on_contact_lines(pair, side):
     """At several mesh positions both flanks pass through the contact line with
     parallel normals: pinion and gear points coincide within 1e-9 m."""
-    d = pair.design
     plane = pair.planes[side]
     lo, hi = plane.field[:2]
     checked = 0
@@ -190,3 +188,11 @@ def test_undercut_of_the_paper_pinion_is_reported(lsbg):
     # pinion's base cone by about half a degree in the plane of action.
     assert math.degrees(lsbg.undercut["drive"]["pinion"]) == pytest.approx(0.5, abs=0.1)
     assert lsbg.undercut["drive"]["gear"] == 0
+
+
+def test_no_flank_below_the_base_cone(lsbg):
+    delta_b = lsbg.design.base_cone_angle(1)
+    points, _ = lsbg.flank(1, "drive", lsbg.design.mean_cone_distance, delta_b - 0.01)
+    assert np.all(np.isnan(points))
+    points, _ = lsbg.flank(1, "drive", lsbg.design.mean_cone_distance, delta_b)
+    assert np.all(np.isfinite(points))

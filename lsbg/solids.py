@@ -1,0 +1,990 @@
+"""Solid gears from the exact flanks: section outlines, meshes, mass properties, URDF.
+
+Each gear is the solid between two spheres about the apex (the toe at the
+inner cone distance R_i and the heel at the outer cone distance R_e), the
+toothed surface and a coaxial bore cylinder. On every sphere |r| = R the
+toothed surface cuts a closed *section outline*: root arc, one flank from root
+to tip, top land, the other flank from tip to root, next tooth. The flanks are
+the exact surfaces of :class:`lsbg.geometry.GearPair`; the meshes loft the
+outlines between spheres (DESIGN.md §1: solids feed the mass properties and
+the URDF; contact comes from the exact geometry, never from these meshes).
+
+Coordinates on a member's spheres are the polar angle theta from the axis
+``pair.axis[m]`` and the azimuth phi about the forward rotation axis
+``pair.rotation_axis[m]``, measured as :meth:`lsbg.geometry.GearPair.azimuth`
+does.
+
+Flank below the involute. Where the base cone lies above the root cone (the
+paper's 9-tooth pinion: base 12.47 deg, root 10.55 deg) the spherical involute
+does not reach the root. There the flank is continued along the meridian
+(same azimuth, polar angle down to the root angle): a radial flank without a
+fillet. It carries no load, since the field of contact ends at the base cone;
+a generated pinion would be undercut there instead (``GearPair.undercut``:
+the gear's tip passes the pinion's base cone by 0.5 deg in the plane of
+action), which these solids ignore.
+
+Mass properties come twice: from the triangle mesh (trimesh's divergence-theorem
+integrals) and from an independent quadrature over the sections in spherical
+coordinates (:func:`quadrature_mass_properties`), which the tests compare.
+
+All lengths in metres, angles in radians, masses in kilograms.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass
+from xml.etree import ElementTree
+
+import numpy as np
+import trimesh
+
+from lsbg.geometry import MEMBER_NAMES, MEMBERS
+
+__all__ = [
+    "MeshResolution", "SectionOutline", "MassProperties", "QuadratureMassProperties",
+    "side_order", "section_outline", "section_cone_distances", "gear_mesh", "gear_meshes",
+    "mass_properties", "section_integrals", "quadrature_mass_properties",
+    "principal_frame", "write_urdf", "render_pair",
+]
+
+
+@dataclass(frozen=True)
+class MeshResolution:
+    """Sampling of the solid meshes.
+
+    The defaults keep the mesh volume within 0.1 % of the exact solid (the
+    tests measure it against :func:`quadrature_mass_properties`; for the
+    paper's pair it is 0.04-0.05 % short, the axial inertia 0.06-0.08 %)
+    with 40-50k triangles per gear.
+
+    Parameters
+    ----------
+    chord_tolerance : float
+        Largest gap between the outline polygon and the exact outline (flanks,
+        top lands, root arcs), as a fraction of the cone distance [-]. Sets
+        how many points each piece gets (fewer on the gear's nearly straight
+        flanks than on the pinion's, which start at a cusp on the base cone).
+    extension : int
+        Points on the radial continuation below the base cone (when present) [-].
+    twist_step : float
+        Largest change of the teeth's azimuth between two lofted sections
+        [rad]. Flat quads between sections (split along their shorter
+        diagonal) cut the twisted teeth short by a fraction of order
+        twist_step**2 / 12.
+    min_sections : int
+        Fewest sections along the face width [-].
+    end_face_step : float
+        Edge length of the end-face triangles as an angle on the sphere [rad];
+        flat triangles lie about R step**2 / 12 inside the sphere.
+    bore_points_per_tooth : int
+        Least number of points on the bore circle per tooth [-]. Counts on
+        every circle are multiples of the tooth number, so that the mesh keeps
+        the gear's z-fold symmetry and its centre of mass stays on the axis.
+    """
+
+    chord_tolerance: float = 1.5e-5
+    extension: int = 3
+    twist_step: float = 0.04
+    min_sections: int = 6
+    end_face_step: float = 0.03
+    bore_points_per_tooth: int = 2
+
+
+DEFAULT_RESOLUTION = MeshResolution()
+
+
+# ------------------------------------------------------------------ helpers
+def _wrap(angle):
+    """Angles wrapped into (-pi, pi] [rad]."""
+    return np.pi - np.mod(np.pi - np.asarray(angle, dtype=float), 2 * np.pi)
+
+
+def _frame(pair, member):
+    """(a, e1, e2): axis from the apex into the body and the azimuth frame.
+
+    A point at polar angle theta from ``a`` and azimuth phi about the
+    rotation axis u = +-a is R (cos theta a + sin theta (cos phi e1 + sin phi e2)),
+    consistent with :meth:`GearPair.azimuth`.
+    """
+    u = pair.rotation_axis[member]
+    ref = pair.pitch_dir - (pair.pitch_dir @ u) * u
+    ref = ref / np.linalg.norm(ref)
+    return pair.axis[member], ref, np.cross(u, ref)
+
+
+def _sphere_points(pair, member, radius, polar, azimuth):
+    """Points at distance ``radius`` [m], polar angle and azimuth [rad], shape (..., 3)."""
+    a, e1, e2 = _frame(pair, member)
+    radius, polar, azimuth = (np.asarray(v, dtype=float)[..., None]
+                              for v in (radius, polar, azimuth))
+    across = np.cos(azimuth) * e1 + np.sin(azimuth) * e2
+    return radius * (np.cos(polar) * a + np.sin(polar) * across)
+
+
+def side_order(pair, member):
+    """Flank sides of a tooth in order of increasing azimuth.
+
+    Parameters
+    ----------
+    pair : lsbg.geometry.GearPair
+    member : {1, 2}
+
+    Returns
+    -------
+    tuple of str
+        (low, high): the side met first when the azimuth about the rotation
+        axis increases across the tooth, then the other. The pinion's drive
+        flank leads (high), the gear's trails (low).
+    """
+    d = pair.design
+    points = [pair.flank(member, side, d.mean_cone_distance, d.pitch_angle(member))[0]
+              for side in ("drive", "coast")]
+    width = _wrap(pair.azimuth(member, points[0]) - pair.azimuth(member, points[1]))
+    return ("coast", "drive") if width > 0 else ("drive", "coast")
+
+
+# Near the base cone the spherical involute is a cusp, theta - delta_b ~ chi^2,
+# phi ~ chi^3 (chi: roll angle); spacing chord-sag errors evenly along it
+# (segment length ~ curvature^(-1/3)) gives theta - start ~ t^(6/5).
+_FLANK_EXPONENT = 1.2
+
+
+def _flank_parameter(pair, member, n):
+    """Polar angles of the involute samples, t**1.2-spaced from the start up [rad]."""
+    start, tip = pair.flank_polar_range(member)
+    t = np.linspace(0.0, 1.0, n)
+    return start + (tip - start) * t**_FLANK_EXPONENT
+
+
+def _flank_azimuth(pair, member, side, cone_distance, polar):
+    """Azimuth of the flank points at (R, theta) [rad], shape (R, theta)."""
+    points, _ = pair.flank(member, side, np.asarray(cone_distance)[:, None], polar[None, :])
+    return pair.azimuth(member, points)
+
+
+def _arc_count(length, radius, tolerance):
+    """Segments for an arc of ``length`` and ``radius`` (unit sphere) whose
+    chords stay within ``tolerance``: chord sag = chord^2 / (8 radius) [-]."""
+    return max(1, int(math.ceil(length / math.sqrt(8 * radius * tolerance))))
+
+
+def _outline_counts(pair, member, resolution):
+    """(flank points, top-land and root-arc interior points) at the mean point [-].
+
+    A curve of length L that turns by Theta, cut into n equal chords, leaves
+    a gap of about L Theta / (8 n^2); circles (top land, root arc) as in
+    :func:`_arc_count`. All measured on the unit sphere at the mean cone distance.
+    """
+    d = pair.design
+    tol = resolution.chord_tolerance
+    rm = d.mean_cone_distance
+    polar = _flank_parameter(pair, member, 201)
+    p, _ = pair.flank(member, "drive", rm, polar)
+    seg = np.diff(p, axis=0) / rm
+    length = np.linalg.norm(seg, axis=1)
+    tangent = seg / length[:, None]
+    turn = np.sum(np.arccos(np.clip(np.sum(tangent[1:] * tangent[:-1], axis=1), -1.0, 1.0)))
+    n_flank = max(4, int(math.ceil(math.sqrt(length.sum() * turn / (8 * tol))))) + 1
+    z = d.teeth[member - 1]
+    root, tip = d.root_angle(member), d.tip_angle(member)
+    start = pair.flank_polar_range(member)[0]
+    low, high = side_order(pair, member)
+    phi = {side: _flank_azimuth(pair, member, side, [rm], np.array([start, tip]))[0]
+           for side in (low, high)}
+    top_width = _wrap(phi[high][1] - phi[low][1])
+    root_width = 2 * np.pi / z - _wrap(phi[high][0] - phi[low][0])
+    n_top = _arc_count(top_width * math.sin(tip), math.sin(tip), tol) - 1
+    n_root = _arc_count(root_width * math.sin(root), math.sin(root), tol) - 1
+    return n_flank, max(n_top, 1), max(n_root, 1)
+
+
+# ---------------------------------------------------------------- outlines
+@dataclass(frozen=True)
+class SectionOutline:
+    """Closed tooth outlines of one gear on spheres about the apex.
+
+    Attributes
+    ----------
+    cone_distance : numpy.ndarray, shape (n,)
+        Sphere radii R [m].
+    polar_angle, azimuth : numpy.ndarray, shape (n, m)
+        Polar angle from the axis and azimuth about the rotation axis of the
+        outline's vertices [rad]; azimuth increases along each row, over
+        exactly one turn.
+    points : numpy.ndarray, shape (n, m, 3)
+        Vertices in the mesh frame [m].
+    per_tooth : int
+        Vertices per tooth; tooth j occupies columns j*per_tooth ... [-].
+    """
+
+    cone_distance: np.ndarray
+    polar_angle: np.ndarray
+    azimuth: np.ndarray
+    points: np.ndarray
+    per_tooth: int
+
+
+def section_outline(pair, member, cone_distance, resolution=DEFAULT_RESOLUTION):
+    """Outline of the whole gear on spheres of radius ``cone_distance``.
+
+    For each tooth, in increasing azimuth: the low-side flank root -> tip, the
+    top land (polar angle = tip angle), the high-side flank tip -> root, the
+    root arc (polar angle = root angle) to the next tooth. Every sphere has
+    the same vertex count and the same parametrisation, so that consecutive
+    outlines can be stitched into quads.
+
+    Parameters
+    ----------
+    pair : lsbg.geometry.GearPair
+    member : {1, 2}
+    cone_distance : array_like
+        Sphere radii R [m], scalar or 1-D.
+    resolution : MeshResolution
+
+    Returns
+    -------
+    SectionOutline
+
+    Raises
+    ------
+    ValueError
+        If the flanks of neighbouring teeth meet below the root arc.
+    """
+    d = pair.design
+    radius = np.atleast_1d(np.asarray(cone_distance, dtype=float))
+    z = d.teeth[member - 1]
+    root, tip = d.root_angle(member), d.tip_angle(member)
+    start = pair.flank_polar_range(member)[0]
+    n_flank, n_top, n_root = _outline_counts(pair, member, resolution)
+    involute = _flank_parameter(pair, member, n_flank)
+    # Radial continuation below the base cone: same azimuth as the involute start.
+    extension = (np.linspace(root, start, resolution.extension + 1)[:-1]
+                 if start > root + 1e-12 else np.empty(0))
+    polar_side = np.concatenate([extension, involute])
+    low, high = side_order(pair, member)
+    phi_low = _flank_azimuth(pair, member, low, radius, involute)
+    phi_high = _flank_azimuth(pair, member, high, radius, involute)
+    # Unwrap each flank and place the high side just after the low side's tip.
+    phi_low = phi_low[:, :1] + _wrap(phi_low - phi_low[:, :1])
+    phi_high = phi_low[:, -1:] + _wrap(phi_high - phi_low[:, -1:])
+    n_ext = extension.size
+    phi_low = np.concatenate([np.repeat(phi_low[:, :1], n_ext, axis=1), phi_low], axis=1)
+    phi_high = np.concatenate([np.repeat(phi_high[:, :1], n_ext, axis=1), phi_high], axis=1)
+
+    def interior(a, b, n):
+        s = np.arange(1, n + 1) / (n + 1)
+        return a[:, None] + (b - a)[:, None] * s
+
+    next_low = phi_low[:, 0] + 2 * np.pi / z
+    top = interior(phi_low[:, -1], phi_high[:, -1], n_top)
+    root_arc = interior(phi_high[:, 0], next_low, n_root)
+    phi_tooth = np.concatenate([phi_low, top, phi_high[:, ::-1], root_arc, next_low[:, None]],
+                               axis=1)
+    # The meshing relies on azimuth never decreasing along the outline (no
+    # pointed tooth, no flanks of neighbouring teeth meeting, no undercut loop).
+    step = np.diff(phi_tooth, axis=1)
+    if np.any(step < 0) or np.any(phi_high[:, -1] <= phi_low[:, -1]) \
+            or np.any(next_low <= phi_high[:, 0]):
+        raise ValueError(f"the {MEMBER_NAMES[member]} section outline is not single-valued "
+                         f"in azimuth (smallest step {np.min(step):.3g} rad)")
+    phi_tooth = phi_tooth[:, :-1]
+    polar_tooth = np.concatenate([
+        polar_side, np.full(n_top, tip), polar_side[::-1], np.full(n_root, root)])
+    n = polar_tooth.size
+    phi = (phi_tooth[:, None, :] + 2 * np.pi / z * np.arange(z)[:, None]).reshape(radius.size, -1)
+    polar = np.broadcast_to(np.tile(polar_tooth, z), phi.shape).copy()
+    points = _sphere_points(pair, member, radius[:, None], polar, phi)
+    return SectionOutline(radius, polar, phi, points, n)
+
+
+def section_cone_distances(pair, member, resolution=DEFAULT_RESOLUTION):
+    """Sphere radii of the lofted sections, from toe to heel [m].
+
+    Geometrically spaced (the LSBG twists by equal angles between them) and
+    as many as keep the twist per step below ``resolution.twist_step``.
+
+    Parameters
+    ----------
+    pair : lsbg.geometry.GearPair
+    member : {1, 2}
+    resolution : MeshResolution
+
+    Returns
+    -------
+    numpy.ndarray, shape (n,)
+    """
+    d = pair.design
+    r_in, r_out = d.inner_cone_distance, d.outer_cone_distance
+    probe = np.geomspace(r_in, r_out, 65)
+    polar = np.array([d.pitch_angle(member)])
+    phi = np.unwrap(_flank_azimuth(pair, member, "drive", probe, polar)[:, 0])
+    steps = np.abs(np.diff(phi))
+    n = max(resolution.min_sections, int(math.ceil(np.sum(steps) / resolution.twist_step)) + 1)
+    return np.geomspace(r_in, r_out, n)
+
+
+# ------------------------------------------------------------------ meshing
+def _zip(index_a, phi_a, index_b, phi_b):
+    """Triangles between two closed loops ordered by increasing azimuth.
+
+    Loop a must lie nearer to the axis than loop b (smaller polar angle).
+    The result is counter-clockwise in the (azimuth, polar angle) chart.
+
+    Parameters
+    ----------
+    index_a, phi_a : numpy.ndarray, shape (na,)
+        Vertex indices and azimuths [rad] of loop a, azimuth increasing over one turn.
+    index_b, phi_b : numpy.ndarray, shape (nb,)
+        The same for loop b.
+
+    Returns
+    -------
+    numpy.ndarray, shape (na + nb, 3)
+    """
+    phi_a = phi_a[0] + np.mod(phi_a - phi_a[0], 2 * np.pi)
+    # Start loop b at its first vertex at or after a's start.
+    rel_b = np.mod(phi_b - phi_a[0], 2 * np.pi)
+    first = int(np.argmin(rel_b))
+    index_b, rel_b = np.roll(index_b, -first), np.roll(rel_b, -first)
+    rel_a = phi_a - phi_a[0]
+    na, nb = index_a.size, index_b.size
+    # Close both loops: vertex n is vertex 0 one turn later.
+    ia = np.append(index_a, index_a[0])
+    ib = np.append(index_b, index_b[0])
+    keys = np.concatenate([np.append(rel_a[1:], 2 * np.pi),
+                           np.append(rel_b[1:], 2 * np.pi + rel_b[0])])
+    is_a = np.concatenate([np.ones(na, bool), np.zeros(nb, bool)])
+    order = np.argsort(keys, kind="stable")
+    step_a = is_a[order]
+    i_after = np.cumsum(step_a)
+    j_after = np.cumsum(~step_a)
+    i0, j0 = i_after - step_a, j_after - ~step_a
+    faces = np.where(step_a[:, None],
+                     np.stack([ia[i0], ia[np.minimum(i0 + 1, na)], ib[j0]], axis=1),
+                     np.stack([ia[i0], ib[np.minimum(j0 + 1, nb)], ib[j0]], axis=1))
+    return faces
+
+
+def _line_starts(azimuth):
+    """Indices where a run of equal azimuths (one meridian line) starts [-]."""
+    return np.flatnonzero(np.diff(azimuth, prepend=np.nan) != 0)
+
+
+def _chain_zip(left, left_polar, right, right_polar):
+    """Triangles between two meridian chains (left at the smaller azimuth).
+
+    Each chain runs up from the root in polar angle; the result is
+    counter-clockwise in the (azimuth, polar angle) chart, like :func:`_zip`.
+    """
+    nl, nr = left.size, right.size
+    keys = np.concatenate([left_polar[1:], right_polar[1:]])
+    is_left = np.concatenate([np.ones(nl - 1, bool), np.zeros(nr - 1, bool)])
+    step_l = is_left[np.argsort(keys, kind="stable")]
+    i0 = np.cumsum(step_l) - step_l
+    j0 = np.cumsum(~step_l) - ~step_l
+    third = np.where(step_l, left[np.minimum(i0 + 1, nl - 1)], right[np.minimum(j0 + 1, nr - 1)])
+    return np.stack([left[i0], right[j0], third], axis=1)
+
+
+def _tooth_region(index, polar, azimuth, root, step, new_points):
+    """Triangulate an end face between the root circle and the tooth outline.
+
+    The region {root <= theta <= theta_out(phi)} is cut along meridians
+    through the outline vertices into columns; each meridian gets vertices
+    at the root and every ``step`` up to the outline, and neighbouring
+    meridians are zipped in polar angle. (A plain zip between the outline and
+    a ring below it would fold over the radial flank continuation.)
+
+    Parameters
+    ----------
+    index, polar, azimuth : numpy.ndarray, shape (m,)
+        Outline vertex indices, polar angles and (increasing) azimuths [rad].
+    root : float
+        Root angle [rad].
+    step : float
+        Largest vertical edge [rad].
+    new_points : callable
+        ``new_points(theta, phi) -> indices`` adds vertices.
+
+    Returns
+    -------
+    bottom : numpy.ndarray
+        Vertex indices on the root circle, one per meridian, by azimuth.
+    faces : numpy.ndarray, shape (k, 3)
+    """
+    starts = _line_starts(azimuth)
+    ends = np.append(starts[1:], index.size)
+    at_root = np.isclose(polar, root, rtol=0, atol=1e-12)
+    # Levels below each single outline vertex above the root.
+    lines = []
+    new_theta, new_phi, owner = [], [], []
+    for g, (s, e) in enumerate(zip(starts, ends)):
+        members = np.arange(s, e)
+        lowest = members[np.argmin(polar[s:e])]
+        levels = np.empty(0)
+        if not at_root[lowest]:
+            n = int(math.ceil((polar[lowest] - root) / step))
+            levels = root + (polar[lowest] - root) * np.arange(n) / n
+        new_theta.append(levels)
+        new_phi.append(np.full(levels.size, azimuth[s]))
+        owner.append(np.full(levels.size, g))
+        lines.append(members)
+    new_theta = np.concatenate(new_theta)
+    added = new_points(new_theta, np.concatenate(new_phi))
+    owner = np.concatenate(owner)
+    split = np.searchsorted(owner, np.arange(len(lines) + 1))
+    chains, chain_polar = [], []
+    for g, members in enumerate(lines):
+        extra = slice(split[g], split[g + 1])
+        theta = np.concatenate([new_theta[extra], polar[members]])
+        order = np.argsort(theta, kind="stable")
+        chains.append(np.concatenate([added[extra], index[members]])[order])
+        chain_polar.append(theta[order])
+    faces = []
+    n_lines = len(lines)
+    for g in range(n_lines):
+        h = (g + 1) % n_lines
+        # The column's top edge joins the outline vertex that leaves line g
+        # to the one that enters line h.
+        top_left = polar[ends[g] - 1]
+        top_right = polar[starts[h]]
+        left = chain_polar[g] <= top_left
+        right = chain_polar[h] <= top_right
+        if left.sum() > 1 or right.sum() > 1:
+            faces.append(_chain_zip(chains[g][left], chain_polar[g][left],
+                                    chains[h][right], chain_polar[h][right]))
+    bottom = np.array([c[0] for c in chains])
+    return bottom, np.concatenate(faces)
+
+
+def _quads(first, second, points=None, period=None):
+    """Two triangles per quad between two closed rows of vertex indices.
+
+    Parameters
+    ----------
+    first, second : numpy.ndarray, shape (n,)
+        Vertex indices of the rows; quad i is first[i], first[i+1],
+        second[i+1], second[i].
+    points : numpy.ndarray, optional
+        Vertex positions [m]. If given, each quad is split along its shorter
+        diagonal, which follows a twisted surface (the spiral teeth) more
+        closely; otherwise always along first[i] - second[i+1].
+    period : int, optional
+        Quads repeat with this period (one tooth): the choice made on the
+        first period is copied, so that rounding cannot break the gear's
+        symmetry.
+
+    Returns
+    -------
+    numpy.ndarray, shape (2 n, 3)
+    """
+    a, b = first, second
+    a1, b1 = np.roll(a, -1), np.roll(b, -1)
+    split = np.ones(a.size, bool)
+    if points is not None:
+        n = a.size if period is None else period
+        split = np.resize(np.linalg.norm(points[a[:n]] - points[b1[:n]], axis=1)
+                          <= np.linalg.norm(points[a1[:n]] - points[b[:n]], axis=1), a.size)
+    one = np.where(split[:, None], np.stack([a, a1, b1], axis=1), np.stack([a, a1, b], axis=1))
+    two = np.where(split[:, None], np.stack([a, b1, b], axis=1), np.stack([a1, b1, b], axis=1))
+    return np.concatenate([one, two])
+
+
+def _orient(vertices, faces, outward):
+    """Flip a patch whose area-weighted normals point against ``outward(centroids)``."""
+    tri = vertices[faces]
+    normals = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    if np.sum(normals * outward(tri.mean(axis=1))) < 0:
+        return faces[:, ::-1]
+    return faces
+
+
+def gear_mesh(pair, member, resolution=DEFAULT_RESOLUTION):
+    """Watertight triangle mesh of one gear (teeth, hub and bore).
+
+    The section outlines (:func:`section_outline`, including the radial flank
+    continuation below a base cone that lies above the root cone) are lofted
+    between the toe and heel spheres; the end faces on those spheres run from
+    the tooth outline down to the root circle along meridians, then through
+    rings of constant polar angle to the bore circle; the bore is a polygonal
+    cylinder of diameter ``pinion_bore`` / ``gear_bore`` coaxial with the axis.
+    All vertices lie on the exact surfaces. The mesh is in the mesh frame at
+    rotation 0 (tooth 0 as :meth:`GearPair.flank`).
+
+    Parameters
+    ----------
+    pair : lsbg.geometry.GearPair
+    member : {1, 2}
+    resolution : MeshResolution
+
+    Returns
+    -------
+    trimesh.Trimesh
+        Watertight, consistently wound, outward normals [m]. ``metadata``
+        holds ``member``, ``name`` and ``sections``.
+    """
+    d = pair.design
+    z = d.teeth[member - 1]
+    a = pair.axis[member]
+    bore_radius = (d.pinion_bore if member == 1 else d.gear_bore) / 2
+    root = d.root_angle(member)
+    radii = section_cone_distances(pair, member, resolution)
+    outline = section_outline(pair, member, radii, resolution)
+    n_sec, m = outline.azimuth.shape
+
+    vertices = [outline.points.reshape(-1, 3)]
+    count = n_sec * m
+    rows = np.arange(count).reshape(n_sec, m)
+    flat = outline.points.reshape(-1, 3)
+    faces = {"lateral": np.concatenate([_quads(rows[k], rows[k + 1], flat, outline.per_tooth)
+                                        for k in range(n_sec - 1)])}
+
+    def add(points):
+        nonlocal count
+        vertices.append(points)
+        index = np.arange(count, count + len(points))
+        count += len(points)
+        return index
+
+    # Bore circles: the same azimuths on both spheres, so the cylinder is quads.
+    n_bore = z * max(resolution.bore_points_per_tooth,
+                     int(math.ceil(2 * np.pi / resolution.end_face_step / z)))
+    phi_bore = 2 * np.pi * (np.arange(n_bore) + 0.5) / n_bore
+    bore_rows = {}
+    end_faces = {}
+    for end, k in (("inner", 0), ("outer", n_sec - 1)):
+        radius = radii[k]
+        theta_bore = math.asin(bore_radius / radius)
+        bore_rows[end] = add(_sphere_points(pair, member, radius, theta_bore, phi_bore))
+        # Rings of constant polar angle between the bore and the root cone.
+        n_rings = int(math.ceil((root - theta_bore) / resolution.end_face_step))
+        loops = [(bore_rows[end], phi_bore)]
+        for theta in np.linspace(theta_bore, root, n_rings + 1)[1:-1]:
+            n_ring = z * max(1, int(math.ceil(2 * np.pi * math.sin(theta)
+                                              / resolution.end_face_step / z)))
+            phi = 2 * np.pi * (np.arange(n_ring) + 0.5) / n_ring
+            loops.append((add(_sphere_points(pair, member, radius, theta, phi)), phi))
+        bottom, columns = _tooth_region(
+            rows[k], outline.polar_angle[k], outline.azimuth[k], root,
+            resolution.end_face_step,
+            lambda theta, phi: add(_sphere_points(pair, member, radius, theta, phi)))
+        loops.append((bottom, outline.azimuth[k][_line_starts(outline.azimuth[k])]))
+        end_faces[end] = np.concatenate([_zip(ia, pa, ib, pb)
+                                         for (ia, pa), (ib, pb) in zip(loops[:-1], loops[1:])]
+                                        + [columns])
+    faces["bore"] = _quads(bore_rows["inner"], bore_rows["outer"])
+    vertices = np.concatenate(vertices)
+
+    def radial(c):  # away from the axis
+        r = c - (c @ a)[:, None] * a
+        return r / np.linalg.norm(r, axis=1, keepdims=True)
+
+    def spherical(c):
+        return c / np.linalg.norm(c, axis=1, keepdims=True)
+
+    def polar(c):  # towards larger polar angle: out of the root and tip cones
+        r = spherical(c)
+        cos = r @ a
+        return cos[:, None] * radial(c) - np.sqrt(1 - cos**2)[:, None] * a
+
+    outward = {"lateral": polar, "bore": lambda c: -radial(c),
+               "inner": lambda c: -spherical(c), "outer": spherical}
+    faces.update(end_faces)
+    all_faces = np.concatenate([_orient(vertices, f, outward[name]) for name, f in faces.items()])
+    mesh = trimesh.Trimesh(vertices, all_faces, process=False,
+                           metadata={"member": member, "name": MEMBER_NAMES[member],
+                                     "sections": n_sec})
+    return mesh
+
+
+def gear_meshes(pair, resolution=DEFAULT_RESOLUTION):
+    """Meshes of both members, ``{1: pinion, 2: gear}`` (see :func:`gear_mesh`)."""
+    return {member: gear_mesh(pair, member, resolution) for member in MEMBERS}
+
+
+# --------------------------------------------------------- mass properties
+@dataclass(frozen=True)
+class MassProperties:
+    """Mass properties of one gear.
+
+    Attributes
+    ----------
+    member : int
+    volume : float
+        [m^3]
+    mass : float
+        [kg]
+    centre_of_mass : numpy.ndarray, shape (3,)
+        In the mesh frame [m].
+    inertia : numpy.ndarray, shape (3, 3)
+        Inertia tensor about the centre of mass, mesh-frame axes [kg m^2].
+    axial_inertia : float
+        Moment of inertia about the rotation axis (through the apex) [kg m^2].
+    principal_axes : numpy.ndarray, shape (3, 3)
+        Columns x, y, z of the principal frame (:func:`principal_frame`); z is
+        the rotation axis u [-].
+    principal_moments : numpy.ndarray, shape (3,)
+        Diagonal of the inertia tensor in that frame [kg m^2]; the last is
+        the axial moment about the centre of mass.
+    """
+
+    member: int
+    volume: float
+    mass: float
+    centre_of_mass: np.ndarray
+    inertia: np.ndarray
+    axial_inertia: float
+    principal_axes: np.ndarray
+    principal_moments: np.ndarray
+
+
+def principal_frame(pair, member):
+    """Principal axes of a gear: columns x, y, z with z = rotation axis [-].
+
+    The gear has z-fold symmetry (z >= 3) about its axis, so its inertia
+    ellipsoid is one of revolution and any pair of axes normal to the rotation
+    axis is principal. y is the mesh frame's z axis (normal to both gear
+    axes) and x = y x z lies in the axial plane, which keeps the URDF's
+    roll-pitch-yaw away from gimbal lock (pitch = 0).
+
+    Returns
+    -------
+    numpy.ndarray, shape (3, 3)
+    """
+    z_axis = pair.rotation_axis[member]
+    y_axis = np.array([0.0, 0.0, 1.0])
+    return np.column_stack([np.cross(y_axis, z_axis), y_axis, z_axis])
+
+
+def mass_properties(mesh, pair, member, density=None):
+    """Mass properties of a gear mesh.
+
+    Parameters
+    ----------
+    mesh : trimesh.Trimesh
+        Watertight gear mesh from :func:`gear_mesh` [m].
+    pair : lsbg.geometry.GearPair
+    member : {1, 2}
+    density : float, optional
+        [kg/m^3]; default ``pair.design.density``.
+
+    Returns
+    -------
+    MassProperties
+    """
+    rho = pair.design.density if density is None else float(density)
+    props = trimesh.triangles.mass_properties(mesh.triangles, density=rho)
+    com = np.asarray(props.center_mass, dtype=float)
+    inertia = np.asarray(props.inertia, dtype=float)
+    u = pair.rotation_axis[member]
+    # Parallel-axis term for the tiny offset of the mesh's centre from the axis.
+    offset = com - (com @ u) * u
+    axial = float(u @ inertia @ u + props.mass * (offset @ offset))
+    axes = principal_frame(pair, member)
+    return MassProperties(member, float(props.volume), float(props.mass), com, inertia, axial,
+                          axes, np.diag(axes.T @ inertia @ axes).copy())
+
+
+# The section integrals: F(theta) with dF/dtheta = f(theta) and the power of R
+# in the volume element R^2 sin(theta) dtheta dphi dR times the integrand.
+_INTEGRANDS = {
+    # volume: f = sin
+    "volume": (lambda t: -np.cos(t), lambda t: np.sin(t), 2),
+    # axial moment, r_perp^2 = R^2 sin^2: f = sin^3
+    "axial": (lambda t: -np.cos(t) + np.cos(t) ** 3 / 3, lambda t: np.sin(t) ** 3, 4),
+    # first moment along the axis, R cos: f = cos sin
+    "first": (lambda t: -np.cos(t) ** 2 / 2, lambda t: np.cos(t) * np.sin(t), 3),
+    # moment about a line normal to the axis through the apex: z^2 + r_perp^2 / 2
+    "transverse": (lambda t: -np.cos(t) / 2 - np.cos(t) ** 3 / 6,
+                   lambda t: (0.5 + np.cos(t) ** 2 / 2) * np.sin(t), 4),
+}
+
+
+def section_integrals(pair, member, cone_distance, n_profile=48):
+    """Integrals over the gear's section on the unit sphere, without a mesh.
+
+    The section at cone distance R is the region between the bore circle
+    (theta_b = asin(r_bore / R)) and the tooth outline theta_out(phi). By Green's
+    theorem, for any f = F', int int f(theta) dtheta dphi = oint F(theta_out) dphi
+    - 2 pi F(theta_b), the loop taken in increasing azimuth. Root arcs and top
+    lands (constant theta) contribute F times their angular width; a flank
+    contributes F(tip) dphi - int (phi - phi_start) f dtheta (by parts),
+    evaluated by Gauss-Legendre in t with theta = start + (tip - start) t^2, in
+    which the involute's azimuth is smooth; the radial continuation below the
+    base cone adds nothing (dphi = 0).
+
+    Parameters
+    ----------
+    pair : lsbg.geometry.GearPair
+    member : {1, 2}
+    cone_distance : array_like
+        Sphere radii R [m], 1-D.
+    n_profile : int
+        Gauss points per flank [-].
+
+    Returns
+    -------
+    dict of numpy.ndarray, shape (n,)
+        ``volume``: int int sin(theta); ``axial``: sin^3; ``first``:
+        cos sin; ``transverse``: (cos^2 + sin^2 / 2) sin [sr].
+    """
+    d = pair.design
+    radius = np.atleast_1d(np.asarray(cone_distance, dtype=float))
+    z = d.teeth[member - 1]
+    root, tip = d.root_angle(member), d.tip_angle(member)
+    start = pair.flank_polar_range(member)[0]
+    bore = (d.pinion_bore if member == 1 else d.gear_bore) / 2
+    theta_bore = np.arcsin(bore / radius)
+    nodes, weights = np.polynomial.legendre.leggauss(n_profile)
+    t = (nodes + 1) / 2
+    polar = start + (tip - start) * t**2
+    dpolar = 2 * (tip - start) * t * weights / 2   # dtheta/dt times the weights on [0, 1]
+    ends = np.array([start, tip])
+    low, high = side_order(pair, member)
+    phi = {}
+    for side in (low, high):
+        at_ends = _flank_azimuth(pair, member, side, radius, ends)
+        inside = _flank_azimuth(pair, member, side, radius, polar)
+        phi[side] = (at_ends[:, 0], _wrap(at_ends[:, 1] - at_ends[:, 0]),
+                     _wrap(inside - at_ends[:, :1]))
+    # Angular widths at the root (tooth) and of the top land, from the flank ends.
+    base_width = _wrap(phi[high][0] - phi[low][0])
+    top_width = base_width + phi[high][1] - phi[low][1]
+    root_width = 2 * np.pi / z - base_width
+    out = {}
+    for name, (big_f, small_f, _) in _INTEGRANDS.items():
+        def flank(side):
+            _, rise, inner = phi[side]
+            return big_f(tip) * rise - inner @ (small_f(polar) * dpolar)
+        tooth = flank(low) + big_f(tip) * top_width - flank(high) + big_f(root) * root_width
+        out[name] = z * tooth - 2 * np.pi * big_f(theta_bore)
+    return out
+
+
+@dataclass(frozen=True)
+class QuadratureMassProperties:
+    """Mass properties of a gear by quadrature over its sections (no mesh).
+
+    Attributes
+    ----------
+    volume : float
+        [m^3]
+    mass : float
+        [kg]
+    axial_inertia : float
+        About the gear axis [kg m^2].
+    centre_of_mass_distance : float
+        Distance of the centre of mass from the apex, along the axis [m].
+    transverse_inertia : float
+        About a line through the centre of mass normal to the axis [kg m^2].
+    """
+
+    volume: float
+    mass: float
+    axial_inertia: float
+    centre_of_mass_distance: float
+    transverse_inertia: float
+
+
+def quadrature_mass_properties(pair, member, density=None, n_radial=16, n_profile=48):
+    """Mass properties from :func:`section_integrals`, Gauss-Legendre over R.
+
+    V = int R^2 S_vol(R) dR and I = rho int R^4 S_axial(R) dR, where S are the
+    section integrals on the unit sphere; independent of the triangle mesh.
+
+    Parameters
+    ----------
+    pair : lsbg.geometry.GearPair
+    member : {1, 2}
+    density : float, optional
+        [kg/m^3]; default ``pair.design.density``.
+    n_radial, n_profile : int
+        Gauss points across the face width and per flank [-].
+
+    Returns
+    -------
+    QuadratureMassProperties
+    """
+    d = pair.design
+    rho = d.density if density is None else float(density)
+    nodes, weights = np.polynomial.legendre.leggauss(n_radial)
+    r_in, r_out = d.inner_cone_distance, d.outer_cone_distance
+    radius = r_in + (r_out - r_in) * (nodes + 1) / 2
+    weights = weights * (r_out - r_in) / 2
+    sections = section_integrals(pair, member, radius, n_profile)
+    total = {name: float(np.sum(weights * radius**_INTEGRANDS[name][2] * sections[name]))
+             for name in _INTEGRANDS}
+    volume = total["volume"]
+    com = total["first"] / volume
+    return QuadratureMassProperties(
+        volume=volume, mass=rho * volume, axial_inertia=rho * total["axial"],
+        centre_of_mass_distance=com,
+        transverse_inertia=rho * (total["transverse"] - volume * com**2))
+
+
+# --------------------------------------------------------------------- URDF
+def _rpy(rotation):
+    """URDF roll, pitch, yaw of a rotation matrix R = Rz(yaw) Ry(pitch) Rx(roll) [rad]."""
+    pitch = math.asin(-max(-1.0, min(1.0, rotation[2, 0])))
+    roll = math.atan2(rotation[2, 1], rotation[2, 2])
+    yaw = math.atan2(rotation[1, 0], rotation[0, 0])
+    return roll, pitch, yaw
+
+
+def _fmt(values):
+    return " ".join(repr(float(v)) for v in np.atleast_1d(values))
+
+
+def write_urdf(path, pair, props, mesh_files):
+    """URDF of the assembled pair for PyBullet.
+
+    A fixed base link ``frame`` (1 g, 1e-9 kg m^2) carries the links
+    ``pinion`` and ``gear`` on revolute joints ``pinion_joint`` and
+    ``gear_joint``. Both joints sit at the apex with ``axis`` = the forward
+    rotation axis u_m; link frames equal the mesh frame at rotation 0, so a
+    joint angle is the member's forward rotation. Each ``<inertial>`` is
+    placed at the centre of mass and turned onto the principal axes (z along
+    the gear axis) with ixy = ixz = iyz = 0, because PyBullet keeps only the
+    diagonal of the URDF inertia in the inertial frame; izz is the axial
+    moment. Limits: effort 1e9 N m, velocity 1e4 rad/s (PyBullet's own
+    ``maxJointVelocity`` of 100 rad/s is separate; see DESIGN.md §3), no
+    damping or friction. There is no ``<collision>`` element: contact forces
+    come from :mod:`lsbg.geometry`, never from Bullet (DESIGN.md §3).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        URDF file to write.
+    pair : lsbg.geometry.GearPair
+    props : dict
+        ``{member: MassProperties}`` for members 1 and 2.
+    mesh_files : dict
+        ``{member: path}`` of the visual meshes (OBJ or STL, in metres),
+        written relative to the URDF's directory.
+
+    Returns
+    -------
+    str
+        The path written.
+    """
+    path = os.fspath(path)
+    base = os.path.dirname(os.path.abspath(path))
+    robot = ElementTree.Element("robot", name=f"lsbg_{pair.design.trace}_pair")
+    frame = ElementTree.SubElement(robot, "link", name="frame")
+    inertial = ElementTree.SubElement(frame, "inertial")
+    ElementTree.SubElement(inertial, "origin", xyz="0 0 0", rpy="0 0 0")
+    ElementTree.SubElement(inertial, "mass", value="0.001")
+    ElementTree.SubElement(inertial, "inertia", ixx="1e-09", ixy="0", ixz="0",
+                           iyy="1e-09", iyz="0", izz="1e-09")
+    colours = {1: "0.80 0.45 0.20 1", 2: "0.55 0.60 0.70 1"}
+    for member in MEMBERS:
+        name, p = MEMBER_NAMES[member], props[member]
+        link = ElementTree.SubElement(robot, "link", name=name)
+        inertial = ElementTree.SubElement(link, "inertial")
+        ElementTree.SubElement(inertial, "origin", xyz=_fmt(p.centre_of_mass),
+                               rpy=_fmt(_rpy(p.principal_axes)))
+        ElementTree.SubElement(inertial, "mass", value=repr(p.mass))
+        ixx, iyy, izz = p.principal_moments
+        ElementTree.SubElement(inertial, "inertia", ixx=repr(float(ixx)), ixy="0", ixz="0",
+                               iyy=repr(float(iyy)), iyz="0", izz=repr(float(izz)))
+        visual = ElementTree.SubElement(link, "visual")
+        ElementTree.SubElement(visual, "origin", xyz="0 0 0", rpy="0 0 0")
+        geometry = ElementTree.SubElement(visual, "geometry")
+        relative = os.path.relpath(os.path.abspath(os.fspath(mesh_files[member])), base)
+        ElementTree.SubElement(geometry, "mesh", filename=relative.replace(os.sep, "/"),
+                               scale="1 1 1")
+        material = ElementTree.SubElement(visual, "material", name=f"{name}_colour")
+        ElementTree.SubElement(material, "color", rgba=colours[member])
+        joint = ElementTree.SubElement(robot, "joint", name=f"{name}_joint", type="revolute")
+        ElementTree.SubElement(joint, "parent", link="frame")
+        ElementTree.SubElement(joint, "child", link=name)
+        ElementTree.SubElement(joint, "origin", xyz="0 0 0", rpy="0 0 0")
+        ElementTree.SubElement(joint, "axis", xyz=_fmt(pair.rotation_axis[member]))
+        # Revolute joints need limits; these never bind.
+        ElementTree.SubElement(joint, "limit", lower="-1e9", upper="1e9",
+                               effort="1e9", velocity="1e4")
+        ElementTree.SubElement(joint, "dynamics", damping="0", friction="0")
+    ElementTree.indent(robot)
+    with open(path, "w", encoding="utf-8") as handle:
+        handle.write('<?xml version="1.0"?>\n')
+        handle.write(f"<!-- lsbg: {pair.design.trace} trace, spiral angle "
+                     f"{math.degrees(pair.design.spiral_angle):g} deg; SI units; "
+                     "mesh frame = world frame, apex at the origin -->\n")
+        handle.write(ElementTree.tostring(robot, encoding="unicode"))
+        handle.write("\n")
+    return path
+
+
+# ------------------------------------------------------------------ picture
+def render_pair(path, pair, meshes, size=(900, 700)):
+    """PNG picture of the assembled pair (both gears at rotation 0).
+
+    Rendered by matplotlib: flat-shaded triangles (Lambert with an ambient
+    part), drawn back to front.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        PNG file to write.
+    pair : lsbg.geometry.GearPair
+    meshes : dict
+        ``{member: trimesh.Trimesh}`` for members 1 and 2 [m].
+    size : tuple of int
+        Width and height [pixel].
+
+    Returns
+    -------
+    str
+        The path written.
+    """
+    # Agg canvas without pyplot: no global backend switch, no GUI.
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    d = pair.design
+    # Look at the gear's tooth face (from its apex side, against a2), a little
+    # towards the heel and from above the axial plane, so the pinion shows in mesh.
+    view = -0.9 * pair.axis[2] + 0.3 * pair.pitch_dir + np.array([0.0, 0.0, 0.55])
+    view /= np.linalg.norm(view)
+    light = np.array([0.3, 0.6, 0.75])
+    light /= np.linalg.norm(light)
+    fig = Figure(figsize=(size[0] / 100, size[1] / 100), dpi=100)
+    FigureCanvasAgg(fig)
+    ax = fig.add_subplot(projection="3d", computed_zorder=False)
+    colours = {1: np.array([0.85, 0.50, 0.22]), 2: np.array([0.55, 0.62, 0.75])}
+    polys, shades = [], []
+    for member in MEMBERS:
+        mesh = meshes[member]
+        tri = 1e3 * mesh.triangles
+        normals = mesh.face_normals
+        facing = normals @ view > 0   # back faces are hidden by the solid anyway
+        lambert = np.clip(normals[facing] @ light, 0.0, 1.0)
+        shade = (0.35 + 0.65 * lambert)[:, None] * colours[member]
+        polys.append(tri[facing])
+        shades.append(shade)
+    polys = np.concatenate(polys)
+    shades = np.concatenate(shades)
+    # Painter's order along the view direction.
+    order = np.argsort(polys.mean(axis=1) @ view)
+    collection = Poly3DCollection(polys[order], facecolors=shades[order], edgecolors="none",
+                                  linewidths=0, antialiased=False)
+    ax.add_collection3d(collection)
+    corner = 1e3 * np.concatenate([meshes[m].bounds for m in MEMBERS])
+    lo, hi = corner.min(axis=0), corner.max(axis=0)
+    centre, half = (lo + hi) / 2, (hi - lo).max() / 2
+    for setter, c in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), centre):
+        setter(c - half, c + half)
+    ax.set_box_aspect((1, 1, 1), zoom=1.45)
+    elev = math.degrees(math.asin(view[2]))
+    azim = math.degrees(math.atan2(view[1], view[0]))
+    ax.view_init(elev=elev, azim=azim, vertical_axis="z")
+    ax.set_axis_off()
+    trace = "LSBG (logarithmic spiral)" if d.trace == "logarithmic" else "SBG (circular arc)"
+    ax.set_title(f"{trace}, spiral angle {math.degrees(d.spiral_angle):g}°, "
+                 f"{d.pinion_teeth}:{d.gear_teeth}, m = {1e3 * d.module:g} mm")
+    fig.tight_layout()
+    fig.savefig(os.fspath(path), dpi=100)
+    return os.fspath(path)

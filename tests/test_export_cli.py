@@ -1,0 +1,255 @@
+"""``lsbg geometry``: the files of one design point, design.json keys, round trip, errors."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from lsbg import cli, export, solids
+from lsbg.design import CONFIG_KEYS, GearPairDesign
+from lsbg.geometry import GearPair
+
+FILES = ("design.json", "flanks.nc", "pinion.stl", "gear.stl", "pinion.obj", "gear.obj",
+         "pair.urdf", "pair.png")
+UNIT_SUFFIXES = ("_mm", "_mm3", "_deg", "_kg", "_kg_m2", "_kg_m3")
+UNITLESS = {"pinion_teeth", "gear_teeth", "pinion_hand", "trace", "base_cone_rule",
+            "base_cone_constant", "gear_ratio", "contact_ratio", "contact_ratio_profile",
+            "contact_ratio_face", "lsbg_version", "mesh_triangles_pinion", "mesh_triangles_gear"}
+
+
+@pytest.fixture(scope="module")
+def geometry(tmp_path_factory):
+    """Both traces written through the command line, once."""
+    root = tmp_path_factory.mktemp("geometry")
+    out = {}
+    for trace in ("logarithmic", "circular"):
+        out[trace] = root / trace
+        assert cli.main(["geometry", "--trace", trace, "--spiral-angle", "35",
+                         "--out", str(out[trace])]) == 0
+    return out
+
+
+def record(directory):
+    with open(directory / "design.json", encoding="utf-8") as handle:
+        return json.load(handle)
+
+
+@pytest.mark.parametrize("trace", ["logarithmic", "circular"])
+def test_geometry_writes_every_file(geometry, trace):
+    directory = geometry[trace]
+    assert sorted(p.name for p in directory.iterdir()) == sorted(FILES)
+    assert not [p for p in directory.parent.iterdir() if p.name.startswith(".")]
+    with open(directory / "pair.png", "rb") as handle:
+        assert handle.read(8) == b"\x89PNG\r\n\x1a\n"
+    trimesh = pytest.importorskip("trimesh")
+    for name in ("pinion.stl", "gear.obj"):
+        mesh = trimesh.load(directory / name, force="mesh")
+        assert mesh.is_watertight and mesh.volume > 0
+
+
+@pytest.mark.parametrize("trace", ["logarithmic", "circular"])
+def test_design_json_keys_units_and_values(geometry, trace):
+    rec = record(geometry[trace])
+    for key in CONFIG_KEYS:
+        assert key in rec
+    documented = [
+        "contact_ratio", "contact_ratio_profile", "contact_ratio_face",
+        "undercut_pinion_deg", "undercut_gear_deg",
+        "top_land_inner_pinion_mm", "top_land_outer_pinion_mm",
+        "top_land_inner_gear_mm", "top_land_outer_gear_mm",
+        "normal_pressure_angle_mean_deg", "spiral_angle_along_face_deg",
+        "cone_distance_along_face_mm", "mass_pinion_kg", "mass_gear_kg",
+        "axial_inertia_pinion_kg_m2", "axial_inertia_gear_kg_m2",
+        "centre_of_mass_pinion_mm", "centre_of_mass_gear_mm", "lsbg_version",
+    ]
+    for key in documented + list(GearPairDesign().derived()):
+        assert key in rec, key
+    for key, value in rec.items():
+        assert key in UNITLESS or key.endswith(UNIT_SUFFIXES), key
+        assert isinstance(value, (int, float, str, list)), key
+    assert rec["trace"] == trace
+    assert rec["pitch_angle_pinion_deg"] == pytest.approx(13.6713, abs=5e-5)
+    assert rec["outer_cone_distance_mm"] == pytest.approx(85.677, abs=5e-4)
+    assert rec["normal_pressure_angle_mean_deg"] == pytest.approx(20.0, abs=0.05)
+    assert rec["normal_pressure_angle_mean_deg"] == pytest.approx(
+        rec["normal_pressure_angle_mean_design_deg"], abs=0.05)
+    assert rec["undercut_pinion_deg"] == pytest.approx(0.5, abs=0.1)
+    assert rec["contact_ratio"] == pytest.approx(
+        rec["contact_ratio_profile"] + rec["contact_ratio_face"])
+    assert len(rec["spiral_angle_along_face_deg"]) == len(rec["cone_distance_along_face_mm"]) == 21
+    assert rec["cone_distance_along_face_mm"][0] == pytest.approx(rec["inner_cone_distance_mm"])
+    assert rec["cone_distance_along_face_mm"][-1] == pytest.approx(rec["outer_cone_distance_mm"])
+    for name in ("pinion", "gear"):
+        assert rec[f"mass_{name}_kg"] == pytest.approx(rec[f"mass_quadrature_{name}_kg"], rel=5e-3)
+        assert rec[f"axial_inertia_{name}_kg_m2"] == pytest.approx(
+            rec[f"axial_inertia_quadrature_{name}_kg_m2"], rel=5e-3)
+        assert len(rec[f"centre_of_mass_{name}_mm"]) == 3
+        assert rec[f"top_land_outer_{name}_mm"] > rec[f"top_land_inner_{name}_mm"] > 0
+
+
+def test_spiral_angle_along_face(geometry):
+    lsbg_angle = record(geometry["logarithmic"])["spiral_angle_along_face_deg"]
+    sbg_angle = record(geometry["circular"])["spiral_angle_along_face_deg"]
+    assert np.ptp(lsbg_angle) < 0.01
+    assert np.mean(lsbg_angle) == pytest.approx(35.0, abs=1e-6)
+    assert np.ptp(sbg_angle) > 5
+    assert sbg_angle[10] == pytest.approx(35.0, abs=1e-6)     # the mean point
+
+
+def test_read_design_round_trips(geometry):
+    assert export.read_design(geometry["logarithmic"]) == GearPairDesign()
+    assert export.read_design(geometry["circular"]) == GearPairDesign(trace="circular")
+
+
+@pytest.mark.parametrize("config", [
+    {"spiral_angle_deg": 36.2},           # to_config gives 36.20000000000001
+    {"spiral_angle_deg": 33.3, "normal_pressure_angle_deg": 21.7, "module_mm": 4.7,
+     "face_width_mm": 23.1, "pinion_hand": "right", "trace": "circular"},
+])
+def test_exact_config_round_trips_through_json(config):
+    design = GearPairDesign.from_config(config)
+    text = json.dumps(design.to_config())
+    assert GearPairDesign.from_config(json.loads(text)) == design
+
+
+def test_read_design_after_write_geometry(tmp_path):
+    design = GearPairDesign.from_config({"spiral_angle_deg": 36.8, "backlash_mm": 0.07})
+    files = export.write_geometry(design, tmp_path / "point")
+    assert export.read_design(files.directory) == design
+    assert set(files.timings) == set(export.STAGES) | {"total"}
+    assert sum(files.timings[s] for s in export.STAGES) <= files.timings["total"]
+
+
+def test_flanks_netcdf_is_cf_and_matches_the_geometry(geometry):
+    xr = pytest.importorskip("xarray")
+    with xr.open_dataset(geometry["logarithmic"] / "flanks.nc") as ds:
+        assert ds.attrs["Conventions"] == "CF-1.11"
+        for key in ("title", "source", "history"):
+            assert isinstance(ds.attrs[key], str) and ds.attrs[key]
+        for value in ds.attrs.values():
+            assert isinstance(value, (str, int, float, np.number))
+        for name in ("point", "normal", "cone_distance", "profile", "polar_angle"):
+            assert "units" in ds[name].attrs and "long_name" in ds[name].attrs
+        assert ds["point"].dims == ("member", "side", "cone_distance", "profile", "xyz")
+        pair = GearPair(GearPairDesign())
+        sel = dict(member="gear", side="coast")
+        radius = 1e-3 * ds["cone_distance"].values[5]
+        polar = np.radians(ds["polar_angle"].sel(member="gear").values)
+        expected, normals = pair.flank(2, "coast", radius, polar)
+        np.testing.assert_allclose(ds["point"].sel(**sel).values[5], 1e3 * expected, atol=1e-9)
+        np.testing.assert_allclose(ds["normal"].sel(**sel).values[5], normals, atol=1e-12)
+
+
+def test_design_file_and_overrides(tmp_path):
+    design_file = tmp_path / "design.yaml"
+    design_file.write_text("trace: circular\nspiral_angle_deg: 30\nface_width_mm: 22\n")
+    out = tmp_path / "point"
+    assert cli.main(["geometry", "--design", str(design_file), "--face-width-mm", "24",
+                     "--out", str(out)]) == 0
+    design = export.read_design(out)
+    assert design == GearPairDesign.from_config(
+        {"trace": "circular", "spiral_angle_deg": 30, "face_width_mm": 24})
+
+
+def test_every_design_key_has_an_option(capsys):
+    parser = cli.build_parser()
+    args = parser.parse_args(["geometry", "--out", "x"] + [
+        arg for key, value in GearPairDesign().to_config().items()
+        for arg in ("--" + key.replace("_", "-"), str(value))])
+    assert cli.design_from_args(args) == GearPairDesign.from_config(
+        {k: v for k, v in GearPairDesign().to_config().items()})
+    with pytest.raises(SystemExit) as exit_:
+        cli.main(["geometry", "--help"])
+    assert exit_.value.code == 0
+    help_text = " ".join(capsys.readouterr().out.split())
+    for key in CONFIG_KEYS:
+        assert "--" + key.replace("_", "-") in help_text
+    assert "--spiral-angle DEG" in help_text
+    assert "mean spiral angle on the pitch cone [deg] (default: 35)" in help_text
+    assert "outer transverse module m [mm] (default: 4.5)" in help_text
+
+
+def test_bad_spiral_angle_exits_2_and_writes_nothing(tmp_path, capsys):
+    out = tmp_path / "bad"
+    assert cli.main(["geometry", "--trace", "logarithmic", "--spiral-angle", "75",
+                     "--out", str(out)]) == 2
+    assert "spiral_angle" in capsys.readouterr().err
+    assert not out.exists()
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_pointed_teeth_exit_2(tmp_path, capsys):
+    out = tmp_path / "bad"
+    assert cli.main(["geometry", "--base-cone-rule", "paper", "--out", str(out)]) == 2
+    assert "base_cone_rule" in capsys.readouterr().err
+    assert not out.exists()
+
+
+def test_unknown_yaml_key_exits_2(tmp_path, capsys):
+    design_file = tmp_path / "design.yaml"
+    design_file.write_text("spiral_angle_deg: 30\nhelix_angle_deg: 12\n")
+    out = tmp_path / "bad"
+    assert cli.main(["geometry", "--design", str(design_file), "--out", str(out)]) == 2
+    assert "helix_angle_deg" in capsys.readouterr().err
+    assert not out.exists()
+
+
+def test_failure_leaves_nothing_half_written(tmp_path, monkeypatch):
+    out = tmp_path / "point"
+    out.mkdir()
+    (out / "old.txt").write_text("previous run")
+
+    def broken(*args, **kwargs):
+        raise RuntimeError("renderer crashed")
+
+    monkeypatch.setattr(solids, "render_pair", broken)
+    with pytest.raises(RuntimeError, match="renderer crashed"):
+        export.write_geometry(GearPairDesign(), out)
+    # the previous output is untouched and no temporary directory is left
+    assert [p.name for p in tmp_path.iterdir()] == ["point"]
+    assert [p.name for p in out.iterdir()] == ["old.txt"]
+
+
+def test_urdf_of_the_stage_loads_in_pybullet(geometry):
+    p = pytest.importorskip("pybullet")
+    rec = record(geometry["circular"])
+    client = p.connect(p.DIRECT)
+    try:
+        body = p.loadURDF(str(geometry["circular"] / "pair.urdf"), useFixedBase=True,
+                          flags=p.URDF_USE_INERTIA_FROM_FILE, physicsClientId=client)
+        for j, name in enumerate(("pinion", "gear")):
+            dyn = p.getDynamicsInfo(body, j, physicsClientId=client)
+            assert dyn[0] == pytest.approx(rec[f"mass_{name}_kg"], rel=1e-12)
+            assert dyn[2][2] == pytest.approx(rec[f"axial_inertia_{name}_kg_m2"], rel=1e-6)
+            np.testing.assert_allclose(1e3 * np.array(dyn[3]), rec[f"centre_of_mass_{name}_mm"],
+                                       atol=1e-9)
+        # the visual meshes resolve relative to the URDF
+        shapes = p.getVisualShapeData(body, physicsClientId=client)
+        assert {s[1] for s in shapes} >= {0, 1}
+    finally:
+        p.disconnect(client)
+
+
+def test_spiral_angle_option_is_degrees():
+    args = cli.build_parser().parse_args(["geometry", "--spiral-angle", "30", "--out", "x"])
+    assert math.degrees(cli.design_from_args(args).spiral_angle) == pytest.approx(30)
+
+
+def test_subcommands_can_be_registered_by_name(monkeypatch):
+    """Another module adds a subcommand with one entry in cli.PARSERS."""
+    import sys
+    import types
+
+    module = types.ModuleType("lsbg_fake_subcommand")
+
+    def add_hello_parser(subparsers):
+        parser = subparsers.add_parser("hello")
+        cli.add_design_options(parser)
+        parser.set_defaults(handler=lambda args: 7 if cli.design_from_args(args).pinion_teeth == 11
+                            else 1)
+
+    module.add_hello_parser = add_hello_parser
+    monkeypatch.setitem(sys.modules, module.__name__, module)
+    monkeypatch.setattr(cli, "PARSERS", cli.PARSERS + [f"{module.__name__}:add_hello_parser"])
+    assert cli.main(["hello", "--pinion-teeth", "11"]) == 7
