@@ -34,7 +34,7 @@ from lsbg import __version__
 from lsbg.design import BASE_CONE_RULES, CONFIG_KEYS, HANDS, TRACES, DesignError, GearPairDesign
 
 __all__ = ["main", "build_parser", "add_design_options", "design_from_args", "CommandError",
-           "PARSERS", "add_geometry_parser"]
+           "PARSERS", "add_geometry_parser", "add_simulate_parser", "add_convergence_parser"]
 
 
 class CommandError(ValueError):
@@ -111,20 +111,20 @@ def add_design_options(parser):
         group.add_argument(*flags, **kwargs)
 
 
-def _read_yaml(path):
+def _read_yaml(path, option="--design"):
     import yaml
 
     try:
         with open(path, encoding="utf-8") as handle:
             data = yaml.safe_load(handle)
     except OSError as error:
-        raise CommandError(f"--design {path}: {error.strerror}") from None
+        raise CommandError(f"{option} {path}: {error.strerror}") from None
     except yaml.YAMLError as error:
-        raise CommandError(f"--design {path}: not valid YAML ({error})") from None
+        raise CommandError(f"{option} {path}: not valid YAML ({error})") from None
     if data is None:
         return {}
     if not isinstance(data, dict):
-        raise CommandError(f"--design {path}: must hold a mapping of design keys")
+        raise CommandError(f"{option} {path}: must hold a mapping of keys")
     return data
 
 
@@ -179,9 +179,130 @@ def run_geometry(args):
     return 0
 
 
+# --------------------------------------------------------------- simulate
+def _read_study_sections(path, *sections):
+    """The named sections of a study configuration file (``{}`` if no file)."""
+    if path is None:
+        return [{} for _ in sections]
+    config = _read_yaml(path, "--config")
+    return [config.get(section) or {} for section in sections]
+
+
+#: Command-line options of ``lsbg simulate`` -> key of the ``simulation`` section.
+_SIMULATION_OPTIONS = {
+    "duration": ("duration_s", float, "simulated time [s] (paper: 1)"),
+    "samples": ("samples", int, "output intervals; samples+1 instants (paper: 500)"),
+    "dt": ("time_step_s", float, "fixed time step of the pybullet engine [s] (1e-6)"),
+    "rtol": ("rtol", float, "relative tolerance of the scipy engine (1e-8)"),
+    "method": ("method", str, "solve_ivp method of the scipy engine (LSODA)"),
+    "pinion_speed": ("pinion_speed_deg_s", float, "final pinion speed [deg/s] (paper: 7703)"),
+    "ramp_time": ("ramp_time_s", float, "STEP ramp time of the pinion speed [s] (paper: 0.2)"),
+    "load_torque": ("load_torque_N_m", float, "resisting torque on the gear [N m] (paper: 1964.99)"),
+}
+
+
+def add_simulation_options(parser):
+    """Add ``--engine``, ``--config`` and the simulation settings options."""
+    parser.add_argument("--geometry", required=True, metavar="DIR",
+                        help="geometry directory written by 'lsbg geometry'")
+    parser.add_argument("--engine", choices=("pybullet", "scipy"), default="pybullet",
+                        help="integrator: pybullet (multibody, fixed step) or scipy (solve_ivp "
+                             "reference) (default: pybullet)")
+    parser.add_argument("--config", metavar="FILE.yaml",
+                        help="study configuration; its 'simulation' and 'contact' sections are used")
+    for option, (key, kind, text) in _SIMULATION_OPTIONS.items():
+        parser.add_argument(f"--{option.replace('_', '-')}", dest=option, type=kind, help=text)
+
+
+def simulation_from_args(args):
+    """(settings, contact parameters) from ``--config`` and the options."""
+    from lsbg.contact import ContactParameters
+    from lsbg.dynamics import SimulationSettings
+
+    simulation, contact = _read_study_sections(args.config, "simulation", "contact")
+    simulation = dict(simulation)
+    for option, (key, _, _) in _SIMULATION_OPTIONS.items():
+        value = getattr(args, option, None)
+        if value is not None:
+            simulation[key] = value
+    try:
+        settings = SimulationSettings.from_config(simulation, engine=args.engine)
+        params = ContactParameters.from_config(contact)
+    except ValueError as err:
+        raise CommandError(str(err)) from None
+    return settings, params
+
+
+def add_simulate_parser(subparsers):
+    """``lsbg simulate``: one meshing simulation -> one NetCDF time series."""
+    parser = subparsers.add_parser(
+        "simulate", help="simulate the meshing of one design point",
+        description="Simulate the meshing of the pair in --geometry (paper §3: pinion speed "
+                    "ramped to 7703 deg/s, gear loaded with 1964.99 N m) and write the time "
+                    "series to --out (NetCDF, CF-1.11). A blow-up (NaN, penetration beyond d, "
+                    "runaway speed) stops the run with exit code 3 and writes nothing.")
+    add_simulation_options(parser)
+    parser.add_argument("--out", required=True, metavar="RUN.nc", help="output NetCDF file")
+    parser.set_defaults(handler=run_simulate)
+
+
+def run_simulate(args):
+    """Handler of ``lsbg simulate`` [exit code]."""
+    from lsbg.dynamics import SimulationError, simulate
+    from lsbg.results import write_dataset
+
+    settings, params = simulation_from_args(args)
+    try:
+        ds = simulate(args.geometry, settings, params, command=" ".join(["lsbg", *sys.argv[1:]]))
+    except SimulationError as err:
+        print(f"lsbg simulate: simulation stopped: {err}", file=sys.stderr)
+        return 3
+    write_dataset(ds, args.out)
+    print(f"lsbg simulate: {settings.engine} -> {args.out} ({ds.attrs['wall_time_s']:.1f} s wall)")
+    return 0
+
+
+# ------------------------------------------------------------ convergence
+def add_convergence_parser(subparsers):
+    """``lsbg convergence``: standard deviations against time step and tolerance."""
+    parser = subparsers.add_parser(
+        "convergence", help="convergence table of one design point",
+        description="Run one design point with pybullet at dt = 4e-6, 2e-6, 1e-6 s and scipy "
+                    "at rtol = 1e-6, 1e-8, 1e-10, and write the standard deviations of gear "
+                    "speed and tangential force after the steady-state start to --out (CSV).")
+    add_simulation_options(parser)
+    parser.add_argument("--steady-state-after", type=float, default=0.2, metavar="S",
+                        help="start of the steady state [s] (default 0.2)")
+    parser.add_argument("--out", required=True, metavar="TABLE.csv", help="output CSV file")
+    parser.set_defaults(handler=run_convergence)
+
+
+def run_convergence(args):
+    """Handler of ``lsbg convergence`` [exit code]."""
+    from pathlib import Path
+
+    from lsbg.dynamics import SimulationError, load_model
+    from lsbg.verification import convergence_study
+
+    settings, params = simulation_from_args(args)
+    model = load_model(args.geometry, params)
+    try:
+        table = convergence_study(model, settings, steady_start=args.steady_state_after)
+    except SimulationError as err:
+        print(f"lsbg convergence: simulation stopped: {err}", file=sys.stderr)
+        return 3
+    out = Path(args.out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    tmp = out.with_name(out.name + ".part")
+    table.to_csv(tmp, index=False)
+    tmp.replace(out)
+    print(table.to_string(index=False))
+    return 0
+
+
 #: One ``add_<name>_parser(subparsers)`` per subcommand: a function or a
 #: ``"module:function"`` string.
-PARSERS = [add_geometry_parser]
+PARSERS = [add_geometry_parser, add_simulate_parser, add_convergence_parser]
 
 
 def build_parser():

@@ -106,6 +106,9 @@ def run_dataset(record, model, settings, command=""):
     }
     attrs.update({f"design_{k}": v for k, v in design.to_config().items()})
     attrs.update({f"design_{k}": v for k, v in design.derived().items()})
+    ratio = model.pair.contact_ratio()
+    attrs.update(design_contact_ratio=ratio["total"], design_contact_ratio_profile=ratio["profile"],
+                 design_contact_ratio_face=ratio["face"])
     attrs.update({f"contact_{k}": v for k, v in model.contact.params.to_dict().items()})
     attrs.update({f"solver_{k}": v for k, v in settings.to_dict().items()})
     attrs.update(_library_versions())

@@ -253,3 +253,30 @@ def test_subcommands_can_be_registered_by_name(monkeypatch):
     monkeypatch.setitem(sys.modules, module.__name__, module)
     monkeypatch.setattr(cli, "PARSERS", cli.PARSERS + [f"{module.__name__}:add_hello_parser"])
     assert cli.main(["hello", "--pinion-teeth", "11"]) == 7
+
+
+# ---------------------------------------------------------------- simulate
+def test_simulate_writes_a_run_and_rejects_bad_settings(tmp_path, capsys):
+    main = cli.main
+    import xarray as xr
+
+    geo = tmp_path / "geo"
+    assert main(["geometry", "--trace", "logarithmic", "--spiral-angle", "35", "--out", str(geo)]) == 0
+    out = tmp_path / "run.nc"
+    assert main(["simulate", "--geometry", str(geo), "--engine", "scipy", "--duration", "0.02",
+                 "--samples", "10", "--ramp-time", "0.01", "--out", str(out)]) == 0
+    ds = xr.open_dataset(out)
+    assert ds.time.size == 11 and ds.gear_speed.attrs["units"] == "deg/s"
+    ds.close()
+    bad = tmp_path / "bad.nc"
+    assert main(["simulate", "--geometry", str(geo), "--duration", "-1", "--out", str(bad)]) == 2
+    assert "simulation.duration_s = -1" in capsys.readouterr().err
+    config = tmp_path / "study.yaml"
+    config.write_text("contact:\n  static_friction: 3\n")
+    assert main(["simulate", "--geometry", str(geo), "--config", str(config), "--out", str(bad)]) == 2
+    assert "contact.static_friction = 3" in capsys.readouterr().err
+    # a blow-up (time step far too coarse) stops with exit code 3 and leaves no file
+    assert main(["simulate", "--geometry", str(geo), "--duration", "0.01", "--samples", "5",
+                 "--ramp-time", "0.005", "--dt", "1e-4", "--out", str(bad)]) == 3
+    assert "simulation stopped" in capsys.readouterr().err
+    assert not bad.exists() and not list(tmp_path.glob("*.part"))

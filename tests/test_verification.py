@@ -1,0 +1,38 @@
+"""Convergence study and per-step cost of the engines (short runs)."""
+
+import pytest
+
+from lsbg.design import GearPairDesign
+from lsbg.dynamics import SimulationSettings, load_model
+from lsbg.export import write_geometry
+from lsbg.verification import COLUMNS, convergence_study, pybullet_step_costs
+
+
+@pytest.fixture(scope="module")
+def model(tmp_path_factory):
+    out = tmp_path_factory.mktemp("lsbg") / "geometry"
+    write_geometry(GearPairDesign(), out)
+    return load_model(out)
+
+
+SHORT = SimulationSettings(duration=0.03, samples=30, ramp_time=0.01)
+
+
+def test_convergence_table_has_every_setting(model):
+    table = convergence_study(model, SHORT, steady_start=0.01, time_steps=(2e-6, 1e-6),
+                              tolerances=(1e-6, 1e-8))
+    assert list(table.columns) == list(COLUMNS)
+    assert list(table.engine) == ["pybullet", "pybullet", "scipy", "scipy"]
+    assert table.is_default.sum() == 2
+    assert (table.gear_speed_std_deg_s > 0).all()
+    # the finer settings of each engine agree with each other closely
+    fine = table[table.is_default]
+    stds = fine.tangential_force_std_N.to_numpy()
+    assert stds[0] == pytest.approx(stds[1], rel=0.05)
+
+
+def test_step_cost_breakdown(model):
+    costs = pybullet_step_costs(model, SHORT, n=500)
+    assert set(costs) == {"joint_states", "contact_kernel", "apply_torques", "step_simulation", "sum"}
+    assert all(v > 0 for v in costs.values())
+    assert costs["sum"] == pytest.approx(sum(v for k, v in costs.items() if k != "sum"))
