@@ -660,10 +660,10 @@ class MeshContact:
         columns = np.stack([lever, np.sum(a * a, 1), np.sum(a * b, 1), np.sum(b * b, 1),
                             np.linalg.norm(b, axis=1), rho_star], axis=1)
         columns[~inside] = 0.0
-        # Plain Python lists: the hot loop indexes them without numpy overhead.
-        return {"first": float(first), "inv_step": 1.0 / step_, "n": n,
-                "rows": [tuple(map(float, row)) for row in columns],
-                "span": (float(first), float(last))}
+        # (first, last, 1/step, n, rows): plain Python floats and lists, so the
+        # hot loop indexes them without numpy overhead.
+        return (float(first), float(last), 1.0 / step_, n,
+                [tuple(map(float, row)) for row in columns])
 
     # ------------------------------------------------------------ evaluation
     def mismatch(self, pinion_angle, gear_angle):
@@ -694,66 +694,83 @@ class MeshContact:
         max_penetration : float
             Deepest normal approach of all pairs [m] (<= 0: no contact).
         """
+        pitch = self.pitch
+        half = 0.5 * pitch
+        e1 = self.e1
+        drive = (pinion_angle * e1 - gear_angle * self.e2 + half) % pitch - half
+        rate = pinion_speed * e1 - gear_speed * self.e2
+        # The mismatch is the same for every line of a side, so a side whose
+        # flanks are apart (eps <= 0) costs nothing more.
+        if drive > 0.0:
+            # Turn of the mean of pinion tooth 0's line and the gear's line.
+            phase = self.orientation * (pinion_angle * e1 - 0.5 * drive)
+            gear_torque, pinion_torque, deepest = self._side(
+                "drive", drive, rate, 1.0, phase, pinion_speed, gear_speed, details)
+        else:
+            gear_torque = pinion_torque = 0.0
+            deepest = drive
+        coast = (self.coast_offset - drive + half) % pitch - half
+        if coast > 0.0:
+            phase = self.orientation * ((pinion_angle + self.coast_pinion_offset) * e1 + 0.5 * coast)
+            t2, t1, x = self._side("coast", coast, -rate, -1.0, phase, pinion_speed, gear_speed, details)
+            gear_torque += t2
+            pinion_torque += t1
+            deepest = max(deepest, x)
+        elif deepest <= 0.0:
+            deepest = max(deepest, coast)
+        return gear_torque, pinion_torque, deepest
+
+    def _side(self, side, eps, eps_rate, sign, phase, pinion_speed, gear_speed, details):
+        """Sum over the contact lines of one side: (gear torque, pinion torque, depth)."""
         params = self.params
         e1, e2, pitch = self.e1, self.e2, self.pitch
-        half = 0.5 * pitch
-        drive = (pinion_angle * e1 - gear_angle * e2 + half) % pitch - half
-        rate = pinion_speed * e1 - gear_speed * e2
-        coast = (-drive + self.coast_offset + half) % pitch - half
+        first, last, inv_step, n, rows = self.tables[side]
+        phase += math.ceil((first - phase) / pitch) * pitch
         gear_torque = pinion_torque = 0.0
         deepest = -math.inf
-        for side, eps, eps_rate, sign in (("drive", drive, rate, 1.0), ("coast", coast, -rate, -1.0)):
-            if eps <= 0.0:
-                deepest = max(deepest, eps)
+        while phase <= last:
+            pos = (phase - first) * inv_step
+            i = int(pos)
+            phase_here = phase
+            phase += pitch
+            if i + 1 >= n:
                 continue
-            table = self.tables[side]
-            # Turn of pinion tooth 0's line, then the mean of the pinion's and
-            # the gear's line (they differ by the mismatch).
-            if side == "drive":
-                phase = self.orientation * (pinion_angle * e1 - 0.5 * eps)
-            else:
-                phase = self.orientation * ((pinion_angle + self.coast_pinion_offset) * e1 + 0.5 * eps)
-            first, last = table["span"]
-            j = math.ceil((first - phase) / pitch)
-            phase += j * pitch
-            rows, inv_step, n = table["rows"], table["inv_step"], table["n"]
-            while phase <= last:
-                pos = (phase - first) * inv_step
-                i = int(pos)
-                if i + 1 < n:
-                    f = pos - i
-                    r0, r1 = rows[i], rows[i + 1]
-                    lever = r0[0] + f * (r1[0] - r0[0])
-                    if lever > 0.0:
-                        x = lever * eps
-                        xdot = lever * eps_rate
-                        force = impact_force_scalar(x, xdot, params)
-                        aa = r0[1] + f * (r1[1] - r0[1])
-                        ab = r0[2] + f * (r1[2] - r0[2])
-                        bb = r0[3] + f * (r1[3] - r0[3])
-                        radius = r0[4] + f * (r1[4] - r0[4])
-                        # Sliding of pinion on gear: v = w1 (u1 x X) - w2 (u2 x X);
-                        # its normal part is lever * (w1 e1 - w2 e2).
-                        v_normal = lever * rate
-                        v_a = pinion_speed * aa - gear_speed * ab - v_normal * lever * e1
-                        v_b = pinion_speed * ab - gear_speed * bb - v_normal * lever * e2
-                        slide2 = (pinion_speed * pinion_speed * aa - 2.0 * pinion_speed * gear_speed * ab
-                                  + gear_speed * gear_speed * bb - v_normal * v_normal)
-                        slide = math.sqrt(slide2) if slide2 > 0.0 else 0.0
-                        mu = friction_coefficient_scalar(slide, params) if slide > 0.0 else 0.0
-                        fric = mu * force / slide if slide > 0.0 else 0.0
-                        # Friction drags the gear along the pinion's sliding velocity.
-                        t2 = sign * force * lever * e2 + fric * v_b
-                        t1 = -sign * force * lever * e1 - fric * v_a
-                        gear_torque += t2
-                        pinion_torque += t1
-                        if x > deepest:
-                            deepest = x
-                        if details is not None:
-                            rho = r0[5] + f * (r1[5] - r0[5])
-                            details.append(PairContact(side, phase, lever, x, xdot, force, mu, slide,
-                                                       t2, t1, t2 / radius, radius, rho))
-                phase += pitch
+            f = pos - i
+            r0, r1 = rows[i], rows[i + 1]
+            lever = r0[0] + f * (r1[0] - r0[0])
+            if lever <= 0.0:
+                continue
+            x = lever * eps
+            xdot = lever * eps_rate
+            force = impact_force_scalar(x, xdot, params)
+            aa = r0[1] + f * (r1[1] - r0[1])
+            ab = r0[2] + f * (r1[2] - r0[2])
+            bb = r0[3] + f * (r1[3] - r0[3])
+            # Sliding of pinion on gear: v = w1 (u1 x X) - w2 (u2 x X); its
+            # normal part is lever * (w1 e1 - w2 e2) and n.(u_i x X) = lever e_i.
+            v_normal = lever * (pinion_speed * e1 - gear_speed * e2)
+            slide2 = (pinion_speed * pinion_speed * aa - 2.0 * pinion_speed * gear_speed * ab
+                      + gear_speed * gear_speed * bb - v_normal * v_normal)
+            t2 = sign * force * lever * e2
+            t1 = -sign * force * lever * e1
+            mu = 0.0
+            slide = 0.0
+            if slide2 > 0.0:
+                slide = math.sqrt(slide2)
+                mu = friction_coefficient_scalar(slide, params)
+                # Friction drags the gear along the pinion's sliding velocity.
+                fric = mu * force / slide
+                t2 += fric * (pinion_speed * ab - gear_speed * bb - v_normal * lever * e2)
+                t1 -= fric * (pinion_speed * aa - gear_speed * ab - v_normal * lever * e1)
+            gear_torque += t2
+            pinion_torque += t1
+            if x > deepest:
+                deepest = x
+            if details is not None:
+                radius = r0[4] + f * (r1[4] - r0[4])
+                rho = r0[5] + f * (r1[5] - r0[5])
+                details.append(PairContact(side, phase_here, lever, x, xdot, force, mu, slide,
+                                           t2, t1, t2 / radius, radius, rho))
         return gear_torque, pinion_torque, deepest
 
     def static_gear_angle(self, load_torque, pinion_angle=0.0):
