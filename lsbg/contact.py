@@ -84,7 +84,12 @@ def step(x, x0, h0, x1, h1):
 def _step_scalar(x, x0, h0, x1, h1):
     """STEP of Eq. (10) on plain floats; no validation (callers pass valid
     parameters). NaN in ``x`` propagates, as in :func:`step`."""
-    delta = min(max((x - x0) / (x1 - x0), 0.0), 1.0)
+    delta = (x - x0) / (x1 - x0)
+    # if-chains rather than min/max: this runs millions of times per run.
+    if delta <= 0.0:
+        return h0
+    if delta >= 1.0:
+        return h1
     return _step_from_delta(delta, h0, h1)
 
 
@@ -415,6 +420,8 @@ def friction_coefficient_scalar(v, params):
         Friction coefficient, >= 0 [-].
     """
     speed = abs(v)
+    if speed >= params.v_d:  # the common case in a running mesh
+        return params.mu_d
     if speed < params.v_s:
         return _step_scalar(speed, 0.0, 0.0, params.v_s, params.mu_s)
     return _step_scalar(speed, params.v_s, params.mu_s, params.v_d,
