@@ -380,7 +380,9 @@ CONFIG_KEYS = (
 def _exact_inverse(value, to_si, from_si):
     """from_si(value), nudged in the last place until to_si gives ``value`` back."""
     guess = from_si(value)
-    candidates, up, down = [guess], guess, guess
+    # Prefer the shortest decimal (30.0 rather than 29.999999999999996).
+    candidates = [round(guess, digits) for digits in range(6, 16)] + [guess]
+    up = down = guess
     for _ in range(16):
         up, down = math.nextafter(up, math.inf), math.nextafter(down, -math.inf)
         candidates += [up, down]

@@ -353,6 +353,35 @@ def test_std_ratio_ci_widens_for_autocorrelated_series(method):
     assert blocks.low <= 2.0 <= blocks.high
 
 
+def test_std_ci_covers_true_std_and_is_deterministic():
+    rng = np.random.default_rng(31)
+    covered = 0
+    for seed in range(50):
+        x = _ar1(0.5, 400, 3.0, rng)
+        ci = stats.std_ci(x, n_boot=500, seed=seed)
+        assert ci.low < ci.std < ci.high
+        assert ci.std == pytest.approx(x.std(ddof=1))
+        covered += ci.low <= 3.0 <= ci.high
+    assert covered >= 40  # nominal 95 %, percentile intervals run a bit narrow
+    assert stats.std_ci(x, seed=1) == stats.std_ci(x, seed=1)
+    assert stats.std_ci(x, seed=1) != stats.std_ci(x, seed=2)
+
+
+def test_std_ci_widens_for_autocorrelated_series_and_checks_input():
+    rng = np.random.default_rng(9)
+    x = _ar1(0.9, 400, 2.0, rng)
+    blocks = stats.std_ci(x, n_boot=1000)
+    iid = stats.std_ci(x, n_boot=1000, block_length=1)
+    assert blocks.block_length >= 20
+    assert math.log(blocks.high / blocks.low) > 1.8 * math.log(iid.high / iid.low)
+    with pytest.raises(ValueError, match="confidence"):
+        stats.std_ci(x, confidence=1.5)
+    with pytest.raises(ValueError, match="n_boot"):
+        stats.std_ci(x, n_boot=10)
+    with pytest.raises(ValueError, match="method"):
+        stats.std_ci(x, method="iid")
+
+
 def test_brown_forsythe_detects_unequal_spread():
     rng = np.random.default_rng(4)
     res = stats.brown_forsythe(rng.normal(0, 2, 400), rng.normal(0, 1, 400))

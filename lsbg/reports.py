@@ -1,0 +1,519 @@
+"""Reports: parameterised notebooks executed by papermill, rendered to one HTML file.
+
+The reports live in ``workflow/notebooks/{name}.ipynb`` of the repository (the
+package is installed in editable mode, so they are found next to it). Each has
+a cell tagged ``parameters``; :func:`render_report` injects the caller's
+values, runs the notebook with the current Python's kernel in the caller's
+directory, and converts the executed notebook into a self-contained HTML file:
+no code, figures embedded as base64 PNG, no script loaded from the network.
+Relative paths given as parameters are resolved against the caller's
+directory before injection, so they work wherever the kernel runs.
+
+The :class:`Report` helper is for the notebooks themselves: numbered figures
+with captions below them, numbered tables rendered as HTML, computed text as
+Markdown.
+"""
+
+from __future__ import annotations
+
+import io
+import logging
+import os
+import tempfile
+from pathlib import Path
+
+import lsbg
+
+__all__ = ["NOTEBOOK_DIR", "PATH_PARAMETER_SUFFIXES", "ReportError", "notebook_path",
+           "available_reports", "notebook_parameters", "parse_parameter",
+           "resolve_parameters", "render_report", "notebook_to_html", "Report",
+           "figure_png", "provenance", "format_table", "COLUMN_HEADERS"]
+
+log = logging.getLogger(__name__)
+
+#: Default folder of the report notebooks: ``workflow/notebooks`` of the repository.
+NOTEBOOK_DIR = Path(lsbg.__file__).resolve().parents[1] / "workflow" / "notebooks"
+
+#: A parameter whose name is one of these or ends in ``_<suffix>`` holds a path
+#: or a list of paths; relative ones are made absolute before injection.
+PATH_PARAMETER_SUFFIXES = ("run", "runs", "file", "files", "geometry", "dir", "dirs")
+
+# The lab template without the scripts it loads from a CDN (require.js,
+# MathJax, mermaid): the reports use neither widgets nor LaTeX.
+_TEMPLATE_NAME = "lsbg_report.html.j2"
+_TEMPLATE = """{%- extends 'index.html.j2' -%}
+{%- block html_head_js_requirejs -%}{%- endblock html_head_js_requirejs -%}
+{%- block html_head_js_mathjax -%}{%- endblock html_head_js_mathjax -%}
+{%- block html_head_js_mermaidjs -%}{%- endblock html_head_js_mermaidjs -%}
+"""
+
+
+class ReportError(RuntimeError):
+    """A report notebook failed while executing; no HTML was written."""
+
+
+# -------------------------------------------------------------- notebooks
+def notebook_path(name, notebook_dir=None) -> Path:
+    """The notebook of report ``name``.
+
+    Parameters
+    ----------
+    name : str
+        Report name, e.g. ``'paper'``.
+    notebook_dir : str or os.PathLike, optional
+        Folder of the notebooks (default :data:`NOTEBOOK_DIR`).
+
+    Raises
+    ------
+    ValueError
+        If there is no ``{name}.ipynb`` (the message lists the reports).
+    """
+    folder = Path(notebook_dir) if notebook_dir is not None else NOTEBOOK_DIR
+    path = folder / f"{name}.ipynb"
+    if not path.is_file():
+        raise ValueError(f"report {name!r}: no notebook {path} (available: "
+                         f"{', '.join(available_reports(folder)) or 'none'})")
+    return path
+
+
+def available_reports(notebook_dir=None) -> list:
+    """Names of the report notebooks in ``notebook_dir`` (default :data:`NOTEBOOK_DIR`)."""
+    folder = Path(notebook_dir) if notebook_dir is not None else NOTEBOOK_DIR
+    return sorted(p.stem for p in folder.glob("*.ipynb")) if folder.is_dir() else []
+
+
+def notebook_parameters(path) -> dict:
+    """Parameters of a notebook's ``parameters`` cell with their defaults.
+
+    Returns
+    -------
+    dict
+        Name -> default value as written in the cell (a string of Python).
+    """
+    import papermill
+
+    return {name: info["default"] for name, info in papermill.inspect_notebook(str(path)).items()}
+
+
+def parse_parameter(text):
+    """Split ``KEY=VALUE`` and read VALUE as YAML (``[a.nc, b.nc]`` is a list).
+
+    An empty VALUE is the empty string (not YAML's null).
+
+    Returns
+    -------
+    (str, object)
+
+    Raises
+    ------
+    ValueError
+        If there is no ``=`` or no key, or VALUE is not valid YAML.
+    """
+    import yaml
+
+    key, sep, value = text.partition("=")
+    key = key.strip()
+    if not sep or not key.isidentifier():
+        raise ValueError(f"--param {text!r}: must be KEY=VALUE with KEY a parameter name")
+    if not value.strip():
+        return key, ""
+    try:
+        return key, yaml.safe_load(value)
+    except yaml.YAMLError as err:
+        raise ValueError(f"--param {text!r}: VALUE is not valid YAML ({err})") from None
+
+
+def _is_path_parameter(name):
+    return any(name == s or name.endswith("_" + s) for s in PATH_PARAMETER_SUFFIXES)
+
+
+def resolve_parameters(parameters, cwd=None) -> dict:
+    """Make relative paths in path parameters absolute.
+
+    Parameters
+    ----------
+    parameters : dict
+        Notebook parameters; those named as in :data:`PATH_PARAMETER_SUFFIXES`
+        hold a path or a list of paths (``""`` stays ``""``).
+    cwd : str or os.PathLike, optional
+        Directory relative paths refer to (default: the current one).
+
+    Returns
+    -------
+    dict
+        A copy with absolute paths (as strings).
+    """
+    base = Path(cwd) if cwd is not None else Path.cwd()
+
+    def absolute(value):
+        if isinstance(value, os.PathLike):
+            value = os.fspath(value)
+        if isinstance(value, str):
+            return str((base / value).absolute()) if value.strip() else value
+        if isinstance(value, (list, tuple)):
+            return [absolute(v) for v in value]
+        return value
+
+    return {key: absolute(value) if _is_path_parameter(key) else value
+            for key, value in (parameters or {}).items()}
+
+
+def _strip_stderr(nb):
+    """Remove stderr streams (library warnings) from the outputs; return them."""
+    messages = []
+    for cell in nb.cells:
+        if cell.get("cell_type") != "code":
+            continue
+        kept = []
+        for output in cell.get("outputs", []):
+            if output.get("output_type") == "stream" and output.get("name") == "stderr":
+                messages.append(output.get("text", ""))
+            else:
+                kept.append(output)
+        cell["outputs"] = kept
+    return messages
+
+
+def notebook_to_html(nb) -> str:
+    """An executed notebook as self-contained HTML without its code.
+
+    Parameters
+    ----------
+    nb : nbformat.NotebookNode
+
+    Returns
+    -------
+    str
+        HTML of the JupyterLab template with the inputs and prompts left out,
+        images embedded, and no ``<script src=...>`` from the network.
+    """
+    from jinja2 import DictLoader
+    from nbconvert import HTMLExporter
+
+    exporter = HTMLExporter(template_name="lab",
+                            extra_loaders=[DictLoader({_TEMPLATE_NAME: _TEMPLATE})],
+                            exclude_input=True, exclude_input_prompt=True,
+                            exclude_output_prompt=True, embed_images=True)
+    exporter.template_file = _TEMPLATE_NAME
+    body, _ = exporter.from_notebook_node(nb)
+    return body
+
+
+def render_report(name, out_html, parameters=None, notebook_dir=None, cwd=None,
+                  kernel_name="python3", timeout=None) -> Path:
+    """Execute a report notebook with papermill and write it as one HTML file.
+
+    Parameters
+    ----------
+    name : str
+        Report name: the notebook ``{name}.ipynb``.
+    out_html : str or os.PathLike
+        HTML file to write (atomically: a temporary file renamed at the end);
+        its folder is created if needed.
+    parameters : dict, optional
+        Values for the notebook's ``parameters`` cell; relative paths in path
+        parameters (:data:`PATH_PARAMETER_SUFFIXES`) are resolved against
+        ``cwd``.
+    notebook_dir : str or os.PathLike, optional
+        Folder of the notebooks (default :data:`NOTEBOOK_DIR`).
+    cwd : str or os.PathLike, optional
+        Working directory of the kernel (default: the current one).
+    kernel_name : str, default 'python3'
+        Jupyter kernel; ``python3`` runs the current Python interpreter.
+    timeout : float, optional
+        Limit per cell [s] (none by default).
+
+    Returns
+    -------
+    pathlib.Path
+        The HTML file.
+
+    Raises
+    ------
+    ValueError
+        Unknown report or a parameter the notebook does not declare.
+    ReportError
+        If the notebook fails; the message names the cell and the error, and
+        nothing is written.
+    """
+    import nbformat
+    import papermill
+
+    notebook = notebook_path(name, notebook_dir)
+    parameters = dict(parameters or {})
+    declared = notebook_parameters(notebook)
+    unknown = sorted(set(parameters) - set(declared))
+    if unknown:
+        raise ValueError(f"report {name!r}: unknown parameter(s) {unknown} "
+                         f"(declared: {sorted(declared)})")
+    cwd = Path(cwd) if cwd is not None else Path.cwd()
+    parameters = resolve_parameters(parameters, cwd)
+    out_html = Path(out_html)
+    out_html.parent.mkdir(parents=True, exist_ok=True)
+    # ipykernel warns on every start that its local TCP sockets are unencrypted.
+    # (and logs an ERROR for the interrupt jupyter_client sends before shutdown).
+    quiet = ["--IPKernelApp.log_level=CRITICAL"] if kernel_name == "python3" else []
+    with tempfile.TemporaryDirectory(prefix=f"lsbg-report-{name}-") as work:
+        executed = Path(work) / f"{name}.ipynb"
+        try:
+            papermill.execute_notebook(
+                str(notebook), str(executed), parameters=parameters, kernel_name=kernel_name,
+                cwd=str(cwd), progress_bar=False, log_output=False,
+                request_save_on_cell_execute=False, execution_timeout=timeout,
+                extra_arguments=quiet)
+        except papermill.PapermillExecutionError as err:
+            raise ReportError(f"report {name!r}: notebook {notebook.name} failed in cell "
+                              f"{err.exec_count}: {err.ename}: {err.evalue}") from None
+        except Exception as err:  # kernel died, timeout, ...
+            raise ReportError(f"report {name!r}: notebook {notebook.name} could not be "
+                              f"executed: {type(err).__name__}: {err}") from err
+        nb = nbformat.read(executed, as_version=4)
+        for message in _strip_stderr(nb):
+            log.warning("report %s: %s", name, message.strip())
+        html = notebook_to_html(nb)
+    fd, tmp = tempfile.mkstemp(prefix=f".{out_html.name}.", suffix=".part", dir=out_html.parent)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as handle:
+            handle.write(html)
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, out_html)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return out_html
+
+
+# ------------------------------------------------------ inside a notebook
+def figure_png(fig, dpi=100, palette=True) -> bytes:
+    """A matplotlib figure as PNG bytes (tight bounding box).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+    dpi : float, default 100
+        Resolution [dots per inch]; 100 keeps reports small.
+    palette : bool, default True
+        Store the image with a 256-colour palette (no dithering): line plots
+        look the same at about a third of the size.
+    """
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", dpi=dpi, bbox_inches="tight")
+    if not palette:
+        return buffer.getvalue()
+    from PIL import Image
+
+    buffer.seek(0)
+    image = Image.open(buffer).convert("RGB").quantize(
+        colors=256, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE)
+    out = io.BytesIO()
+    image.save(out, format="PNG", optimize=True)
+    return out.getvalue()
+
+
+def provenance(files, extra=None) -> str:
+    """Markdown listing the input files, the lsbg version and the time.
+
+    Parameters
+    ----------
+    files : dict
+        ``{description: path or list of paths}``; empty values are listed as
+        "not given".
+    extra : dict, optional
+        More ``{name: value}`` lines (e.g. statistics settings).
+
+    Returns
+    -------
+    str
+    """
+    import datetime
+
+    lines = []
+    for description, value in files.items():
+        paths = [value] if isinstance(value, (str, os.PathLike)) else list(value or [])
+        paths = [str(p) for p in paths if str(p).strip()]
+        shown = ", ".join(f"`{p}`" for p in paths) if paths else "not given"
+        lines.append(f"- {description}: {shown}")
+    for name, value in (extra or {}).items():
+        lines.append(f"- {name}: {value}")
+    now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    lines.append(f"- computed with lsbg {lsbg.__version__} on {now}")
+    return "\n".join(lines)
+
+
+#: Table headers for column names of lsbg tables (others are shown as they are).
+COLUMN_HEADERS = {
+    "gear_type": "type", "trace": "trace", "quantity": "quantity", "unit": "unit",
+    "origin": "origin", "engine": "engine", "reference": "reference engine",
+    "spiral_angle_deg": "spiral angle [deg]", "statistic": "statistic",
+    "simulated": "simulated mean", "theory": "theory (Eq. 12/13)",
+    "difference": "difference", "error_rate_percent": "error rate [%]",
+    "paper_simulated": "paper: simulated mean",
+    "paper_error_rate_percent": "paper: error rate [%]",
+    "paper": "paper", "this_work": "this work", "ratio": "ratio",
+    "std_SBG": "std SBG", "std_LSBG": "std LSBG", "ci_low": "CI low", "ci_high": "CI high",
+    "confidence": "confidence", "brown_forsythe_p": "Brown–Forsythe p",
+    "ess_SBG": "ess SBG", "ess_LSBG": "ess LSBG", "paper_ratio": "paper ratio",
+    "std": "std", "reference_std": "reference std", "std_ratio": "std ratio",
+    "mean_difference_percent": "mean difference [%]", "within_tolerance": "within 3 %",
+    "mean": "mean", "ad_statistic": "A²", "ad_pvalue": "p (AD)",
+    "out_of_control": "subgroups out of control",
+    "parameter": "parameter", "value": "value", "is_default": "default",
+    "gear_speed_mean_deg_s": "speed mean [deg/s]", "gear_speed_std_deg_s": "speed std [deg/s]",
+    "tangential_force_mean_N": "force mean [N]", "tangential_force_std_N": "force std [N]",
+    "wall_time_s": "wall time [s]", "steps": "steps",
+    "gear_speed_std_rel_diff_percent": "speed std vs tightest scipy [%]",
+    "tangential_force_std_rel_diff_percent": "force std vs tightest scipy [%]",
+    "low": "CI low", "high": "CI high", "excludes_one": "CI excludes 1",
+    "member": "member", "side": "side", "measured_deg": "measured [deg]",
+    "design_deg": "design [deg]", "deviation_deg": "deviation [deg]",
+    "contact_ratio": "contact ratio", "contact_ratio_profile": "profile c. r.",
+    "contact_ratio_face": "face c. r.",
+    "gear_speed_std": "speed std [deg/s]", "tangential_force_mean": "force mean [N]",
+    "tangential_force_std": "force std [N]",
+    "tangential_force_outer_mean": "force at d2/2 mean [N]",
+    "tangential_force_outer_std": "force at d2/2 std [N]",
+    "gear_speed_std_low": "low", "gear_speed_std_high": "high",
+    "tangential_force_std_low": "low", "tangential_force_std_high": "high",
+    "tangential_force_outer_std_low": "low", "tangential_force_outer_std_high": "high",
+}
+
+
+class Report:
+    """Numbered figures and tables with captions, for a report notebook.
+
+    Parameters
+    ----------
+    dpi : float, default 100
+        Resolution of the embedded PNG figures.
+
+    Examples
+    --------
+    In a notebook cell::
+
+        rep = Report()
+        rep.figure(fig, "Gear speed against time.")
+        rep.table(df, "Simulated means and Eq. 12-13.", formats={"error": "{:.3f}"})
+    """
+
+    def __init__(self, dpi=100):
+        self.dpi = dpi
+        self.figures = 0
+        self.tables = 0
+
+    @staticmethod
+    def _display(*objects):
+        from IPython.display import display
+
+        display(*objects)
+
+    def _caption(self, caption):
+        from IPython.display import Markdown
+
+        self.figures += 1
+        return Markdown(f"**Figure {self.figures}.** {caption}")
+
+    def markdown(self, text):
+        """Show computed Markdown text."""
+        from IPython.display import Markdown
+
+        self._display(Markdown(text))
+
+    def figure(self, fig, caption):
+        """Show a figure as an embedded PNG with "Figure n." and the caption below."""
+        self.figures_side_by_side([fig], caption)
+
+    def figures_side_by_side(self, figs, caption):
+        """Show several figures in one row (wrapping if narrow) with one caption."""
+        from IPython.display import HTML
+
+        style = (f"max-width:{100 / len(figs):.0f}%; min-width:320px; height:auto"
+                 if len(figs) > 1 else "max-width:100%; height:auto")
+        images = "".join(_img(figure_png(fig, self.dpi), caption, style) for fig in figs)
+        self._display(HTML(f'<div style="display:flex; flex-wrap:wrap; gap:8px">{images}</div>'),
+                      self._caption(caption))
+
+    def table(self, df, caption, formats=None, index=False, digits=6, headers=None):
+        """Show a DataFrame as an HTML table with "Table n." and the caption above.
+
+        Parameters
+        ----------
+        df : pandas.DataFrame
+        caption : str
+        formats : dict, optional
+            ``{column: format string or callable}``; other floats get
+            ``digits`` significant digits.
+        index : bool, default False
+            Show the index.
+        digits : int, default 6
+        headers : dict, optional
+            Column headers, over :data:`COLUMN_HEADERS`.
+        """
+        from IPython.display import HTML
+
+        self.tables += 1
+        html = format_table(df, formats, index=index, digits=digits, headers=headers)
+        self._display(HTML(f"<p><b>Table {self.tables}.</b> {_escape(caption)}</p>{html}"))
+
+
+def _img(png, caption, style):
+    """An <img> element with the PNG embedded and the caption as alternative text."""
+    import base64
+
+    alt = _escape(_plain_text(caption)).replace('"', "&quot;")
+    return (f'<img src="data:image/png;base64,{base64.b64encode(png).decode()}" '
+            f'alt="{alt}" style="{style}"/>')
+
+
+def _plain_text(text):
+    """Markdown caption without emphasis marks, for alt text."""
+    return str(text).replace("**", "").replace("`", "")
+
+
+def _escape(text):
+    import html
+
+    return html.escape(str(text), quote=False)
+
+
+def format_table(df, formats=None, index=False, digits=6, headers=None) -> str:
+    """A DataFrame as an HTML table with per-column number formats.
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+    formats : dict, optional
+        ``{column: format string or callable}``; NaN is shown as "—".
+    index : bool, default False
+    digits : int, default 6
+        Significant digits of floats without a format.
+    headers : dict, optional
+        Column headers, over :data:`COLUMN_HEADERS`.
+
+    Returns
+    -------
+    str
+    """
+    import numbers
+
+    formats = dict(formats or {})
+    shown = df.copy()
+    for column in shown.columns:
+        rule = formats.get(column)
+
+        def fmt(value, rule=rule):
+            if value is None or (isinstance(value, float) and value != value):
+                return "—"
+            if rule is not None:
+                return rule(value) if callable(rule) else rule.format(value)
+            if isinstance(value, bool):
+                return "yes" if value else "no"
+            if isinstance(value, numbers.Integral):
+                return str(value)
+            if isinstance(value, numbers.Real):
+                return f"{value:.{digits}g}"
+            return str(value)
+
+        shown[column] = [fmt(v) for v in shown[column].tolist()]
+    names = {**COLUMN_HEADERS, **(headers or {})}
+    shown = shown.rename(columns={c: names.get(c, c) for c in shown.columns})
+    return shown.to_html(index=index, escape=True, border=0, classes="dataframe lsbg-table")

@@ -1,0 +1,186 @@
+"""The report notebooks execute on short real runs and render to self-contained HTML."""
+
+import re
+
+import pytest
+
+from lsbg import cli, reports, study
+from lsbg.design import GearPairDesign
+from lsbg.dynamics import SimulationSettings, load_model, simulate
+from lsbg.export import write_geometry
+from lsbg.results import write_dataset
+from lsbg.verification import convergence_study
+
+SHORT = SimulationSettings(duration=0.05, samples=25, ramp_time=0.01)
+# windows that fit 0.05 s: 20 samples after 0.01 s, 4 subgroups of 5
+STATISTICS = dict(steady_state_after_s=0.01, chart_window_start_s=0.01,
+                  chart_window_stop_s=0.05, subgroup_size=5)
+
+
+@pytest.fixture(scope="module")
+def study_files(tmp_path_factory):
+    """Geometry, runs (pybullet and scipy), sweep, summary and a convergence table."""
+    root = tmp_path_factory.mktemp("reports")
+    files = {"root": root, "geometry": {}, "runs": {}}
+    for trace in ("logarithmic", "circular"):
+        geometry = root / "results" / "geometry" / f"{trace}_beta35"
+        write_geometry(GearPairDesign(trace=trace), geometry)
+        files["geometry"][trace] = geometry
+        for engine in ("pybullet", "scipy"):
+            path = root / "results" / "runs" / f"{trace}_beta35_{engine}.nc"
+            write_dataset(simulate(geometry, SHORT.replace(engine=engine)), path)
+            files["runs"][(trace, engine)] = path
+    pybullet = [files["runs"][(t, "pybullet")] for t in ("logarithmic", "circular")]
+    files["sweep"] = root / "results" / "sweep.nc"
+    write_dataset(study.combine_runs(pybullet), files["sweep"])
+    files["summary"] = root / "results" / "summary.csv"
+    study.summary_table(list(files["runs"].values()), steady_state_after=0.01,
+                        window=(0.01, 0.05), subgroup_size=5).to_csv(files["summary"], index=False)
+    table = convergence_study(load_model(files["geometry"]["logarithmic"]), SHORT,
+                              steady_start=0.01, time_steps=(2e-6, 1e-6),
+                              tolerances=(1e-6, 1e-8))
+    files["convergence"] = root / "results" / "verification" / "convergence_logarithmic.csv"
+    files["convergence"].parent.mkdir(parents=True)
+    table.to_csv(files["convergence"], index=False)
+    return files
+
+
+def paper_parameters(files):
+    runs, geometry = files["runs"], files["geometry"]
+    return {"lsbg_run": runs[("logarithmic", "pybullet")],
+            "sbg_run": runs[("circular", "pybullet")],
+            "lsbg_reference_run": runs[("logarithmic", "scipy")],
+            "sbg_reference_run": runs[("circular", "scipy")],
+            "lsbg_geometry": geometry["logarithmic"], "sbg_geometry": geometry["circular"],
+            "summary_file": files["summary"], **STATISTICS}
+
+
+def check_html(path, headings, images, code_snippets):
+    """Headings present, ``images`` embedded PNGs, no code, nothing loaded from the network."""
+    html = path.read_text(encoding="utf-8")
+    for heading in headings:
+        assert re.search(r"<h[1-3][^>]*>" + re.escape(heading), html), heading
+    tags = re.findall(r"<img\b[^>]*>", html)
+    assert len(tags) == images
+    assert all('src="data:image/png;base64,' in tag for tag in tags)
+    assert not re.search(r"<script[^>]*\bsrc=", html)
+    assert not re.search(r"""(?:src|href)=["']https?://""", html)
+    # inputs are excluded: no code cell input areas and none of the code itself
+    assert not re.search(r'jp-CodeCell[^>]*>\s*<div class="jp-Cell-inputWrapper', html)
+    assert 'class="jp-InputPrompt' not in html
+    for snippet in code_snippets:
+        assert snippet not in html
+    assert "Traceback" not in html
+    assert not [p for p in path.parent.iterdir() if p.name.startswith(".")]
+    return html
+
+
+def test_paper_report(study_files, tmp_path):
+    out = tmp_path / "reports" / "paper.html"
+    assert reports.render_report("paper", out, paper_parameters(study_files)) == out
+    html = check_html(
+        out, ["Logarithmic against conventional", "1. The design", "2. Input", "3. The gear",
+              "4. The tangential contact force", "5. Normality", "6. Histograms",
+              "7. Xbar-R control charts", "8. Simulated means", "9. The paper", "10. Which gear",
+              "11. Agreement", "12. The workflow", "13. Conclusion"],
+        # pair picture, Fig. 8, 9-10, 11, 12, 13, 14, 15 (2), 16, 17 (2), 18 (2)
+        images=14, code_snippets=["study.open_pair", "import numpy", "rep = Report()"])
+    assert html.count("<b>Figure ") + html.count("<strong>Figure ") == 12
+    # numbers are computed from the runs
+    runs = study.open_pair(study_files["runs"][("circular", "pybullet")],
+                           study_files["runs"][("logarithmic", "pybullet")])
+    sbg_std = study.steady(runs["SBG"], "gear_speed", 0.01).std(ddof=1)
+    assert f"{sbg_std:.4g} deg/s (SBG)" in html
+    assert "1283.8 rpm" in html and "24799.9" in html
+    assert "the engines agree within 3 %" in html or "do NOT agree" in html
+    assert "<table" in html and "lsbg 0.1.0" in html
+
+
+def test_sweep_report(study_files, tmp_path):
+    out = tmp_path / "sweep.html"
+    reports.render_report("sweep", out, {"sweep_file": study_files["sweep"],
+                                         "summary_file": study_files["summary"],
+                                         "steady_state_after_s": 0.01})
+    html = check_html(out, ["Spiral-angle sweep", "1. Fluctuation", "2. Which type",
+                            "3. Table of the design points", "4. Steady-state statistics",
+                            "5. Conclusion"],
+                      images=2, code_snippets=["study.sweep_table", "import xarray"])
+    assert "std(SBG)/std(LSBG)" in html and "too few for a trend" in html
+
+
+def test_verification_report_via_cli_with_relative_paths(study_files, monkeypatch, capsys):
+    root = study_files["root"]
+    monkeypatch.chdir(root)
+    relative = {key: path.relative_to(root) for key, path in study_files["runs"].items()}
+    geometry = [study_files["geometry"][t].relative_to(root) for t in ("logarithmic", "circular")]
+    convergence = study_files["convergence"].relative_to(root)
+    code = cli.main(["report", "verification", "--out", "reports/verification.html",
+                     "--param", f"convergence_files=[{convergence}]",
+                     f"geometry_dirs=[{', '.join(map(str, geometry))}]",
+                     f"runs=[{', '.join(map(str, relative.values()))}]",
+                     "--param", "steady_state_after_s=0.01"])
+    assert code == 0, capsys.readouterr().err
+    html = check_html(root / "reports" / "verification.html",
+                      ["Verification", "1. Convergence", "2. The two engines",
+                       "3. Geometry checks", "3.1 Spiral angle", "3.2 Normal pressure angle",
+                       "3.3 Conjugacy", "4. Summary of the checks"],
+                      # convergence, engine agreement, spiral angle, pressure angle, conjugacy
+                      images=5, code_snippets=["study.conjugacy_errors(read_design"])
+    assert "PASS: LSBG spiral angle constant along the face" in html
+    assert "PASS: flanks conjugate" in html
+    assert str(root / "results" / "runs") in html  # paths were made absolute
+
+
+def test_failing_notebook_raises_and_writes_nothing(study_files, tmp_path):
+    out = tmp_path / "paper.html"
+    parameters = {**paper_parameters(study_files), "lsbg_run": tmp_path / "missing.nc"}
+    with pytest.raises(reports.ReportError, match=r"paper.ipynb failed in cell .*"
+                                                   r"FileNotFoundError: .*missing.nc"):
+        reports.render_report("paper", out, parameters)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_bad_report_input_exit_2(tmp_path, capsys):
+    out = tmp_path / "x.html"
+    assert cli.main(["report", "nosuch", "--out", str(out)]) == 2
+    assert "available: paper, sweep, verification" in capsys.readouterr().err
+    assert cli.main(["report", "sweep", "--out", str(out), "--param", "sweep_fle=a.nc"]) == 2
+    assert "sweep_fle" in capsys.readouterr().err
+    assert cli.main(["report", "sweep", "--out", str(out), "--param", "no-equals"]) == 2
+    assert not out.exists()
+
+
+def test_notebooks_declare_the_interface_parameters():
+    expected = {
+        "paper": {"lsbg_run", "sbg_run", "lsbg_reference_run", "sbg_reference_run",
+                  "lsbg_geometry", "sbg_geometry", "summary_file", "steady_state_after_s",
+                  "chart_window_start_s", "chart_window_stop_s", "subgroup_size"},
+        "sweep": {"sweep_file", "summary_file", "steady_state_after_s"},
+        "verification": {"convergence_files", "geometry_dirs", "runs", "steady_state_after_s"},
+    }
+    import nbformat
+
+    for name, parameters in expected.items():
+        path = reports.notebook_path(name)
+        assert set(reports.notebook_parameters(path)) == parameters
+        nb = nbformat.read(path, as_version=4)
+        assert nb.metadata["language_info"]["name"] == "python"
+        assert nb.metadata["kernelspec"]["name"] == "python3"
+        assert all(not cell.get("outputs") for cell in nb.cells if cell.cell_type == "code")
+
+
+def test_parse_and_resolve_parameters(tmp_path):
+    assert reports.parse_parameter("runs=[a.nc, b.nc]") == ("runs", ["a.nc", "b.nc"])
+    assert reports.parse_parameter("steady_state_after_s=0.2") == ("steady_state_after_s", 0.2)
+    assert reports.parse_parameter("sbg_reference_run=") == ("sbg_reference_run", "")
+    assert reports.parse_parameter("x=a=b") == ("x", "a=b")
+    for bad in ("novalue", "=3", "a b=1", "x=[unclosed"):
+        with pytest.raises(ValueError, match="--param"):
+            reports.parse_parameter(bad)
+    resolved = reports.resolve_parameters(
+        {"runs": ["a.nc", "/abs/b.nc"], "sbg_run": "", "lsbg_geometry": "g",
+         "summary_file": "s.csv", "subgroup_size": 4, "title": "keep/me"}, cwd=tmp_path)
+    assert resolved == {"runs": [str(tmp_path / "a.nc"), "/abs/b.nc"], "sbg_run": "",
+                        "lsbg_geometry": str(tmp_path / "g"),
+                        "summary_file": str(tmp_path / "s.csv"), "subgroup_size": 4,
+                        "title": "keep/me"}
