@@ -130,6 +130,10 @@ def write_dataset(ds, path):
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(suffix=".nc.part", dir=path.parent)
     os.close(fd)
+    # mkstemp creates the file private (0600); give it the usual permissions.
+    umask = os.umask(0)
+    os.umask(umask)
+    os.chmod(tmp, 0o666 & ~umask)
     try:
         ds.to_netcdf(tmp, engine="netcdf4")
         os.replace(tmp, path)

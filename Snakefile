@@ -1,0 +1,52 @@
+# lsbg: the complete study (paper reproduction, spiral-angle sweep, verification)
+# as one Snakemake workflow. Run from the repository root:
+#
+#     snakemake -j2                                   # everything (rule all)
+#     snakemake -j2 --configfile workflow/config-test.yaml   # a tiny version
+#     snakemake --executor slurm --profile workflow/profiles/slurm
+#
+# The configuration (workflow/config.yaml, validated against
+# workflow/schemas/config.schema.yaml before any job runs) holds the design, the
+# sweep, the engines, the simulation, contact and statistics settings. Rules
+# live in workflow/rules/*.smk and call the lsbg command line only; helpers are
+# in workflow/rules/common.smk. Optional extensions (workflow/extensions/*.smk)
+# are included when their config key is set.
+
+from snakemake.utils import min_version
+
+min_version("9.0")
+
+
+configfile: os.path.join(workflow.basedir, "workflow", "config.yaml")
+
+
+report: "workflow/report/workflow.rst"
+
+
+include: "workflow/rules/common.smk"
+include: "workflow/rules/config.smk"
+include: "workflow/rules/geometry.smk"
+include: "workflow/rules/simulate.smk"
+include: "workflow/rules/aggregate.smk"
+include: "workflow/rules/reports.smk"
+
+
+# Extensions: each adds rules and appends its targets to EXTENSION_TARGETS.
+if config.get("load_sweep"):
+
+    include: "workflow/extensions/load_sweep.smk"
+
+
+# results/config.yaml (the settings lsbg reads) follows the configuration of
+# every run that executes jobs (see write_study_config in common.smk).
+onstart:
+    write_study_config(STUDY_CONFIG)
+
+
+# The default target must be defined here, in the top-level Snakefile
+# (a default target in an included file is ignored).
+rule all:
+    default_target: True
+    input:
+        STUDY_TARGETS,
+        EXTENSION_TARGETS,

@@ -1,0 +1,365 @@
+"""The Snakemake workflow: config validation, lint, the tiny study end to end, incrementality.
+
+Every test runs ``python -m snakemake`` in a subprocess, in a temporary
+directory, so that nothing is written into the repository:
+
+* configuration and lint tests use the repository's Snakefile (``--snakefile``)
+  from an empty working directory;
+* the end-to-end tests copy the repository's files (``git ls-files``) into a
+  temporary directory and run there with ``PYTHONPATH`` pointing at the copy,
+  so that the jobs run the copy's lsbg and a changed file of the copy reruns
+  what uses it, without touching the repository.
+"""
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pandas as pd
+import pytest
+import xarray as xr
+import yaml
+
+REPO = Path(__file__).resolve().parents[1]
+SNAKEFILE = REPO / "Snakefile"
+TEST_CONFIG = "workflow/config-test.yaml"
+
+# The lsbg files each stage must list as inputs (besides what they import).
+STAGE_FILES = {
+    "geometry": {"__init__.py", "design.py", "geometry.py", "solids.py", "export.py", "cli.py"},
+}
+STAGE_FILES["simulate"] = STAGE_FILES["geometry"] | {"contact.py", "dynamics.py", "results.py",
+                                                      "theory.py"}
+STAGE_FILES["convergence"] = STAGE_FILES["simulate"] | {"verification.py"}
+STAGE_FILES["combine"] = STAGE_FILES["summary"] = {"study.py", "stats.py", "results.py", "cli.py"}
+for _name in ("report_paper", "report_sweep", "report_verification"):
+    STAGE_FILES[_name] = {"reports.py", "study.py", "stats.py", "cli.py"}
+
+
+def snakemake(*args, cwd, env=None, check=None):
+    """Run ``python -m snakemake ARGS`` in ``cwd``; return the completed process (text).
+
+    ``check=True`` asserts exit code 0 and shows the output if not.
+    """
+    proc = subprocess.run([sys.executable, "-m", "snakemake", *map(str, args)], cwd=cwd,
+                          env=env, capture_output=True, text=True, timeout=600)
+    proc.output = proc.stdout + proc.stderr
+    if check:
+        assert proc.returncode == 0, proc.output[-6000:]
+    return proc
+
+
+_JOB = re.compile(r"^(?:local)?rule (\w+):\n((?:    .*\n)+)", re.MULTILINE)
+
+
+def planned_jobs(output):
+    """The jobs of a dry run: {(rule, output files)} parsed from Snakemake's listing."""
+    jobs = set()
+    for rule, body in _JOB.findall(output):
+        fields = dict(re.findall(r"^    (\w+): (.*)$", body, re.MULTILINE))
+        jobs.add((rule, fields.get("output", "")))
+    return jobs
+
+
+def rules_of(jobs):
+    return sorted(rule for rule, _ in jobs)
+
+
+def job_inputs(output):
+    """rule -> input files (of its first job) in a dry run's listing."""
+    inputs = {}
+    for rule, body in _JOB.findall(output):
+        fields = dict(re.findall(r"^    (\w+): (.*)$", body, re.MULTILINE))
+        inputs.setdefault(rule, fields.get("input", "").split(", "))
+    return inputs
+
+
+def write_yaml(path, data):
+    path.write_text(yaml.safe_dump(data), encoding="utf-8")
+    return path
+
+
+# ------------------------------------------------------------ configuration
+BAD_CONFIGS = {
+    "spiral angle out of range": ({"sweep": {"spiral_angles_deg": [25, 75]}},
+                                  "sweep.spiral_angles_deg[1]"),
+    "no samples": ({"simulation": {"samples": 0}}, "simulation.samples"),
+    "unknown key": ({"simulation": {"durration_s": 1.0}}, "simulation.durration_s"),
+    "unknown top-level key": ({"sweeps": {}}, "sweeps"),
+    "unknown trace": ({"sweep": {"traces": ["logarithmic", "spiral"]}}, "sweep.traces[1]"),
+    "trace is not a design key": ({"design": {"trace": "circular"}}, "design.trace"),
+    "wrong type": ({"statistics": {"subgroup_size": "four"}}, "statistics.subgroup_size"),
+    # Checks beyond the schema: lsbg's own, and the statistics windows.
+    "chart window beyond the run": ({"statistics": {"control_chart_window_s": [0.8, 1.5]}},
+                                    "statistics.control_chart_window_s"),
+    "ramp longer than the run": ({"simulation": {"ramp_time_s": 2.0}},
+                                 "simulation.ramp_time_s"),
+    "no reference engine": ({"engines": {"sweep": "pybullet", "reference": []}},
+                            "engines.reference"),
+    "impossible design": ({"design": {"face_width_mm": 60}}, "face_width"),
+}
+
+
+@pytest.mark.parametrize("name", BAD_CONFIGS)
+def test_bad_config_fails_before_any_job_naming_the_key(tmp_path, name):
+    override, key = BAD_CONFIGS[name]
+    bad = write_yaml(tmp_path / "bad.yaml", override)
+    proc = snakemake("-n", "--snakefile", SNAKEFILE, "--configfile", bad, cwd=tmp_path)
+    assert proc.returncode != 0
+    assert "invalid configuration" in proc.output
+    assert key in proc.output, proc.output
+    # Nothing was run or written: the check precedes the DAG.
+    assert not (tmp_path / "results").exists()
+    assert "Building DAG" not in proc.output
+
+
+def test_default_and_test_configs_are_valid_and_plan_the_study(tmp_path):
+    proc = snakemake("-n", "--snakefile", SNAKEFILE, cwd=tmp_path, check=True)
+    jobs = planned_jobs(proc.output)
+    config = yaml.safe_load((REPO / "workflow" / "config.yaml").read_text(encoding="utf-8"))
+    points = len(config["sweep"]["traces"]) * len(config["sweep"]["spiral_angles_deg"])
+    reference = 2 * len(config["engines"]["reference"])  # both traces at the paper's point
+    assert rules_of(jobs).count("geometry") == points
+    assert rules_of(jobs).count("simulate") == points + reference
+    for rule in ("design_file", "convergence", "combine", "summary", "report_paper",
+                 "report_sweep", "report_verification", "all"):
+        assert rule in rules_of(jobs)
+    # The settings lsbg reads, as validated (schema defaults filled in).
+    written = yaml.safe_load((tmp_path / "results" / "config.yaml").read_text(encoding="utf-8"))
+    assert set(written) == {"simulation", "contact", "statistics"}
+    assert written["simulation"]["duration_s"] == config["simulation"]["duration_s"]
+
+
+def test_rules_list_the_lsbg_files_they_run(tmp_path):
+    proc = snakemake("-n", "--snakefile", SNAKEFILE, "--configfile", REPO / TEST_CONFIG,
+                     cwd=tmp_path, check=True)
+    inputs = job_inputs(proc.output)
+    for rule, files in STAGE_FILES.items():
+        listed = {Path(f).name for f in inputs[rule] if Path(f).parent.name == "lsbg"}
+        assert files <= listed, f"{rule}: missing {sorted(files - listed)}"
+    assert "verification.py" not in {Path(f).name for f in inputs["geometry"]}
+    for name in ("paper", "sweep", "verification"):
+        assert any(f.endswith(f"workflow/notebooks/{name}.ipynb")
+                   for f in inputs[f"report_{name}"])
+
+
+def test_lint_passes(tmp_path):
+    proc = snakemake("--lint", "--snakefile", SNAKEFILE, cwd=tmp_path)
+    assert proc.returncode == 0, proc.output
+    assert "good condition" in proc.output
+
+
+def test_slurm_profile_schedules_with_resources(tmp_path):
+    """The SLURM profile parses and every job carries mem_mb and runtime (dry run, no sbatch)."""
+    proc = snakemake("-n", "--snakefile", SNAKEFILE, "--configfile", REPO / TEST_CONFIG,
+                     "--executor", "slurm", "--profile", REPO / "workflow" / "profiles" / "slurm",
+                     cwd=tmp_path, check=True)
+    bodies = [body for rule, body in _JOB.findall(proc.output) if rule != "all"]
+    assert bodies
+    for body in bodies:
+        assert re.search(r"mem_mb=\d+", body) and re.search(r"runtime=\d+", body), body
+
+
+# ---------------------------------------------------------------- end to end
+def copy_repository(target):
+    """Copy the repository's files (tracked and untracked, not ignored) to ``target``."""
+    try:
+        listing = subprocess.run(["git", "ls-files", "-co", "--exclude-standard", "-z"],
+                                 cwd=REPO, capture_output=True, check=True).stdout
+        files = [f for f in listing.decode().split("\0") if f]
+    except (OSError, subprocess.CalledProcessError):
+        skip = {".git", "results", "logs", ".snakemake", "__pycache__", ".pytest_cache"}
+        files = [str(p.relative_to(REPO)) for p in REPO.rglob("*")
+                 if p.is_file() and not skip & set(p.relative_to(REPO).parts)]
+    for name in files:
+        source = REPO / name
+        if source.is_file() and not name.startswith(("results/", "logs/", "reports/")):
+            (target / name).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(source, target / name)
+    return target
+
+
+@pytest.fixture(scope="module")
+def study(tmp_path_factory):
+    """The tiny study run with -j2 in a copy of the repository: (directory, environment)."""
+    root = copy_repository(tmp_path_factory.mktemp("study"))
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(
+        [str(root), *filter(None, [os.environ.get("PYTHONPATH")])]))
+    snakemake("-j2", "--configfile", TEST_CONFIG, cwd=root, env=env, check=True)
+    return root, env
+
+
+def dry_run(study, *configfiles):
+    root, env = study
+    proc = snakemake("-n", "--configfile", TEST_CONFIG, *configfiles, cwd=root, env=env,
+                     check=True)
+    return planned_jobs(proc.output), proc.output
+
+
+@pytest.mark.slow
+def test_study_writes_the_sweep_dataset_with_units(study):
+    root, _ = study
+    with xr.open_dataset(root / "results" / "sweep.nc") as ds:
+        assert set(ds.dims) == {"trace", "spiral_angle", "time"}
+        assert list(ds.trace.values) == ["logarithmic", "circular"]
+        assert list(ds.spiral_angle.values) == [35.0]
+        assert ds["gear_speed"].attrs["units"] == "deg/s"
+        assert ds["pinion_speed"].attrs["units"] == "deg/s"
+        assert ds["tangential_force"].attrs["units"] == "N"
+        assert ds["tangential_force_outer"].attrs["units"] == "N"
+        assert ds.attrs["Conventions"].startswith("CF-")
+        assert ds.attrs["solver_engine"] == "pybullet"
+        assert ds.sizes["time"] == 26  # samples 25 -> 26 instants
+
+
+@pytest.mark.slow
+def test_study_writes_the_summary_table(study):
+    root, _ = study
+    table = pd.read_csv(root / "results" / "summary.csv")
+    assert list(table.columns) == ["trace", "spiral_angle_deg", "engine", "quantity", "mean",
+                                   "std", "ad_statistic", "ad_pvalue", "theory",
+                                   "error_rate_percent", "out_of_control"]
+    runs = table.groupby(["trace", "spiral_angle_deg", "engine"]).size()
+    assert len(runs) == 4  # two traces x (pybullet, scipy) at 35 deg
+    speed = table[table.quantity == "gear_speed"]
+    assert (abs(speed["mean"] - 1873.703) / 1873.703 < 0.02).all()
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["paper", "sweep", "verification"])
+def test_study_renders_the_reports(study, name):
+    root, _ = study
+    html = (root / "reports" / f"{name}.html").read_text(encoding="utf-8")
+    headings = re.findall(r"<h([12])[^>]*>(.*?)</h\1>", html, re.DOTALL)
+    assert [level for level, _ in headings].count("1") >= 1
+    assert [level for level, _ in headings].count("2") >= 3, headings
+    assert html.count("data:image/png;base64,") >= 1
+    assert "Traceback" not in html
+
+
+@pytest.mark.slow
+def test_study_keeps_the_logs_and_the_validated_settings(study):
+    root, _ = study
+    assert (root / "logs" / "geometry" / "logarithmic_beta35.log").read_text().strip()
+    assert "lsbg.dynamics" in (root / "logs" / "simulate" / "circular_beta35_scipy.log").read_text()
+    settings = yaml.safe_load((root / "results" / "config.yaml").read_text(encoding="utf-8"))
+    assert settings["simulation"]["duration_s"] == 0.05
+    assert settings["statistics"]["subgroup_size"] == 5
+
+
+@pytest.mark.slow
+def test_after_the_run_there_is_nothing_to_do(study):
+    jobs, output = dry_run(study)
+    assert not jobs, output
+    assert "Nothing to be done" in output
+
+
+@pytest.mark.slow
+def test_a_new_spiral_angle_runs_only_its_points_and_the_aggregates(study, tmp_path):
+    extra = write_yaml(tmp_path / "more.yaml", {"sweep": {"spiral_angles_deg": [35, 40]}})
+    jobs, output = dry_run(study, extra)
+    assert rules_of(jobs) == sorted(["geometry", "geometry", "simulate", "simulate", "combine",
+                                     "summary", "report_paper", "report_sweep", "all"]), output
+    new = {out for rule, out in jobs if rule in ("geometry", "simulate")}
+    assert new == {"results/geometry/logarithmic_beta40", "results/geometry/circular_beta40",
+                   "results/runs/logarithmic_beta40_pybullet.nc",
+                   "results/runs/circular_beta40_pybullet.nc"}
+
+
+@pytest.mark.slow
+def test_a_changed_setting_reruns_only_the_runs_that_use_it(study, tmp_path):
+    """The params trigger: the scipy tolerance concerns the scipy runs and convergence only."""
+    extra = write_yaml(tmp_path / "rtol.yaml", {"simulation": {"rtol": 1e-9}})
+    jobs, output = dry_run(study, extra)
+    assert rules_of(jobs) == sorted(["simulate", "simulate", "convergence", "convergence",
+                                     "summary", "report_paper", "report_sweep",
+                                     "report_verification", "all"]), output
+    assert {out for rule, out in jobs if rule == "simulate"} == {
+        "results/runs/logarithmic_beta35_scipy.nc", "results/runs/circular_beta35_scipy.nc"}
+    # Statistics settings rerun the statistics, not the simulations.
+    extra = write_yaml(tmp_path / "stats.yaml", {"statistics": {"subgroup_size": 4}})
+    jobs, output = dry_run(study, extra)
+    assert rules_of(jobs) == sorted(["summary", "report_paper", "report_sweep", "all"]), output
+
+
+CODE_CHANGES = {
+    "lsbg/verification.py": ["convergence", "convergence", "report_verification", "all"],
+    "lsbg/stats.py": ["combine", "summary", "report_paper", "report_sweep",
+                      "report_verification", "all"],
+    "lsbg/solids.py": ["geometry"] * 2 + ["simulate"] * 4 + ["convergence"] * 2
+                      + ["combine", "summary", "report_paper", "report_sweep",
+                         "report_verification", "all"],
+    "workflow/notebooks/sweep.ipynb": ["report_sweep", "all"],
+}
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("changed", CODE_CHANGES)
+def test_a_changed_source_reruns_what_uses_it(study, changed):
+    root, _ = study
+    path = root / changed
+    backup = path.with_name(path.name + ".orig")
+    shutil.copy2(path, backup)
+    try:
+        text = path.read_text(encoding="utf-8")
+        if path.suffix == ".ipynb":
+            text = text.replace('"cells": [', '"cells": [ ', 1)  # same notebook, other bytes
+        else:
+            text += "\n# a change\n"
+        path.write_text(text, encoding="utf-8")
+        jobs, output = dry_run(study)
+        assert rules_of(jobs) == sorted(CODE_CHANGES[changed]), output
+    finally:
+        shutil.copy2(backup, path)  # content and time stamp back
+        backup.unlink()
+    assert not dry_run(study)[0]
+
+
+@pytest.mark.slow
+def test_report_of_the_provenance(study):
+    root, env = study
+    proc = snakemake("--report", "provenance.html", "--configfile", TEST_CONFIG, cwd=root,
+                     env=env, check=True)
+    html = (root / "provenance.html").read_text(encoding="utf-8")
+    for item in ("summary.csv", "paper.html", "convergence_circular.csv", "pair.png"):
+        assert item in html, item
+    assert "Report created" in proc.output
+
+
+# -------------------------------------------------------------- extension
+@pytest.mark.slow
+def test_load_sweep_extension_adds_only_its_jobs_and_runs(study, tmp_path):
+    root, env = study
+    extra = write_yaml(tmp_path / "load.yaml", {"load_sweep": {"torques_N_m": [1000, 1500]}})
+    jobs, output = dry_run(study, extra)
+    assert rules_of(jobs) == sorted(["load_sweep_simulate"] * 4 + ["load_sweep_summary"] * 2
+                                    + ["all"]), output
+    assert {out for rule, out in jobs if rule == "load_sweep_summary"} == {
+        "results/extensions/load_sweep/summary_T1000.csv",
+        "results/extensions/load_sweep/summary_T1500.csv"}
+    snakemake("-j2", "--configfile", TEST_CONFIG, extra, cwd=root, env=env, check=True)
+    table = pd.read_csv(root / "results" / "extensions" / "load_sweep" / "summary_T1000.csv")
+    force = table[(table.quantity == "tangential_force_outer")]
+    # Eq. 13 with the swept torque: F = 2 T / d2, d2 = 37 * 4.5 mm.
+    assert force["theory"].tolist() == pytest.approx([2 * 1000 / 0.1665] * 2)
+    with xr.open_dataset(root / "results" / "extensions" / "load_sweep" / "runs"
+                         / "circular_beta35_pybullet_T1500.nc") as ds:
+        assert float(ds.attrs["solver_load_torque_N_m"]) == pytest.approx(1500)
+    assert not dry_run(study, extra)[0]
+    # Without the extension's config the study is unchanged.
+    assert not dry_run(study)[0]
+
+
+def test_conda_environment_pins_match_environment_pip():
+    """workflow/envs/lsbg.yaml (for --software-deployment-method conda) must not drift."""
+    import yaml
+
+    env = yaml.safe_load((REPO / "workflow" / "envs" / "lsbg.yaml").read_text())
+    pip_section = next(d["pip"] for d in env["dependencies"] if isinstance(d, dict))
+    conda_pins = {line for line in pip_section if "==" in line}
+    requirements = {line.strip() for line in (REPO / "environment-pip.txt").read_text().splitlines()
+                    if "==" in line and not line.startswith("#")}
+    assert conda_pins and conda_pins <= requirements
