@@ -280,9 +280,8 @@ def add_convergence_parser(subparsers):
 
 def run_convergence(args):
     """Handler of ``lsbg convergence`` [exit code]."""
-    from pathlib import Path
-
     from lsbg.dynamics import SimulationError, load_model
+    from lsbg.results import write_atomically
     from lsbg.verification import convergence_study
 
     settings, params = simulation_from_args(args)
@@ -292,35 +291,12 @@ def run_convergence(args):
     except SimulationError as err:
         print(f"lsbg convergence: simulation stopped: {err}", file=sys.stderr)
         return 3
-    out = Path(args.out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    tmp = out.with_name(out.name + ".part")
-    table.to_csv(tmp, index=False)
-    tmp.replace(out)
+    write_atomically(args.out, lambda tmp: table.to_csv(tmp, index=False))
     print(table.to_string(index=False))
     return 0
 
 
 # ---------------------------------------------------------------- combine
-def _write_atomically(path, write):
-    """Call ``write(tmp_path)`` on a temporary file beside ``path``, then rename it."""
-    import os
-    import tempfile
-    from pathlib import Path
-
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
-    os.close(fd)
-    try:
-        write(tmp)
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-
-
 def add_combine_parser(subparsers):
     """``lsbg combine``: the run files of a sweep -> one NetCDF dataset."""
     parser = subparsers.add_parser(
@@ -377,6 +353,7 @@ def add_summary_parser(subparsers):
 
 def run_summary(args):
     """Handler of ``lsbg summary`` [exit code]."""
+    from lsbg.results import write_atomically
     from lsbg.study import statistics_options, summary_table
 
     (section,) = _read_study_sections(args.config, "statistics")
@@ -393,7 +370,7 @@ def run_summary(args):
         table = summary_table(args.runs, **options)
     except (OSError, ValueError) as err:
         raise CommandError(f"--runs: {err}") from None
-    _write_atomically(args.out, lambda tmp: table.to_csv(tmp, index=False))
+    write_atomically(args.out, lambda tmp: table.to_csv(tmp, index=False))
     print(f"lsbg summary: {len(args.runs)} runs, {len(table)} rows -> {args.out}")
     return 0
 

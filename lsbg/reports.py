@@ -23,6 +23,7 @@ import tempfile
 from pathlib import Path
 
 import lsbg
+from lsbg.results import write_atomically
 
 __all__ = ["NOTEBOOK_DIR", "PATH_PARAMETER_SUFFIXES", "ReportError", "notebook_path",
            "available_reports", "notebook_parameters", "parse_parameter",
@@ -271,16 +272,7 @@ def render_report(name, out_html, parameters=None, notebook_dir=None, cwd=None,
         for message in _strip_stderr(nb):
             log.warning("report %s: %s", name, message.strip())
         html = notebook_to_html(nb)
-    fd, tmp = tempfile.mkstemp(prefix=f".{out_html.name}.", suffix=".part", dir=out_html.parent)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as handle:
-            handle.write(html)
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, out_html)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return out_html
+    return write_atomically(out_html, lambda tmp: Path(tmp).write_text(html, encoding="utf-8"))
 
 
 # ------------------------------------------------------ inside a notebook

@@ -117,26 +117,47 @@ def run_dataset(record, model, settings, command=""):
     return ds
 
 
+def write_atomically(path, write):
+    """Write a file through a temporary file beside it, renamed at the end.
+
+    A failure (or an interrupt) leaves neither a half-written ``path`` nor the
+    temporary file behind.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        Target file; its folder is created if needed.
+    write : callable
+        ``write(tmp_path)`` writes the content to the temporary path (a str).
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
+    os.close(fd)
+    try:
+        write(tmp)
+        # mkstemp creates the file private (0600); give it the usual permissions.
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return path
+
+
 def write_dataset(ds, path):
-    """Write a dataset to NetCDF atomically (a temporary file renamed at the end).
+    """Write a dataset to NetCDF atomically (see :func:`write_atomically`).
 
     Parameters
     ----------
     ds : xarray.Dataset
     path : str or pathlib.Path
-        Target file; its folder is created if needed.
     """
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(suffix=".nc.part", dir=path.parent)
-    os.close(fd)
-    # mkstemp creates the file private (0600); give it the usual permissions.
-    umask = os.umask(0)
-    os.umask(umask)
-    os.chmod(tmp, 0o666 & ~umask)
-    try:
-        ds.to_netcdf(tmp, engine="netcdf4")
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    write_atomically(path, lambda tmp: ds.to_netcdf(tmp, engine="netcdf4"))
