@@ -835,6 +835,41 @@ class StdRatioCI:
         return self.low > 1.0 or self.high < 1.0
 
 
+def _check_bootstrap(confidence, n_boot, method):
+    """Validate the bootstrap options; return ``n_boot`` as an int."""
+    if not 0.0 < confidence < 1.0:
+        raise ValueError(f"confidence must be in (0, 1), got {confidence}")
+    if method not in ("circular", "stationary"):
+        raise ValueError(f"method must be 'circular' or 'stationary', "
+                         f"got {method!r}")
+    n_boot = int(n_boot)
+    if n_boot < 100:
+        raise ValueError(f"n_boot must be at least 100, got {n_boot}")
+    return n_boot
+
+
+def _block_length(series, block_length):
+    """The given block length [samples], or the data's default when None."""
+    if block_length is None:
+        return _default_block_length(series)
+    length = int(block_length)
+    if length < 1:
+        raise ValueError(f"block_length must be >= 1, got {block_length}")
+    return length
+
+
+def _bootstrap_std(series, length, n_boot, rng, method):
+    """Standard deviations (ddof = 1) of ``n_boot`` block-bootstrap replicates."""
+    return series[_block_indices(series.size, length, n_boot, rng, method)].std(axis=1, ddof=1)
+
+
+def _percentile_interval(replicates, confidence):
+    """Equal-tailed percentile interval of bootstrap replicates."""
+    alpha = 1.0 - confidence
+    low, high = np.quantile(replicates, [alpha / 2.0, 1.0 - alpha / 2.0])
+    return low, high
+
+
 def std_ratio_ci(a, b, confidence=0.95, n_boot=2000, block_length=None,
                  seed=0, method="circular"):
     """Ratio of standard deviations with an autocorrelation-aware interval.
@@ -879,27 +914,13 @@ def std_ratio_ci(a, b, confidence=0.95, n_boot=2000, block_length=None,
     """
     x = _as_1d(a, "a", 4)
     y = _as_1d(b, "b", 4)
-    if not 0.0 < confidence < 1.0:
-        raise ValueError(f"confidence must be in (0, 1), got {confidence}")
-    if method not in ("circular", "stationary"):
-        raise ValueError(f"method must be 'circular' or 'stationary', "
-                         f"got {method!r}")
-    n_boot = int(n_boot)
-    if n_boot < 100:
-        raise ValueError(f"n_boot must be at least 100, got {n_boot}")
-    if block_length is None:
-        lengths = (_default_block_length(x), _default_block_length(y))
-    else:
-        lengths = tuple(int(v) for v in np.broadcast_to(block_length, (2,)))
-        if min(lengths) < 1:
-            raise ValueError(f"block_length must be >= 1, got {block_length}")
+    n_boot = _check_bootstrap(confidence, n_boot, method)
+    given = (None, None) if block_length is None else np.broadcast_to(block_length, (2,))
+    lengths = tuple(_block_length(series, length) for series, length in zip((x, y), given))
     rng = np.random.default_rng(seed)
-    boot_std = [series[_block_indices(series.size, length, n_boot, rng,
-                                      method)].std(axis=1, ddof=1)
+    boot_std = [_bootstrap_std(series, length, n_boot, rng, method)
                 for series, length in zip((x, y), lengths)]
-    ratios = boot_std[0] / boot_std[1]
-    alpha = 1.0 - confidence
-    low, high = np.quantile(ratios, [alpha / 2.0, 1.0 - alpha / 2.0])
+    low, high = _percentile_interval(boot_std[0] / boot_std[1], confidence)
     return StdRatioCI(ratio=float(x.std(ddof=1) / y.std(ddof=1)),
                       low=float(low), high=float(high), confidence=confidence,
                       block_length_a=lengths[0], block_length_b=lengths[1],
@@ -957,25 +978,10 @@ def std_ci(values, confidence=0.95, n_boot=2000, block_length=None, seed=0,
     strongly autocorrelated series as approximate.
     """
     x = _as_1d(values, "values", 4)
-    if not 0.0 < confidence < 1.0:
-        raise ValueError(f"confidence must be in (0, 1), got {confidence}")
-    if method not in ("circular", "stationary"):
-        raise ValueError(f"method must be 'circular' or 'stationary', "
-                         f"got {method!r}")
-    n_boot = int(n_boot)
-    if n_boot < 100:
-        raise ValueError(f"n_boot must be at least 100, got {n_boot}")
-    if block_length is None:
-        length = _default_block_length(x)
-    else:
-        length = int(block_length)
-        if length < 1:
-            raise ValueError(f"block_length must be >= 1, got {block_length}")
-    rng = np.random.default_rng(seed)
-    boot = x[_block_indices(x.size, length, n_boot, rng, method)].std(
-        axis=1, ddof=1)
-    alpha = 1.0 - confidence
-    low, high = np.quantile(boot, [alpha / 2.0, 1.0 - alpha / 2.0])
+    n_boot = _check_bootstrap(confidence, n_boot, method)
+    length = _block_length(x, block_length)
+    boot = _bootstrap_std(x, length, n_boot, np.random.default_rng(seed), method)
+    low, high = _percentile_interval(boot, confidence)
     return StdCI(std=float(x.std(ddof=1)), low=float(low), high=float(high),
                  confidence=confidence, block_length=length, n_boot=n_boot,
                  method=method)
