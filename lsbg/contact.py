@@ -81,9 +81,12 @@ def step(x, x0, h0, x1, h1):
     return _step_from_delta(delta, h0, h1)
 
 
-def _step_scalar(x, x0, h0, x1, h1):
-    """STEP of Eq. (10) on plain floats; no validation (callers pass valid
-    parameters). NaN in ``x`` propagates, as in :func:`step`."""
+def step_scalar(x, x0, h0, x1, h1):
+    """STEP of Eq. (10) on plain floats, for hot Python loops.
+
+    No validation (callers pass x1 > x0); NaN in ``x`` propagates, as in
+    :func:`step`. Parameters and units as :func:`step`.
+    """
     delta = (x - x0) / (x1 - x0)
     # if-chains rather than min/max: this runs millions of times per run.
     if delta <= 0.0:
@@ -358,7 +361,7 @@ def impact_force_scalar(x, xdot, params):
     if x <= 0.0:
         return 0.0
     force = _impact_terms(
-        x, xdot, params, _step_scalar(x, 0.0, 0.0, params.d, params.c_max))
+        x, xdot, params, step_scalar(x, 0.0, 0.0, params.d, params.c_max))
     # Written so that NaN passes through, as np.maximum does.
     return 0.0 if force < 0.0 else force
 
@@ -423,8 +426,8 @@ def friction_coefficient_scalar(v, params):
     if speed >= params.v_d:  # the common case in a running mesh
         return params.mu_d
     if speed < params.v_s:
-        return _step_scalar(speed, 0.0, 0.0, params.v_s, params.mu_s)
-    return _step_scalar(speed, params.v_s, params.mu_s, params.v_d,
+        return step_scalar(speed, 0.0, 0.0, params.v_s, params.mu_s)
+    return step_scalar(speed, params.v_s, params.mu_s, params.v_d,
                         params.mu_d)
 
 

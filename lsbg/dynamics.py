@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lsbg.contact import MeshContact, step
+from lsbg.contact import MeshContact, step_scalar
 
 log = logging.getLogger(__name__)
 
@@ -193,11 +193,37 @@ SIMULATION_CONFIG_KEYS = {
 }
 
 
-def pinion_motion(t, settings: SimulationSettings):
-    """Prescribed pinion rotation and speed: the paper's STEP ramp (Fig. 8).
+def pinion_state(t, speed, ramp_time):
+    """Prescribed pinion rotation and speed at one instant (floats, hot paths).
 
-    omega1(t) = STEP(t, 0, 0, t_r, W); its integral is closed form,
-    phi1 = W t_r (D^3 - D^4 / 2) with D = t / t_r during the ramp.
+    omega1(t) = STEP(t, 0, 0, t_r, W), the paper's ramp (Fig. 8); its
+    integral is closed form, phi1 = W t_r (D^3 - D^4 / 2) with D = t / t_r
+    during the ramp.
+
+    Parameters
+    ----------
+    t : float
+        Time [s].
+    speed : float
+        Final speed W [rad/s].
+    ramp_time : float
+        Ramp duration t_r [s].
+
+    Returns
+    -------
+    angle, speed : float
+        Forward rotation phi1 [rad] and speed omega1 [rad/s].
+    """
+    if t >= ramp_time:
+        return speed * (0.5 * ramp_time + (t - ramp_time)), speed
+    if t <= 0.0:
+        return 0.0, 0.0
+    d = t / ramp_time
+    return speed * ramp_time * (d**3 - 0.5 * d**4), step_scalar(t, 0.0, 0.0, ramp_time, speed)
+
+
+def pinion_motion(t, settings: SimulationSettings):
+    """Prescribed pinion rotation and speed over times (:func:`pinion_state`).
 
     Parameters
     ----------
@@ -212,14 +238,8 @@ def pinion_motion(t, settings: SimulationSettings):
     speed : numpy.ndarray
         Forward speed omega1 [rad/s].
     """
-    t = np.asarray(t, dtype=float)
-    w, tr = settings.pinion_speed, settings.ramp_time
-    if tr == 0.0:
-        return w * t, np.full_like(t, w)
-    delta = np.clip(t / tr, 0.0, 1.0)
-    speed = step(t, 0.0, 0.0, tr, w)
-    angle = np.where(t < tr, w * tr * (delta**3 - 0.5 * delta**4), w * (0.5 * tr + (t - tr)))
-    return angle, speed
+    state = np.vectorize(pinion_state, otypes=[float, float])
+    return state(t, settings.pinion_speed, settings.ramp_time)
 
 
 @dataclass
@@ -337,14 +357,8 @@ class MeshingModel:
         counter = {"n": 0, "last": time.monotonic()}
         start = time.monotonic()
 
-        def pinion(t):
-            if t >= tr:
-                return w * (0.5 * tr + (t - tr)), w
-            d = t / tr
-            return w * tr * (d**3 - 0.5 * d**4), w * d * d * (3.0 - 2.0 * d)
-
         def rhs(t, y):
-            phi1, w1 = pinion(t)
+            phi1, w1 = pinion_state(t, w, tr)
             phi2, w2 = float(y[0]), float(y[1])
             torque, _, deepest = evaluate(phi1, phi2, w1, w2)
             counter["n"] += 1
@@ -363,7 +377,7 @@ class MeshingModel:
             raise SimulationError(f"solve_ivp ({settings.method}) failed: {solution.message}")
         lists = [[] for _ in range(11)]
         for t, phi2, w2 in zip(solution.t, solution.y[0], solution.y[1]):
-            phi1, w1 = pinion(t)
+            phi1, w1 = pinion_state(t, w, tr)
             self.sample(lists, t, phi1, phi2, w1, w2)
             self.check_state(t, w2, lists[-1][-1], settings)
         return self._record(lists, time.monotonic() - start, counter["n"])
@@ -380,7 +394,25 @@ class MeshingModel:
         finally:
             pybullet.disconnect(client)
 
-    def _run_pybullet(self, pb, client, settings):
+    def load_pybullet(self, pb, client, settings):
+        """Load the pair into a PyBullet client as the engine runs it.
+
+        Zero gravity and damping, the fixed time step of ``settings``, the
+        joint speed cap raised, the gear's default joint motor freed, and the
+        links' axial inertias checked against the geometry's.
+
+        Parameters
+        ----------
+        pb : module
+            :mod:`pybullet`.
+        client : int
+            Physics client id (DIRECT mode).
+        settings : SimulationSettings
+
+        Returns
+        -------
+        body, pinion_joint, gear_joint : int
+        """
         dt = settings.time_step
         pb.setGravity(0, 0, 0, physicsClientId=client)
         pb.setPhysicsEngineParameter(fixedTimeStep=dt, numSubSteps=0, deterministicOverlappingPairs=1,
@@ -404,6 +436,11 @@ class MeshingModel:
                                  f"differs from the geometry's {expected!r}")
         # Revolute joints carry a default velocity motor that acts as friction: free the gear.
         pb.setJointMotorControl2(body, gj, pb.VELOCITY_CONTROL, force=0.0, physicsClientId=client)
+        return body, pj, gj
+
+    def _run_pybullet(self, pb, client, settings):
+        dt = settings.time_step
+        body, pj, gj = self.load_pybullet(pb, client, settings)
         phi2_0 = self.initial_gear_angle(settings)
         pb.resetJointState(body, pj, 0.0, 0.0, physicsClientId=client)
         pb.resetJointState(body, gj, phi2_0, 0.0, physicsClientId=client)
@@ -438,8 +475,7 @@ class MeshingModel:
                     self.check_state(n * dt, w2, deepest, settings)
                 t_next = (n + 1) * dt
                 if t_next <= tr:
-                    d = t_next / tr
-                    motor(body, pj, velocity, targetVelocity=w_final * d * d * (3.0 - 2.0 * d),
+                    motor(body, pj, velocity, targetVelocity=pinion_state(t_next, w_final, tr)[1],
                           force=servo_force, physicsClientId=client)
                 elif n * dt <= tr:
                     motor(body, pj, velocity, targetVelocity=w_final, force=servo_force,

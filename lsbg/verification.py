@@ -115,11 +115,7 @@ def pybullet_step_costs(model: MeshingModel, settings: SimulationSettings, n=200
 
     client = pb.connect(pb.DIRECT)
     try:
-        pb.setGravity(0, 0, 0, physicsClientId=client)
-        pb.setPhysicsEngineParameter(fixedTimeStep=settings.time_step, physicsClientId=client)
-        body = pb.loadURDF(str(model.urdf), useFixedBase=True, flags=pb.URDF_USE_INERTIA_FROM_FILE,
-                           physicsClientId=client)
-        pj, gj = 0, 1
+        body, pj, gj = model.load_pybullet(pb, client, settings)
         phi2 = model.initial_gear_angle(settings)
         w1 = settings.pinion_speed
         w2 = w1 * model.ratio
