@@ -20,6 +20,8 @@ from dataclasses import dataclass
 import numpy as np
 
 TRACES = ("logarithmic", "circular")
+#: Tooth trace -> the paper's name of the gear type.
+TRACE_LABELS = {"logarithmic": "LSBG", "circular": "SBG"}
 BASE_CONE_RULES = ("involute", "paper")
 HANDS = ("left", "right")
 

@@ -15,8 +15,11 @@ from lsbg.contact import (
     impact_force,
     impact_force_scalar,
     implied_correction_coefficient,
+    line_load,
+    line_load_scalar,
     step,
 )
+from lsbg.contact.law import friction_integral_scalar
 
 # Paper §3.1 data in SI: outer pitch radii, 45# steel.
 R1 = 20.25e-3  # m
@@ -135,8 +138,18 @@ def test_to_dict_has_unit_carrying_keys(params):
         "dynamic_friction_coefficient": 0.05,
         "stiction_transition_velocity_m_per_s": params.v_s,
         "friction_transition_velocity_m_per_s": params.v_d,
+        "model": "point",
+        "line_stiffness_N_per_m2": 19.4e9,
+        "mesh_damping_ratio": 0.05,
+        "slices": 20,
+        "line_approach_limit_m": 5e-4,
     }
-    assert all(type(v) is float for v in d.values())
+    assert all(type(v) in (float, int, str) for v in d.values())
+    # and back, also through the workflow's configuration keys
+    assert ContactParameters.from_dict(d) == params
+    line = params.replace(model="line", slices=37, damping_ratio=0.1)
+    assert ContactParameters.from_dict(line.to_dict()) == line
+    assert ContactParameters.from_config(line.to_config()) == line
 
 
 @pytest.mark.parametrize("field, value", [
@@ -148,10 +161,32 @@ def test_to_dict_has_unit_carrying_keys(params):
     ("mu_d", -0.01), ("mu_d", 1.01),
     ("v_s", 0.0), ("v_s", -1e-4),
     ("v_d", 1e-4), ("v_d", 5e-5),
+    ("model", "lines"), ("line_stiffness", 0.0), ("line_stiffness", -1e9),
+    ("damping_ratio", -0.01), ("damping_ratio", float("nan")), ("slices", 1),
+    ("slices", 2.5), ("approach_limit", 0.0),
 ])
 def test_validation_names_field_and_value(field, value):
     with pytest.raises(ValueError, match=rf"{field}.*{field}={value!r}"):
         ContactParameters(**{field: value})
+
+
+@pytest.mark.parametrize("key, value", [
+    ("slices", 1), ("slices", 0), ("mesh_damping_ratio", -0.1), ("line_stiffness_N_per_mm_um", -3),
+    ("line_stiffness_N_per_mm_um", 0), ("model", "spline"), ("line_approach_limit_mm", -1),
+])
+def test_config_errors_name_the_key_in_paper_units(key, value):
+    with pytest.raises(ValueError, match=rf"^contact\.{key} = {value!r}: "):
+        ContactParameters.from_config({key: value})
+
+
+def test_config_reads_paper_units():
+    p = ContactParameters.from_config({"model": "line", "line_stiffness_N_per_mm_um": 14.0,
+                                       "slices": 12, "line_approach_limit_mm": 0.2,
+                                       "stiffness_N_per_mm1_5": 3.0, "exponent": 2.0})
+    assert p.model == "line" and p.slices == 12 and type(p.slices) is int
+    assert p.line_stiffness == pytest.approx(14e9)  # N/(mm um) -> N/m^2
+    assert p.approach_limit == pytest.approx(2e-4)
+    assert p.k == pytest.approx(3e6)  # N/mm^2 -> N/m^2 with the configured exponent
 
 
 def test_v_s_not_below_v_d_is_rejected():
@@ -267,7 +302,7 @@ def test_scalar_force_agrees_with_vector(p):
     x = np.array([g[0] for g in grid])
     rate = np.array([g[1] for g in grid])
     vector = impact_force(x, rate, p)
-    scalar = [impact_force_scalar(a, b, p) for a, b in grid]
+    scalar = [impact_force_scalar(a, b, p.k, p.e, p.c_max, p.d) for a, b in grid]
     np.testing.assert_allclose(scalar, vector, rtol=1e-14, atol=0.0)
     assert all(type(f) is float for f in scalar)
     # the grid reaches every regime, including the clip when there is damping
@@ -276,8 +311,9 @@ def test_scalar_force_agrees_with_vector(p):
 
 
 def test_scalar_force_propagates_nan(params):
-    assert math.isnan(impact_force_scalar(float("nan"), 0.0, params))
-    assert math.isnan(impact_force_scalar(1e-6, float("nan"), params))
+    law = (params.k, params.e, params.c_max, params.d)
+    assert math.isnan(impact_force_scalar(float("nan"), 0.0, *law))
+    assert math.isnan(impact_force_scalar(1e-6, float("nan"), *law))
 
 
 def test_scalar_friction_agrees_with_vector(params):
@@ -286,11 +322,42 @@ def test_scalar_friction_agrees_with_vector(params):
                   p.v_s * (1 + 1e-12), (p.v_s + p.v_d) / 2, p.v_d, 3 * p.v_d,
                   50.0])
     v = np.concatenate([v, -v])
-    scalar = [friction_coefficient_scalar(float(s), p) for s in v]
+    law = (p.mu_s, p.mu_d, p.v_s, p.v_d)
+    scalar = [friction_coefficient_scalar(float(s), *law) for s in v]
     np.testing.assert_allclose(scalar, friction_coefficient(v, p),
                                rtol=1e-14, atol=0.0)
     assert all(type(m) is float for m in scalar)
-    assert math.isnan(friction_coefficient_scalar(float("nan"), p))
+    assert math.isnan(friction_coefficient_scalar(float("nan"), *law))
+
+
+@pytest.mark.parametrize("rate", [1e-3, 0.05, 2.0, 40.0])
+def test_friction_integral_matches_quadrature(params, rate):
+    """The closed-form integral of mu over a linearly growing sliding speed."""
+    from scipy.integrate import quad
+
+    p = params
+    law = (p.mu_s, p.mu_d, p.v_s, p.v_d)
+    for x in (0.3 * p.v_s / rate, p.v_s / rate, 0.5 * (p.v_s + p.v_d) / rate, p.v_d / rate,
+              5 * p.v_d / rate):
+        expected, _ = quad(lambda u: float(friction_coefficient(rate * u, p)), 0.0, x,
+                           points=[p.v_s / rate, p.v_d / rate], epsabs=0.0, epsrel=1e-12,
+                           limit=200)
+        assert friction_integral_scalar(x, rate, *law) == pytest.approx(expected, rel=1e-9)
+    # far from the stiction zone the mean coefficient is mu_d
+    x = 1e4 * p.v_d / rate
+    assert friction_integral_scalar(x, rate, *law) / x == pytest.approx(p.mu_d, rel=1e-3)
+
+
+def test_line_load_is_a_clipped_linear_law():
+    x = np.array([-1e-6, 0.0, 1e-6, 2e-6, 2e-6])
+    rate = np.array([0.0, 1.0, 0.0, 0.0, -1e3])
+    expected = [0.0, 0.0, 2e10 * 1e-6, 2e10 * 2e-6, 0.0]  # the last would pull: clipped
+    np.testing.assert_allclose(line_load(x, rate, 2e10, 1e5), expected, rtol=1e-15)
+    scalar = [line_load_scalar(a, b, 2e10, 1e5) for a, b in zip(x, rate)]
+    np.testing.assert_allclose(scalar, expected, rtol=1e-15)
+    # linear in the approach, damping proportional to the rate
+    assert line_load(3e-6, 0.0, 2e10, 1e5) == pytest.approx(3 * line_load(1e-6, 0.0, 2e10, 1e5))
+    assert line_load(1e-6, 0.1, 2e10, 1e5) - line_load(1e-6, 0.0, 2e10, 1e5) == pytest.approx(1e4)
 
 
 # --- Hertz (Eq. 9 and 11) ----------------------------------------------------
@@ -409,8 +476,7 @@ def test_kernel_matches_brute_force_flank_surfaces(kernel, mismatch):
     pair = kernel.pair
     for pinion_angle in (0.013, 0.21):
         gear_angle = (pinion_angle * kernel.e1 - mismatch) / kernel.e2
-        details = []
-        kernel.evaluate(pinion_angle, gear_angle, 0.0, 0.0, details)
+        details = kernel.pair_contacts(pinion_angle, gear_angle)
         assert len(details) >= 2
         for pc in details:
             plane = pair.planes[pc.side]
@@ -428,7 +494,7 @@ def test_kernel_matches_brute_force_flank_surfaces(kernel, mismatch):
 
 def test_static_preload_carries_the_load(kernel):
     gear_angle = kernel.static_gear_angle(LOAD)
-    torque, pinion_torque, deepest = kernel.evaluate(0.0, gear_angle, 0.0, 0.0)
+    torque, pinion_torque, deepest, *_ = kernel.forces(0.0, gear_angle)
     assert torque == pytest.approx(LOAD, rel=1e-9)
     # without friction the torques on the two members are in the ratio z1/z2
     assert -pinion_torque / torque == pytest.approx(9 / 37, rel=1e-12)
@@ -440,12 +506,12 @@ def test_no_force_with_clearance_and_backlash(kernel):
     # pinion behind by less than the backlash: neither side touches
     gap = kernel.pair.design.backlash * kernel.pair.design.base_cone_constant / kernel.pair.design.mean_cone_distance
     eps = -0.5 * gap
-    torque, _, deepest = kernel.evaluate(0.0, -eps / kernel.e2, 0.0, 0.0)
+    torque, _, deepest, *_ = kernel.forces(0.0, -eps / kernel.e2)
     assert torque == 0.0 and deepest < 0
     # behind by more than the backlash: coast flanks push the gear backwards
     eps = -1.2 * gap
-    details = []
-    torque, _, _ = kernel.evaluate(0.0, -eps / kernel.e2, 0.0, 0.0, details)
+    torque = kernel.forces(0.0, -eps / kernel.e2).gear_torque
+    details = kernel.pair_contacts(0.0, -eps / kernel.e2)
     assert torque < 0 and {p.side for p in details} == {"coast"}
 
 
@@ -453,13 +519,11 @@ def test_force_never_negative_and_friction_opposes_sliding(kernel):
     w1 = math.radians(7703.0)
     gear_angle = kernel.static_gear_angle(LOAD)
     for w2 in (w1 * 9 / 37 * 1.01, w1 * 9 / 37 * 0.99):
-        details = []
-        kernel.evaluate(0.1, gear_angle + 0.1 * 9 / 37, w1, w2, details)
+        details = kernel.pair_contacts(0.1, gear_angle + 0.1 * 9 / 37, w1, w2)
         for pc in details:
             assert pc.normal_force >= 0
             assert pc.friction_coefficient == pytest.approx(0.05) or pc.sliding_speed < 0.01
     # separating fast: the damping term would pull, the law clips it to zero
-    details = []
-    kernel.evaluate(0.1, gear_angle + 0.1 * 9 / 37, 0.0, 1e4, details)
+    details = kernel.pair_contacts(0.1, gear_angle + 0.1 * 9 / 37, 0.0, 1e4)
     assert details
     assert all(pc.normal_force == 0.0 for pc in details)

@@ -1,0 +1,421 @@
+"""Compiled contact kernels: tooth-pair forces of the point and the line model.
+
+Both flank sides of a pair are swept by a plane of action (:mod:`lsbg.geometry`),
+so a rotation mismatch only moves the contact lines within that plane. With
+e_i = sin(delta_b,i), the drive-side mismatch is ``eps = phi1 e1 - phi2 e2``
+(wrapped to one base pitch) and the normal approach at a point of a contact
+line at distance rho from the apex is ``x = rho cos(beta_p(rho)) eps``
+(DESIGN.md §2): the *lever* ``rho cos(beta_p)`` is also the torque arm of the
+normal force about gear i per unit e_i. A contact line is the generating curve
+turned by Psi; tooth pairs repeat every base pitch Psi_p. Under a mismatch the
+pinion's and the gear's lines are eps apart: the point model puts the contact
+at their mean, the line model at the pinion's line (the small-deflection
+convention of loaded TCA, which makes a linear slice law linear in load).
+
+* The **point model** (the paper's) makes each tooth pair one IMPACT incident
+  at the deepest point of its line inside the field of contact. What depends
+  only on the line's turn Psi is tabulated (:class:`lsbg.contact.mesh.MeshContact`)
+  and interpolated linearly.
+* The **line model** cuts the face width into bands (slices). The part of a
+  contact line inside band j and inside the field of contact carries the load
+  per unit length of :func:`lsbg.contact.law.line_load` at the band's lever;
+  a band only partly inside the field counts with that fraction, so a pair
+  entering or leaving mesh gains or loses load continuously.
+
+Friction, torques and the tangential force of a normal force at a contact
+point are one function (:func:`_point_torques`) for both models.
+
+The kernels take the state (angles [rad], speeds [rad/s]) and three arrays
+built by :class:`lsbg.contact.mesh.MeshContact`: ``params`` (scalars, indices
+``P_*``), ``sides`` (per flank side, indices ``S_*``) and ``table`` (per side:
+the point model's phase table, columns ``T_*``, or the line model's bands,
+columns ``B_*``). Everything is SI.
+"""
+
+import math
+
+import numpy as np
+from numba import njit
+
+from lsbg.contact.law import (
+    friction_coefficient_scalar,
+    friction_integral_scalar,
+    impact_force_scalar,
+    line_load_scalar,
+)
+
+# --- params: scalars of the pair and the law
+(P_E1, P_E2, P_PITCH, P_ORIENTATION, P_COAST_OFFSET, P_COAST_PINION_OFFSET, P_MODEL,
+ P_K, P_EXPONENT, P_C_MAX, P_DEPTH, P_MU_S, P_MU_D, P_V_S, P_V_D, P_LINE_K, P_LINE_C,
+ P_U12, P_LINE_SHIFT) = range(19)
+N_PARAMS = 19
+#: Values of ``params[P_MODEL]``.
+MODEL_CODES = {"point": 0.0, "line": 1.0}
+
+# --- sides[side]: side 0 = drive, 1 = coast
+# U*: components of the rotation axes u_i along the plane's pitch direction p
+# and cross direction q; N*: those of N x u_i (the friction lever, line model)
+(S_FIRST, S_LAST, S_INV_STEP, S_ROWS, S_PSI_LO, S_PSI_HI, S_U1P, S_U1Q, S_U2P, S_U2Q,
+ S_N1P, S_N1Q, S_N2P, S_N2Q) = range(14)
+N_SIDE = 14
+
+# --- table[side, row]: point model, per line turn Psi = first + row / inv_step
+T_LEVER, T_AA, T_AB, T_BB, T_RADIUS, T_RHO = range(6)
+# --- table[side, band]: line model, per band of the face width: values at its
+# centre, their change across the band (D_*: outer edge minus inner edge), the
+# curve's length in the band and its polar angle at the band's edges
+(B_RHO, B_LEVER, B_COS, B_SIN, B_D_RHO, B_D_LEVER, B_D_COS, B_D_SIN, B_LENGTH, B_THETA_IN,
+ B_THETA_OUT) = range(11)
+N_COLUMNS = 11
+
+# --- details[pair]: one row per tooth pair whose line meets the field
+(D_SIDE, D_PHASE, D_LEVER, D_PENETRATION, D_RATE, D_NORMAL, D_MU, D_SLIDE, D_GEAR_TORQUE,
+ D_PINION_TORQUE, D_TANGENTIAL, D_RADIUS, D_RHO, D_LENGTH) = range(14)
+N_DETAILS = 14
+
+
+
+@njit(cache=True)
+def _point_torques(force, lever, aa, ab, bb, w1, w2, sign, v_normal, params, mu):
+    """Torques of a normal force at a contact point and of its friction.
+
+    ``aa``, ``ab``, ``bb`` are the products of a = u1 x X and b = u2 x X at the
+    point X; the sliding velocity of the pinion on the gear is
+    v = w1 a - w2 b, its normal part is ``v_normal`` = lever (w1 e1 - w2 e2)
+    (n . (u_i x X) = lever e_i), and friction drags the gear along it. A
+    negative ``mu`` means: the friction coefficient at this point's sliding
+    speed (the point model); otherwise ``mu`` is the slice's mean coefficient
+    along the sliding direction at this point (the line model).
+
+    Returns (gear torque, pinion torque, friction coefficient, sliding speed)
+    [N m, N m, -, m/s], torques about the forward axes u2 and u1.
+    """
+    e1, e2 = params[P_E1], params[P_E2]
+    t2 = sign * force * lever * e2
+    t1 = -sign * force * lever * e1
+    slide2 = w1 * w1 * aa - 2.0 * w1 * w2 * ab + w2 * w2 * bb - v_normal * v_normal
+    slide = 0.0
+    if slide2 > 0.0:
+        slide = math.sqrt(slide2)
+        if mu < 0.0:
+            mu = friction_coefficient_scalar(slide, params[P_MU_S], params[P_MU_D],
+                                             params[P_V_S], params[P_V_D])
+        fric = mu * force / slide
+        t2 += fric * (w1 * ab - w2 * bb - v_normal * lever * e2)
+        t1 -= fric * (w1 * aa - w2 * ab - v_normal * lever * e1)
+    return t2, t1, mu, slide
+
+
+@njit(cache=True)
+def _point_side(side, eps, eps_rate, sign, phase, w1, w2, params, sides, table, details, count):
+    """Sum over the tooth pairs of one side, point model (one IMPACT incident each)."""
+    pitch = params[P_PITCH]
+    first, last = sides[side, S_FIRST], sides[side, S_LAST]
+    inv_step, rows = sides[side, S_INV_STEP], int(sides[side, S_ROWS])
+    relative = w1 * params[P_E1] - w2 * params[P_E2]
+    phase += math.ceil((first - phase) / pitch) * pitch
+    gear = pinion = tangential = normal = 0.0
+    pairs = 0
+    deepest = -math.inf
+    while phase <= last:
+        pos = (phase - first) * inv_step
+        i = int(pos)
+        here = phase
+        phase += pitch
+        if i + 1 >= rows:
+            continue
+        f = pos - i
+        lever = table[side, i, T_LEVER] + f * (table[side, i + 1, T_LEVER] - table[side, i, T_LEVER])
+        if lever <= 0.0:
+            continue
+        x = lever * eps
+        xdot = lever * eps_rate
+        force = impact_force_scalar(x, xdot, params[P_K], params[P_EXPONENT], params[P_C_MAX],
+                                    params[P_DEPTH])
+        aa = table[side, i, T_AA] + f * (table[side, i + 1, T_AA] - table[side, i, T_AA])
+        ab = table[side, i, T_AB] + f * (table[side, i + 1, T_AB] - table[side, i, T_AB])
+        bb = table[side, i, T_BB] + f * (table[side, i + 1, T_BB] - table[side, i, T_BB])
+        t2, t1, mu, slide = _point_torques(force, lever, aa, ab, bb, w1, w2, sign,
+                                           lever * relative, params, -1.0)
+        radius = table[side, i, T_RADIUS] + f * (table[side, i + 1, T_RADIUS] - table[side, i, T_RADIUS])
+        gear += t2
+        pinion += t1
+        tangential += t2 / radius
+        normal += force
+        if force > 0.0:
+            pairs += 1
+        if x > deepest:
+            deepest = x
+        if count < details.shape[0]:
+            row = details[count]
+            row[D_SIDE], row[D_PHASE], row[D_LEVER] = side, here, lever
+            row[D_PENETRATION], row[D_RATE], row[D_NORMAL] = x, xdot, force
+            row[D_MU], row[D_SLIDE], row[D_GEAR_TORQUE], row[D_PINION_TORQUE] = mu, slide, t2, t1
+            row[D_TANGENTIAL], row[D_RADIUS] = t2 / radius, radius
+            row[D_RHO] = table[side, i, T_RHO] + f * (table[side, i + 1, T_RHO] - table[side, i, T_RHO])
+            row[D_LENGTH] = 0.0
+            count += 1
+    return gear, pinion, deepest, tangential, normal, pairs, count
+
+
+@njit(cache=True)
+def _line_side(side, eps, eps_rate, sign, phase, w1, w2, params, sides, table, details, count,
+               slices):
+    """Sum over the tooth pairs and slices of one side, line model."""
+    pitch = params[P_PITCH]
+    first, last = sides[side, S_FIRST], sides[side, S_LAST]
+    bands = int(sides[side, S_ROWS])
+    psi_lo, psi_hi = sides[side, S_PSI_LO], sides[side, S_PSI_HI]
+    u2p, u2q = sides[side, S_U2P], sides[side, S_U2Q]
+    n1p, n1q = sides[side, S_N1P], sides[side, S_N1Q]
+    n2p, n2q = sides[side, S_N2P], sides[side, S_N2Q]
+    stiffness, damping = params[P_LINE_K], params[P_LINE_C]
+    mu_s, mu_d, v_s, v_d = params[P_MU_S], params[P_MU_D], params[P_V_S], params[P_V_D]
+    e1, e2 = params[P_E1], params[P_E2]
+    # Friction acts across the contact line, along the plane's normal N: the
+    # sliding of the relative rotation w1 u1 - w2 u2 about the pitch line,
+    # v_N = (w1 (u1 x X) - w2 (u2 x X)) . N = rho (w1 m1 - w2 m2) with
+    # m_i = (cos psi, sin psi) . (N x u_i). It vanishes on the pitch line
+    # (psi = 0) and grows as rho |slope| |psi| from it.
+    slope = w1 * n1q - w2 * n2q
+    across = math.copysign(1.0, slope)
+    phase += math.ceil((first - phase) / pitch) * pitch
+    gear = pinion = tangential = normal = 0.0
+    pairs = 0
+    deepest = -math.inf
+    while phase <= last:
+        here = phase
+        phase += pitch
+        cos_phase, sin_phase = math.cos(here), math.sin(here)
+        pair_gear = pair_pinion = pair_tangential = pair_normal = 0.0
+        pair_mu = pair_slide = pair_radius = pair_rho = pair_length = 0.0
+        pair_deepest = -math.inf
+        pair_lever = pair_rate = 0.0
+        inside = False
+        for j in range(bands):
+            a = here + table[side, j, B_THETA_IN]
+            b = here + table[side, j, B_THETA_OUT]
+            lo, hi = (a, b) if a < b else (b, a)
+            # The part of the band's piece of the line inside the field.
+            top = hi if hi < psi_hi else psi_hi
+            bottom = lo if lo > psi_lo else psi_lo
+            if hi > lo:
+                if top <= bottom:
+                    continue
+                fraction = (top - bottom) / (hi - lo)
+            elif psi_lo <= lo <= psi_hi:
+                fraction = 1.0  # a radial line (beta_p = 0) crosses the band at one psi
+            else:
+                continue
+            inside = True
+            # A band cut by the field's edge acts at the middle of its inside
+            # part (t from the band's centre, linear within the band).
+            t = 0.5 * (top + bottom - a - b) / (b - a) if fraction < 1.0 else 0.0
+            lever = table[side, j, B_LEVER] + t * table[side, j, B_D_LEVER]
+            x = lever * eps
+            xdot = lever * eps_rate
+            if x > pair_deepest:
+                pair_deepest, pair_lever, pair_rate = x, lever, xdot
+            load = line_load_scalar(x, xdot, stiffness, damping)
+            if count < slices.shape[0]:
+                slices[count, j] = load
+            if load <= 0.0:
+                continue
+            length = fraction * table[side, j, B_LENGTH]
+            force = load * length
+            rho = table[side, j, B_RHO] + t * table[side, j, B_D_RHO]
+            c_t = table[side, j, B_COS] + t * table[side, j, B_D_COS]
+            s_t = table[side, j, B_SIN] + t * table[side, j, B_D_SIN]
+            cos_psi = cos_phase * c_t - sin_phase * s_t
+            sin_psi = sin_phase * c_t + cos_phase * s_t
+            u2x = rho * (cos_psi * u2p + sin_psi * u2q)
+            radius = math.sqrt(rho * rho - u2x * u2x)
+            t2 = sign * force * lever * e2
+            t1 = -sign * force * lever * e1
+            # Friction: the slice's mean of mu(|v_N|) sign(v_N) over its psi
+            # range (it reverses across the pitch line, with a narrow
+            # stiction peak there), from the closed-form integral of mu.
+            rate = rho * abs(slope)
+            mu = 0.0
+            if rate > 0.0:
+                if top > bottom:
+                    mean = (friction_integral_scalar(abs(top), rate, mu_s, mu_d, v_s, v_d)
+                            - friction_integral_scalar(abs(bottom), rate, mu_s, mu_d, v_s, v_d)
+                            ) / (top - bottom)
+                else:
+                    mean = math.copysign(friction_coefficient_scalar(
+                        rate * abs(top), mu_s, mu_d, v_s, v_d), top)
+                friction = across * mean * force  # on the gear, along +N
+                t2 += friction * rho * (cos_psi * n2p + sin_psi * n2q)
+                t1 -= friction * rho * (cos_psi * n1p + sin_psi * n1q)
+                mu = abs(mean)
+            slide = abs(rho * (w1 * (cos_psi * n1p + sin_psi * n1q)
+                               - w2 * (cos_psi * n2p + sin_psi * n2q)))
+            pair_gear += t2
+            pair_pinion += t1
+            pair_tangential += t2 / radius
+            pair_normal += force
+            pair_mu += mu * force
+            pair_slide += slide * force
+            pair_radius += radius * force
+            pair_rho += rho * force
+            pair_length += length
+        if not inside:
+            continue
+        gear += pair_gear
+        pinion += pair_pinion
+        tangential += pair_tangential
+        normal += pair_normal
+        if pair_normal > 0.0:
+            pairs += 1
+        if pair_deepest > deepest:
+            deepest = pair_deepest
+        if count < details.shape[0]:
+            row = details[count]
+            weight = 1.0 / pair_normal if pair_normal > 0.0 else 0.0
+            row[D_SIDE], row[D_PHASE], row[D_LEVER] = side, here, pair_lever
+            row[D_PENETRATION], row[D_RATE], row[D_NORMAL] = pair_deepest, pair_rate, pair_normal
+            row[D_MU], row[D_SLIDE] = pair_mu * weight, pair_slide * weight
+            row[D_GEAR_TORQUE], row[D_PINION_TORQUE] = pair_gear, pair_pinion
+            row[D_TANGENTIAL], row[D_RADIUS] = pair_tangential, pair_radius * weight
+            row[D_RHO], row[D_LENGTH] = pair_rho * weight, pair_length
+            count += 1
+    return gear, pinion, deepest, tangential, normal, pairs, count
+
+
+@njit(cache=True)
+def _side(side, eps, eps_rate, sign, phase, w1, w2, params, sides, table, details, count, slices):
+    if params[P_MODEL] == 0.0:
+        return _point_side(side, eps, eps_rate, sign, phase, w1, w2, params, sides, table,
+                           details, count)
+    return _line_side(side, eps, eps_rate, sign, phase, w1, w2, params, sides, table, details,
+                      count, slices)
+
+
+@njit(cache=True)
+def _mesh(phi1, phi2, w1, w2, params, sides, table, details, slices):
+    """Both flank sides: the drive side when the pinion leads, the coast side otherwise."""
+    pitch = params[P_PITCH]
+    half = 0.5 * pitch
+    e1 = params[P_E1]
+    drive = (phi1 * e1 - phi2 * params[P_E2] + half) % pitch - half
+    rate = w1 * e1 - w2 * params[P_E2]
+    gear = pinion = tangential = normal = 0.0
+    pairs = 0
+    count = 0
+    # The mismatch is the same for every line of a side, so a side whose
+    # flanks are apart (eps <= 0) costs nothing more.
+    # Where the contact lines sit: the point model (the paper's reproduction)
+    # takes the mean of the pinion's and the gear's line (shift 1/2); the line
+    # model the pinion's, the small-deflection convention of LTCA, which
+    # keeps it linear in load (shift 0).
+    shift = params[P_LINE_SHIFT]
+    if drive > 0.0:
+        phase = params[P_ORIENTATION] * (phi1 * e1 - shift * drive)
+        gear, pinion, deepest, tangential, normal, pairs, count = _side(
+            0, drive, rate, 1.0, phase, w1, w2, params, sides, table, details, count, slices)
+    else:
+        deepest = drive
+    coast = (params[P_COAST_OFFSET] - drive + half) % pitch - half
+    if coast > 0.0:
+        phase = params[P_ORIENTATION] * ((phi1 + params[P_COAST_PINION_OFFSET]) * e1 + shift * coast)
+        g, p, x, t, n, k, count = _side(1, coast, -rate, -1.0, phase, w1, w2, params, sides,
+                                        table, details, count, slices)
+        gear += g
+        pinion += p
+        tangential += t
+        normal += n
+        pairs += k
+        deepest = max(deepest, x)
+    elif deepest <= 0.0:
+        deepest = max(deepest, coast)
+    return gear, pinion, deepest, tangential, normal, pairs, count
+
+
+@njit(cache=True)
+def mesh_forces(phi1, phi2, w1, w2, params, sides, table):
+    """Contact forces of the mesh at one state (the engines' hot path).
+
+    Parameters
+    ----------
+    phi1, phi2 : float
+        Forward rotations of pinion and gear [rad] (0, 0: drive flanks of
+        tooth 0 touch at the mean point).
+    w1, w2 : float
+        Forward angular speeds [rad/s].
+    params, sides, table : numpy.ndarray
+        The model, from :class:`lsbg.contact.mesh.MeshContact`.
+
+    Returns
+    -------
+    gear_torque, pinion_torque : float
+        Contact torques about the forward axes u2 and u1 [N m].
+    max_penetration : float
+        Deepest normal approach of all pairs (<= 0: no contact) [m].
+    tangential_force : float
+        Contact force on the gear along its circumferential direction at each
+        point of action, summed [N].
+    normal_force : float
+        Sum of the normal forces [N].
+    pairs : int
+        Tooth pairs carrying load [-].
+    """
+    # Empty detail arrays: nothing is written (numba freezes global arrays
+    # read-only, so they are made here; a 0-size array costs a few ns).
+    g, p, x, t, n, k, _ = _mesh(phi1, phi2, w1, w2, params, sides, table,
+                                np.empty((0, N_DETAILS)), np.empty((0, 0)))
+    return g, p, x, t, n, k
+
+
+@njit(cache=True)
+def mesh_details(phi1, phi2, w1, w2, params, sides, table, details, slices):
+    """:func:`mesh_forces` plus one row per tooth pair and the slices' loads.
+
+    Parameters
+    ----------
+    phi1, phi2, w1, w2, params, sides, table
+        As :func:`mesh_forces`.
+    details : numpy.ndarray, shape (max_pairs, N_DETAILS)
+        Filled with one row per tooth pair whose line meets the field
+        (columns ``D_*``), in order: drive side, then coast side.
+    slices : numpy.ndarray, shape (max_pairs, bands) or (0, 0)
+        Line model: filled with each slice's load per unit length [N/m]
+        (0 where the band is outside the field or unloaded).
+
+    Returns
+    -------
+    tuple
+        The values of :func:`mesh_forces` and the number of rows filled.
+    """
+    return _mesh(phi1, phi2, w1, w2, params, sides, table, details, slices)
+
+
+@njit(cache=True)
+def mesh_series(phi1, phi2, w1, w2, params, sides, table):
+    """:func:`mesh_forces` at many states (arrays of equal length).
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, 6)
+        Columns: gear torque, pinion torque [N m], max penetration [m],
+        tangential force, normal force [N], tooth pairs carrying load [-].
+    """
+    out = np.empty((phi1.size, 6))
+    for i in range(phi1.size):
+        g, p, x, t, n, k = mesh_forces(phi1[i], phi2[i], w1[i], w2[i], params, sides, table)
+        out[i, 0], out[i, 1], out[i, 2], out[i, 3], out[i, 4], out[i, 5] = g, p, x, t, n, k
+    return out
+
+
+def compiled_entry(kernel, *args):
+    """The compiled entry point of a numba kernel for the types of ``args``.
+
+    Calling it skips numba's dispatch on argument types, about half of the
+    ~0.5 µs a call from Python costs; hot Python loops (the PyBullet engine)
+    use it. ``kernel(*args)`` is run once to compile it or load it from the
+    on-disk cache.
+    """
+    import numba
+
+    kernel(*args)
+    return kernel.overloads[tuple(numba.typeof(a) for a in args)].entry_point
