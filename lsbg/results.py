@@ -20,7 +20,7 @@ import xarray as xr
 import lsbg
 from lsbg import theory
 
-#: Variables of a run dataset: name -> (units, long_name).
+#: Variables of a run dataset on ``time``: name -> (units, long_name).
 VARIABLES = {
     "pinion_speed": ("deg/s", "pinion angular velocity"),
     "gear_speed": ("deg/s", "gear angular velocity"),
@@ -29,12 +29,37 @@ VARIABLES = {
     "tangential_force_outer": ("N", "contact torque on the gear divided by the outer pitch "
                                     "radius d2/2 (the quantity of Eq. 13)"),
     "contact_torque": ("N m", "contact torque on the gear about its axis"),
-    "normal_force": ("N", "sum of the IMPACT normal forces of all tooth pairs"),
-    "contact_pairs": ("1", "number of tooth pairs in contact"),
+    "normal_force": ("N", "sum of the normal contact forces of all tooth pairs"),
+    "contact_pairs": ("1", "number of tooth pairs carrying load"),
     "max_penetration": ("um", "deepest normal approach of the flanks"),
     "transmission_error": ("urad", "gear rotation behind its kinematic position "
                                    "phi1 z1/z2 - phi2"),
 }
+#: Variables of a run dataset on ``time_full`` (the full-rate record):
+#: name -> variable of :data:`VARIABLES` it samples at the full rate.
+FULL_RATE_VARIABLES = {
+    "gear_speed_full": "gear_speed",
+    "tangential_force_full": "tangential_force",
+    "transmission_error_full": "transmission_error",
+    "contact_torque_full": "contact_torque",
+}
+
+
+def _series_data(series, design):
+    """The dataset's variables (paper units) from a :class:`lsbg.dynamics.Series`."""
+    z1, z2 = design.teeth
+    te = series.pinion_angle * z1 / z2 - series.gear_angle
+    return {
+        "pinion_speed": np.degrees(series.pinion_speed),
+        "gear_speed": np.degrees(series.gear_speed),
+        "tangential_force": series.tangential_force,
+        "tangential_force_outer": series.gear_torque / (design.pitch_diameter(2) / 2),
+        "contact_torque": series.gear_torque,
+        "normal_force": series.normal_force,
+        "contact_pairs": series.contact_pairs,
+        "max_penetration": series.max_penetration * 1e6,
+        "transmission_error": te * 1e6,
+    }
 
 
 def _library_versions():
@@ -65,31 +90,32 @@ def run_dataset(record, model, settings, command=""):
     Returns
     -------
     xarray.Dataset
-        Coordinate ``time`` [s] and the variables of :data:`VARIABLES`.
+        Coordinates ``time`` and ``time_full`` [s], the variables of
+        :data:`VARIABLES` on ``time`` and of :data:`FULL_RATE_VARIABLES` on
+        ``time_full``.
     """
     design = model.pair.design
     z1, z2 = design.teeth
-    outer_radius = design.pitch_diameter(2) / 2
-    te = record.pinion_angle * z1 / z2 - record.gear_angle
-    data = {
-        "pinion_speed": np.degrees(record.pinion_speed),
-        "gear_speed": np.degrees(record.gear_speed),
-        "tangential_force": record.tangential_force,
-        "tangential_force_outer": record.gear_torque / outer_radius,
-        "contact_torque": record.gear_torque,
-        "normal_force": record.normal_force,
-        "contact_pairs": record.contact_pairs,
-        "max_penetration": record.max_penetration * 1e6,
-        "transmission_error": te * 1e6,
-    }
-    ds = xr.Dataset(coords={"time": ("time", record.time, {"units": "s", "long_name": "time",
-                                                           "standard_name": "time"})})
+    data = _series_data(record.samples, design)
+    full = _series_data(record.full_rate, design)
+    ds = xr.Dataset(coords={
+        "time": ("time", record.samples.time, {"units": "s", "long_name": "time",
+                                               "standard_name": "time"}),
+        "time_full": ("time_full", record.full_rate.time, {
+            "units": "s", "long_name": f"time of the full-rate record "
+                                      f"({settings.full_rate:g} per s)"}),
+    })
     for name, (units, long_name) in VARIABLES.items():
         ds[name] = ("time", data[name], {"units": units, "long_name": long_name})
+    for name, source in FULL_RATE_VARIABLES.items():
+        units, long_name = VARIABLES[source]
+        ds[name] = ("time_full", full[source], {"units": units,
+                                                "long_name": f"{long_name}, full rate"})
     attrs = {
         "Conventions": "CF-1.11",
         "title": f"Meshing simulation of a {design.trace} spiral bevel gear pair "
-                 f"({z1}:{z2}, spiral angle {math.degrees(design.spiral_angle):g} deg)",
+                 f"({z1}:{z2}, spiral angle {math.degrees(design.spiral_angle):g} deg, "
+                 f"{model.contact.params.model} contact model)",
         "source": f"lsbg {lsbg.__version__}, engine {settings.engine}",
         "institution": "lsbg reproducible research workflow",
         "history": f"{datetime.datetime.now(datetime.timezone.utc).isoformat(timespec='seconds')} "
@@ -110,6 +136,10 @@ def run_dataset(record, model, settings, command=""):
     attrs.update(design_contact_ratio=ratio["total"], design_contact_ratio_profile=ratio["profile"],
                  design_contact_ratio_face=ratio["face"])
     attrs.update({f"contact_{k}": v for k, v in model.contact.params.to_dict().items()})
+    if model.contact.params.model == "line":
+        attrs.update(contact_line_damping_N_s_per_m2=model.contact.damping_coefficient,
+                     mesh_natural_frequency_hz=model.contact.natural_frequency(model.gear_inertia),
+                     mean_mesh_stiffness_N_per_m=model.contact.mean_mesh_stiffness())
     attrs.update({f"solver_{k}": v for k, v in settings.to_dict().items()})
     attrs.update(_library_versions())
     ds.attrs.update({k: (float(v) if isinstance(v, (np.floating, np.integer)) else v)
@@ -155,9 +185,14 @@ def write_atomically(path, write):
 def write_dataset(ds, path):
     """Write a dataset to NetCDF atomically (see :func:`write_atomically`).
 
+    Variables on ``time_full`` (the full-rate record) are compressed (zlib
+    level 1, lossless).
+
     Parameters
     ----------
     ds : xarray.Dataset
     path : str or pathlib.Path
     """
-    write_atomically(path, lambda tmp: ds.to_netcdf(tmp, engine="netcdf4"))
+    encoding = {name: {"zlib": True, "complevel": 1, "shuffle": True}
+                for name, var in ds.data_vars.items() if "time_full" in var.dims}
+    write_atomically(path, lambda tmp: ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding))

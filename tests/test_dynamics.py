@@ -10,7 +10,7 @@ from lsbg.contact import ContactParameters
 from lsbg.design import GearPairDesign
 from lsbg.dynamics import (MeshingModel, SimulationError, SimulationSettings, load_model,
                            pinion_motion, simulate)
-from lsbg.export import write_geometry
+from lsbg.export import read_design, write_geometry
 
 PAPER = SimulationSettings()
 THEORY_SPEED = theory.gear_speed(7703.0, 9, 37)  # 1873.703 deg/s
@@ -39,6 +39,19 @@ def test_pinion_motion_is_the_integral_of_the_step_ramp():
     np.testing.assert_allclose(np.gradient(angle, t), speed, atol=2e-3 * PAPER.pinion_speed)
     assert speed[0] == 0 and speed[-1] == pytest.approx(math.radians(7703.0))
     assert math.degrees(pinion_motion(0.1, PAPER)[1]) == pytest.approx(7703.0 / 2)
+
+
+#: The point model's standard deviation of the gear speed at 35 deg with PyBullet before
+#: the compiled kernels and the line model (lsbg 0.1.0 of 2026-11-21, the issue that
+#: asked for the line model) [deg/s]: the point model must reproduce it within 2 %.
+PREVIOUS_POINT_STD = {"logarithmic": 34.8, "circular": 24.9}
+
+
+@pytest.mark.slow
+def test_point_model_numbers_unchanged(paper_runs, geometry):
+    trace = read_design(geometry).trace
+    std = steady(paper_runs["pybullet"], "gear_speed").std(ddof=1)
+    assert std == pytest.approx(PREVIOUS_POINT_STD[trace], rel=0.02)
 
 
 @pytest.mark.slow
@@ -111,7 +124,8 @@ def test_slow_light_mesh_has_only_elastic_transmission_error(geometry, engine):
 
 def test_blow_up_stops_with_a_diagnostic(geometry):
     model = load_model(geometry)
-    coarse = PAPER.replace(duration=0.01, samples=5, ramp_time=0.005, time_step=1e-4)
+    coarse = PAPER.replace(duration=0.01, samples=5, ramp_time=0.005, time_step=1e-4,
+                           full_rate=5000.0, full_rate_after=0.004)
     with pytest.raises(SimulationError, match=r"t = .* s: (penetration|gear speed|non-finite)"):
         model.run(coarse)
     crushing = PAPER.replace(engine="scipy", duration=0.004, samples=4, ramp_time=0.002,
@@ -144,3 +158,82 @@ def test_model_rejects_non_physical_inertia(geometry):
     contact = load_model(geometry).contact
     with pytest.raises(ValueError, match="gear_inertia"):
         MeshingModel(contact, 0.0, 1e-5)
+
+
+# --------------------------------------------------------- compiled engine, line model
+QUARTER = SimulationSettings(duration=0.3, samples=150, ramp_time=0.1)
+
+
+@pytest.mark.parametrize("model", ["point", "line"])
+def test_compiled_engine_matches_scipy_at_tight_tolerance(geometry, model):
+    """The compiled DOP853 loop and scipy's LSODA integrate the same equation: at
+    rtol 1e-10 their standard deviations agree within 0.1 %."""
+    params = ContactParameters(model=model)
+    runs = {engine: load_model(geometry, params).run(QUARTER.replace(engine=engine, rtol=1e-10))
+            for engine in ("compiled", "scipy")}
+    for name in ("gear_speed", "tangential_force"):
+        stds = {engine: getattr(r.full_rate, name).std(ddof=1) for engine, r in runs.items()}
+        assert stds["compiled"] == pytest.approx(stds["scipy"], rel=1e-3), name
+        samples = {engine: getattr(r.samples, name)[r.samples.time > 0.1].std(ddof=1)
+                   for engine, r in runs.items()}
+        assert samples["compiled"] == pytest.approx(samples["scipy"], rel=1e-3), name
+
+
+def test_compiled_engine_converges_under_tightening_tolerance(geometry):
+    model = load_model(geometry)
+    stds = [np.degrees(model.run(QUARTER.replace(engine="compiled", rtol=rtol)).full_rate
+                       .gear_speed).std(ddof=1) for rtol in (1e-6, 1e-8, 1e-10)]
+    assert abs(stds[1] - stds[2]) < abs(stds[0] - stds[2]) or abs(stds[0] - stds[2]) < 1e-6 * stds[2]
+    assert stds[1] == pytest.approx(stds[2], rel=1e-3)
+
+
+def test_line_model_on_every_engine(geometry):
+    """Mean gear speed on Eq. 12, the engines within 3 % on the full-rate fluctuation,
+    the full-rate record at 50 kHz from the end of the ramp."""
+    params = ContactParameters(model="line")
+    stds = {}
+    for engine in ("pybullet", "compiled"):
+        ds = simulate(geometry, QUARTER.replace(engine=engine), params)
+        assert ds.attrs["contact_model"] == "line"
+        speed = ds.gear_speed.where(ds.time > 0.1, drop=True).values
+        assert speed.mean() == pytest.approx(THEORY_SPEED, rel=1e-3)
+        full = ds.gear_speed_full.values
+        assert ds.time_full.size == 10001 and float(ds.time_full[0]) == pytest.approx(0.1)
+        stds[engine] = (full.std(ddof=1), ds.tangential_force_full.values.std(ddof=1))
+        assert ds.attrs["mesh_natural_frequency_hz"] > 1000
+    for k in range(2):
+        assert stds["pybullet"][k] == pytest.approx(stds["compiled"][k], rel=0.03)
+
+
+def test_pinion_reaction_torque_is_absorbed_by_the_servo(geometry):
+    """The pybullet engine does not apply the mesh reaction to the pinion: its velocity
+    motor holds the prescribed speed and absorbs it, so applying it changes nothing."""
+    from lsbg.dynamics.pybullet_engine import run_pybullet
+
+    model = load_model(geometry)
+    settings = SimulationSettings(duration=0.02, samples=10, ramp_time=0.01, full_rate=5000.0)
+    plain = run_pybullet(model, settings)
+    applied = run_pybullet(model, settings, apply_pinion_torque=True)
+    np.testing.assert_allclose(applied.full_rate.gear_speed, plain.full_rate.gear_speed,
+                               rtol=1e-9)
+    np.testing.assert_allclose(applied.full_rate.pinion_speed, plain.full_rate.pinion_speed,
+                               rtol=1e-9)
+
+
+@pytest.mark.parametrize("changes, key", [
+    (dict(full_rate=0.0), "full_rate"), (dict(full_rate=333.0), "full_rate"),
+    (dict(full_rate_after=0.2001), "full_rate_after"), (dict(full_rate_after=1.0), "full_rate_after"),
+    (dict(compiled_method="Euler"), "compiled_method"),
+    (dict(time_step=3e-6), "time_step"),
+])
+def test_output_settings_errors_name_the_setting(changes, key):
+    with pytest.raises(ValueError, match=rf"^{key} = "):
+        SimulationSettings(**changes)
+
+
+def test_full_rate_record_starts_at_an_output_instant():
+    settings = SimulationSettings(duration=0.01, samples=5, ramp_time=0.005)
+    assert settings.full_rate_start == pytest.approx(0.006)  # first output instant after the ramp
+    ticks, times, is_sample = settings.record_grid()
+    assert is_sample.sum() == 6 and times[-1] == 0.01
+    assert np.all(np.diff(times[times >= 0.006]) == pytest.approx(2e-5))

@@ -277,6 +277,7 @@ def test_simulate_writes_a_run_and_rejects_bad_settings(tmp_path, capsys):
     assert "contact.static_friction = 3" in capsys.readouterr().err
     # a blow-up (time step far too coarse) stops with exit code 3 and leaves no file
     assert main(["simulate", "--geometry", str(geo), "--duration", "0.01", "--samples", "5",
-                 "--ramp-time", "0.005", "--dt", "1e-4", "--out", str(bad)]) == 3
+                 "--ramp-time", "0.005", "--dt", "1e-4", "--full-rate", "5000",
+                 "--out", str(bad)]) == 3
     assert "simulation stopped" in capsys.readouterr().err
     assert not bad.exists() and not list(tmp_path.glob("*.part"))

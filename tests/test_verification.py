@@ -22,8 +22,9 @@ def test_convergence_table_has_every_setting(model):
     table = convergence_study(model, SHORT, steady_start=0.01, time_steps=(2e-6, 1e-6),
                               tolerances=(1e-6, 1e-8))
     assert list(table.columns) == list(COLUMNS)
-    assert list(table.engine) == ["pybullet", "pybullet", "scipy", "scipy"]
-    assert table.is_default.sum() == 2
+    assert list(table.engine) == ["pybullet", "pybullet", "scipy", "scipy", "compiled", "compiled"]
+    assert table.is_default.sum() == 3
+    assert set(table.contact_model) == {"point"}
     assert (table.gear_speed_std_deg_s > 0).all()
     # the finer settings of each engine agree with each other closely
     fine = table[table.is_default]
@@ -33,6 +34,7 @@ def test_convergence_table_has_every_setting(model):
 
 def test_step_cost_breakdown(model):
     costs = pybullet_step_costs(model, SHORT, n=500)
-    assert set(costs) == {"joint_states", "contact_kernel", "apply_torques", "step_simulation", "sum"}
+    assert set(costs) == {"joint_states", "contact_kernel", "apply_torque", "step_simulation",
+                          "floor", "engine_step", "engine_over_floor"}
     assert all(v > 0 for v in costs.values())
-    assert costs["sum"] == pytest.approx(sum(v for k, v in costs.items() if k != "sum"))
+    assert costs["engine_over_floor"] == pytest.approx(costs["engine_step"] / costs["floor"])

@@ -1,0 +1,66 @@
+"""The scipy engine: the gear's equation of motion with :func:`scipy.integrate.solve_ivp`.
+
+J2 phi2'' = T_contact(phi1(t), phi2, omega1(t), omega2) - T_load, with the
+pinion's prescribed motion in closed form (:func:`lsbg.dynamics.settings.pinion_state`).
+LSODA at rtol 1e-8 is the default (DOP853 agrees to 0.02 % in the standard
+deviations and takes 3x longer). This engine is the maintained, independent
+reference of the compiled one: the same right-hand side, a different solver
+driven from Python.
+"""
+
+from __future__ import annotations
+
+import time
+
+from lsbg.contact import kernels
+from lsbg.dynamics.settings import SimulationError, SimulationSettings, pinion_state
+
+
+def run_scipy(model, settings: SimulationSettings):
+    """Integrate ``model`` with solve_ivp.
+
+    Parameters
+    ----------
+    model : lsbg.dynamics.MeshingModel
+    settings : SimulationSettings
+
+    Returns
+    -------
+    lsbg.dynamics.RunRecord
+
+    Raises
+    ------
+    SimulationError
+        If the solver fails or the state blows up.
+    """
+    from scipy.integrate import solve_ivp
+
+    arrays = model.contact.arrays
+    forces = kernels.compiled_entry(kernels.mesh_forces, 0.0, 0.0, 0.0, 0.0, *arrays)
+    inertia, load = model.gear_inertia, settings.load_torque
+    w, tr = settings.pinion_speed, settings.ramp_time
+    counter = {"n": 0, "last": time.monotonic()}
+    start = time.monotonic()
+
+    def rhs(t, y):
+        phi1, w1 = pinion_state(t, w, tr)
+        phi2, w2 = float(y[0]), float(y[1])
+        torque, _, deepest, _, _, _ = forces(phi1, phi2, w1, w2, *arrays)
+        counter["n"] += 1
+        if counter["n"] % 20000 == 0:
+            model.check_state(t, w2, deepest, settings)
+            counter["last"] = model.progress(t, settings, start, counter["last"])
+        return (w2, (torque - load) / inertia)
+
+    _, times, _ = settings.record_grid()
+    y0 = [model.initial_gear_angle(settings), 0.0]
+    solution = solve_ivp(rhs, (0.0, settings.duration), y0, method=settings.method,
+                         t_eval=times, rtol=settings.rtol,
+                         atol=[settings.atol_angle, settings.atol_speed],
+                         max_step=settings.duration / settings.samples)
+    if solution.status != 0:
+        raise SimulationError(f"solve_ivp ({settings.method}) failed: {solution.message}")
+    pinion = [pinion_state(t, w, tr) for t in solution.t]
+    return model.record(settings, solution.t, [p[0] for p in pinion], solution.y[0],
+                        [p[1] for p in pinion], solution.y[1], time.monotonic() - start,
+                        counter["n"])
