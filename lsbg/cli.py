@@ -35,7 +35,7 @@ from lsbg.design import BASE_CONE_RULES, CONFIG_KEYS, HANDS, TRACES, DesignError
 
 __all__ = ["main", "build_parser", "add_design_options", "design_from_args", "CommandError",
            "PARSERS", "add_geometry_parser", "add_simulate_parser", "add_convergence_parser",
-           "add_combine_parser", "add_summary_parser", "add_report_parser"]
+           "add_ltca_parser", "add_combine_parser", "add_summary_parser", "add_report_parser"]
 
 
 class CommandError(ValueError):
@@ -199,28 +199,67 @@ _SIMULATION_OPTIONS = {
     "pinion_speed": ("pinion_speed_deg_s", float, "final pinion speed [deg/s] (paper: 7703)"),
     "ramp_time": ("ramp_time_s", float, "STEP ramp time of the pinion speed [s] (paper: 0.2)"),
     "load_torque": ("load_torque_N_m", float, "resisting torque on the gear [N m] (paper: 1964.99)"),
+    "full_rate": ("full_rate_hz", float, "rate of the full-rate record [1/s] (50000)"),
+    "full_rate_after": ("full_rate_after_s", float,
+                        "start of the full-rate record [s] (default: the end of the ramp)"),
 }
 
 
-def add_simulation_options(parser):
-    """Add ``--engine``, ``--config`` and the simulation settings options."""
-    parser.add_argument("--geometry", required=True, metavar="DIR",
-                        help="geometry directory written by 'lsbg geometry'")
-    parser.add_argument("--engine", choices=("pybullet", "scipy"), default="pybullet",
-                        help="integrator: pybullet (multibody, fixed step) or scipy (solve_ivp "
-                             "reference) (default: pybullet)")
+def add_contact_options(parser, model=True):
+    """Add ``--config`` (its ``contact`` section), ``--set-contact`` and, with
+    ``model``, ``--contact-model``."""
     parser.add_argument("--config", metavar="FILE.yaml",
                         help="study configuration; its 'simulation' and 'contact' sections are used")
+    if model:
+        parser.add_argument("--contact-model", choices=("point", "line"),
+                            help="contact model: point (the paper's IMPACT law, one incident "
+                                 "per tooth pair) or line (sliced contact lines) (default: "
+                                 "contact.model of --config, else point)")
+    parser.add_argument("--set-contact", action="append", default=[], metavar="KEY=VALUE",
+                        help="override a key of the contact section (paper units), e.g. "
+                             "mesh_damping_ratio=0.1; repeatable")
+
+
+def contact_from_args(args):
+    """Contact parameters from the ``contact`` section of ``--config``, ``--set-contact``
+    and ``--contact-model``."""
+    import yaml
+
+    from lsbg.contact import ContactParameters
+
+    (contact,) = _read_study_sections(args.config, "contact")
+    contact = dict(contact)
+    for text in getattr(args, "set_contact", []):
+        key, sep, value = text.partition("=")
+        if not sep or not key.strip():
+            raise CommandError(f"--set-contact {text!r}: must be KEY=VALUE")
+        contact[key.strip()] = yaml.safe_load(value)
+    if args.contact_model is not None:
+        contact["model"] = args.contact_model
+    try:
+        return ContactParameters.from_config(contact)
+    except ValueError as err:
+        raise CommandError(str(err)) from None
+
+
+def add_simulation_options(parser):
+    """Add ``--geometry``, ``--engine``, the contact options and the simulation settings."""
+    parser.add_argument("--geometry", required=True, metavar="DIR",
+                        help="geometry directory written by 'lsbg geometry'")
+    parser.add_argument("--engine", choices=("pybullet", "scipy", "compiled"), default="pybullet",
+                        help="integrator: pybullet (multibody, fixed step), scipy (solve_ivp) or "
+                             "compiled (embedded Runge-Kutta compiled with numba) "
+                             "(default: pybullet)")
+    add_contact_options(parser)
     for option, (key, kind, text) in _SIMULATION_OPTIONS.items():
         parser.add_argument(f"--{option.replace('_', '-')}", dest=option, type=kind, help=text)
 
 
 def simulation_from_args(args):
     """(settings, contact parameters) from ``--config`` and the options."""
-    from lsbg.contact import ContactParameters
     from lsbg.dynamics import SimulationSettings
 
-    simulation, contact = _read_study_sections(args.config, "simulation", "contact")
+    (simulation,) = _read_study_sections(args.config, "simulation")
     simulation = dict(simulation)
     for option, (key, _, _) in _SIMULATION_OPTIONS.items():
         value = getattr(args, option, None)
@@ -228,10 +267,9 @@ def simulation_from_args(args):
             simulation[key] = value
     try:
         settings = SimulationSettings.from_config(simulation, engine=args.engine)
-        params = ContactParameters.from_config(contact)
     except ValueError as err:
         raise CommandError(str(err)) from None
-    return settings, params
+    return settings, contact_from_args(args)
 
 
 def add_simulate_parser(subparsers):
@@ -259,7 +297,57 @@ def run_simulate(args):
         print(f"lsbg simulate: simulation stopped: {err}", file=sys.stderr)
         return 3
     write_dataset(ds, args.out)
-    print(f"lsbg simulate: {settings.engine} -> {args.out} ({ds.attrs['wall_time_s']:.1f} s wall)")
+    print(f"lsbg simulate: {settings.engine} engine, {params.model} model -> {args.out} "
+          f"({ds.attrs['wall_time_s']:.1f} s wall)")
+    return 0
+
+
+# ------------------------------------------------------------------- ltca
+def add_ltca_parser(subparsers):
+    """``lsbg ltca``: quasi-static loaded tooth contact analysis of the line model."""
+    parser = subparsers.add_parser(
+        "ltca", help="loaded tooth contact analysis (line model) of one design point",
+        description="Solve the static equilibrium of the line contact model under the load at "
+                    "--phases mesh positions over one base pitch and write the transmission "
+                    "error, mesh stiffness, contact length, tooth-pair loads and contact "
+                    "pattern to --out (NetCDF, CF-1.11). The line model's stiffness and slices "
+                    "come from the 'contact' section of --config.")
+    parser.add_argument("--geometry", required=True, metavar="DIR",
+                        help="geometry directory written by 'lsbg geometry'")
+    add_contact_options(parser, model=False)
+    parser.add_argument("--load-torque", type=float, metavar="N_M",
+                        help="torque on the gear [N m] (default: simulation.load_torque_N_m of "
+                             "--config, else the paper's 1964.99)")
+    parser.add_argument("--phases", type=int, default=256, metavar="N",
+                        help="mesh positions over one base pitch (default 256)")
+    parser.add_argument("--out", required=True, metavar="MESH.nc", help="output NetCDF file")
+    parser.set_defaults(handler=run_ltca, contact_model="line")
+
+
+def run_ltca(args):
+    """Handler of ``lsbg ltca`` [exit code]."""
+    from lsbg.dynamics import SimulationSettings
+    from lsbg.ltca import ltca_for_geometry
+    from lsbg.results import write_dataset
+
+    (simulation,) = _read_study_sections(args.config, "simulation")
+    load = args.load_torque
+    if load is None:
+        try:
+            load = SimulationSettings.from_config(simulation).load_torque
+        except ValueError as err:
+            raise CommandError(str(err)) from None
+    params = contact_from_args(args)
+    try:
+        ds = ltca_for_geometry(args.geometry, load, params, phases=args.phases)
+    except ValueError as err:
+        raise CommandError(str(err)) from None
+    ds.attrs["history"] += f"; {' '.join(['lsbg', *sys.argv[1:]])}"
+    write_dataset(ds, args.out)
+    print(f"lsbg ltca: {ds.attrs['phases']} phases, transmission error "
+          f"{ds.attrs['transmission_error_peak_to_peak_urad']:.4g} urad peak to peak, mesh "
+          f"stiffness {ds.attrs['mesh_stiffness_per_face_width_N_per_mm_um']:.4g} N/(mm um) "
+          f"-> {args.out}")
     return 0
 
 
@@ -302,11 +390,14 @@ def add_combine_parser(subparsers):
     parser = subparsers.add_parser(
         "combine", help="combine the runs of a sweep into one dataset",
         description="Stack run files (lsbg simulate) of one engine and one time axis into a "
-                    "dataset with dims (trace, spiral_angle, time) and per-point variables "
-                    "such as contact_ratio(trace, spiral_angle); missing points are NaN "
-                    "(NetCDF, CF-1.11).")
+                    "dataset with dims (contact_model, trace, spiral_angle, time) and "
+                    "per-point variables such as contact_ratio(trace, spiral_angle) and, from "
+                    "loaded TCAs (lsbg ltca), the static transmission error and mesh "
+                    "stiffness; missing points are NaN (NetCDF, CF-1.11).")
     parser.add_argument("--runs", nargs="+", required=True, metavar="RUN.nc",
-                        help="run files, one per design point")
+                        help="run files, one per contact model and design point")
+    parser.add_argument("--meshes", nargs="+", default=[], metavar="MESH.nc",
+                        help="loaded-TCA files (lsbg ltca), one per design point")
     parser.add_argument("--out", required=True, metavar="SWEEP.nc", help="output NetCDF file")
     parser.set_defaults(handler=run_combine)
 
@@ -317,7 +408,7 @@ def run_combine(args):
     from lsbg.study import combine_runs
 
     try:
-        ds = combine_runs(args.runs)
+        ds = combine_runs(args.runs, meshes=args.meshes)
     except (OSError, ValueError) as err:
         raise CommandError(f"--runs: {err}") from None
     write_dataset(ds, args.out)
@@ -333,11 +424,18 @@ def add_summary_parser(subparsers):
     parser = subparsers.add_parser(
         "summary", help="steady-state statistics of runs as a CSV table",
         description="For every run and quantity (gear_speed, tangential_force, "
-                    "tangential_force_outer): steady-state mean and std, Anderson-Darling A2 "
-                    "and p, the theoretical value (Eq. 12/13), the error rate and the number "
-                    "of Xbar-R subgroups out of control. Settings from the 'statistics' "
+                    "tangential_force_outer, transmission_error, contact_torque): "
+                    "steady-state mean and std, Anderson-Darling A2 and p, the theoretical "
+                    "value (Eq. 12/13, the load), the error rate, the number of Xbar-R "
+                    "subgroups out of control, and from the full-rate record the std, the "
+                    "spread of the sampled std over sampling phases and the dynamic factor; "
+                    "for every loaded TCA the static transmission error (peak to peak, mesh "
+                    "harmonics) and the mesh stiffness. Settings from the 'statistics' "
                     "section of --config, overridden by the options.")
     parser.add_argument("--runs", nargs="+", required=True, metavar="RUN.nc", help="run files")
+    parser.add_argument("--meshes", nargs="+", default=[], metavar="MESH.nc",
+                        help="loaded-TCA files (lsbg ltca): two rows each, the static "
+                             "transmission error and the mesh stiffness")
     parser.add_argument("--config", metavar="FILE.yaml",
                         help="study configuration; its 'statistics' section is used "
                              "(steady_state_after_s, control_chart_window_s, subgroup_size)")
@@ -367,7 +465,7 @@ def run_summary(args):
         if value is not None:
             options[key] = tuple(value) if option == "window" else value
     try:
-        table = summary_table(args.runs, **options)
+        table = summary_table(args.runs, meshes=args.meshes, **options)
     except (OSError, ValueError) as err:
         raise CommandError(f"--runs: {err}") from None
     write_atomically(args.out, lambda tmp: table.to_csv(tmp, index=False))
@@ -422,7 +520,7 @@ def run_report(args):
 
 #: One ``add_<name>_parser(subparsers)`` per subcommand: a function or a
 #: ``"module:function"`` string.
-PARSERS = [add_geometry_parser, add_simulate_parser, add_convergence_parser,
+PARSERS = [add_geometry_parser, add_simulate_parser, add_convergence_parser, add_ltca_parser,
            add_combine_parser, add_summary_parser, add_report_parser]
 
 

@@ -859,8 +859,22 @@ def _block_length(series, block_length):
 
 
 def _bootstrap_std(series, length, n_boot, rng, method):
-    """Standard deviations (ddof = 1) of ``n_boot`` block-bootstrap replicates."""
-    return series[_block_indices(series.size, length, n_boot, rng, method)].std(axis=1, ddof=1)
+    """Standard deviations (ddof = 1) of ``n_boot`` block-bootstrap replicates.
+
+    Circular replicates are drawn in chunks, so that a long series (a
+    full-rate record of 40 000 samples) needs no (n_boot, n) index array; the
+    random stream is the same as in one draw.
+    """
+    if method != "circular":
+        return series[_block_indices(series.size, length, n_boot, rng, method)].std(
+            axis=1, ddof=1)
+    chunk = max(1, min(n_boot, 4_000_000 // max(series.size, 1)))
+    out = np.empty(n_boot)
+    for start in range(0, n_boot, chunk):
+        count = min(chunk, n_boot - start)
+        out[start:start + count] = series[_block_indices(series.size, length, count, rng,
+                                                         method)].std(axis=1, ddof=1)
+    return out
 
 
 def _percentile_interval(replicates, confidence):

@@ -25,7 +25,6 @@ References
 
 from __future__ import annotations
 
-import dataclasses
 import datetime
 import json
 import math
@@ -39,13 +38,16 @@ from matplotlib.ticker import NullFormatter
 
 import lsbg
 from lsbg import stats
-from lsbg.design import TRACES
-from lsbg.results import VARIABLES
+from lsbg.contact.law import CONTACT_MODELS
+from lsbg.design import TRACE_LABELS, TRACES
+from lsbg.figures.base import TYPE_COLORS, new_figure, type_color
+from lsbg.results import FULL_RATE_VARIABLES, VARIABLES
 
 __all__ = [
-    "TRACE_LABELS", "QUANTITIES", "QUANTITY_LABELS", "THEORY_ATTRIBUTES",
-    "SUMMARY_COLUMNS", "POINT_VARIABLES", "STATISTICS_KEYS", "PAPER",
-    "open_run", "open_runs", "open_pair", "gear_type", "steady", "as_path_list",
+    "TRACE_LABELS", "QUANTITIES", "QUANTITY_LABELS", "THEORY_ATTRIBUTES", "SUMMARY_QUANTITIES",
+    "FULL_RATE_OF", "SUMMARY_COLUMNS", "POINT_VARIABLES", "STATISTICS_KEYS", "PAPER",
+    "full_rate_series", "mesh_summary", "open_mesh",
+    "open_run", "open_runs", "open_pair", "select_runs", "gear_type", "steady", "as_path_list",
     "combine_runs", "statistics_options", "quantity_summary", "summary_table",
     "read_geometry_record", "design_table", "theory_table", "paper_comparison_table",
     "compare_types", "fluctuation_table", "fluctuation_conclusion", "engine_agreement",
@@ -59,8 +61,7 @@ __all__ = [
     "conjugacy_errors", "plot_conjugacy",
 ]
 
-#: Tooth trace -> the paper's name of the gear type.
-TRACE_LABELS = {"logarithmic": "LSBG", "circular": "SBG"}
+
 #: Quantities of the summary table (variables of a run dataset).
 QUANTITIES = ("gear_speed", "tangential_force", "tangential_force_outer")
 #: Axis labels of run variables (units come from the dataset).
@@ -75,16 +76,35 @@ QUANTITY_LABELS = {
     "max_penetration": "maximum penetration",
     "transmission_error": "transmission error",
 }
-#: Quantity -> run attribute holding its theoretical value (Eq. 12 / Eq. 13).
+#: Quantity -> run attribute holding its theoretical value (Eq. 12 / Eq. 13;
+#: the contact torque must balance the load).
 THEORY_ATTRIBUTES = {
     "gear_speed": "theory_gear_speed_deg_s",
     "tangential_force": "theory_tangential_force_N",
     "tangential_force_outer": "theory_tangential_force_N",
+    "contact_torque": "solver_load_torque_N_m",
 }
-#: Columns of :func:`summary_table`.
-SUMMARY_COLUMNS = ("trace", "spiral_angle_deg", "engine", "quantity", "mean", "std",
-                   "ad_statistic", "ad_pvalue", "theory", "error_rate_percent",
-                   "out_of_control")
+#: Quantities of the summary table: the paper's, the transmission error and
+#: the contact torque.
+SUMMARY_QUANTITIES = QUANTITIES + ("transmission_error", "contact_torque")
+#: Summary quantity -> (full-rate variable of the run, divide by the outer
+#: pitch radius d2/2).
+FULL_RATE_OF = {
+    "gear_speed": ("gear_speed_full", False),
+    "tangential_force": ("tangential_force_full", False),
+    "tangential_force_outer": ("contact_torque_full", True),
+    "transmission_error": ("transmission_error_full", False),
+    "contact_torque": ("contact_torque_full", False),
+}
+#: Columns of :func:`summary_table`. Runs: the paper's §4 statistics of the
+#: output samples, then the full-rate ones (std, the spread of the sample
+#: std over sampling phases, the dynamic factor on the contact-torque row).
+#: Loaded TCA (engine "ltca"): the static transmission error's peak to peak
+#: and mesh harmonics, and the mesh stiffness.
+SUMMARY_COLUMNS = ("trace", "spiral_angle_deg", "contact_model", "engine", "run", "quantity",
+                   "mean", "std", "ad_statistic", "ad_pvalue", "theory", "error_rate_percent",
+                   "out_of_control", "full_rate_std", "sampling_std_min", "sampling_std_max",
+                   "dynamic_factor", "peak_to_peak", "harmonic_1", "harmonic_2", "harmonic_3")
 #: Run attribute -> (variable of the sweep dataset, units, long_name): one
 #: value per design point.
 POINT_VARIABLES = {
@@ -135,6 +155,7 @@ PAPER = {
 # Per-run attributes that do not describe the whole sweep.
 _PER_RUN_ATTRIBUTES = {"Conventions", "title", "source", "history", "institution"}
 _REQUIRED_ATTRIBUTES = ("design_trace", "design_spiral_angle_deg", "solver_engine",
+                        "contact_model", "solver_full_rate_hz",
                         *sorted(set(THEORY_ATTRIBUTES.values())))
 # Order of gear types in tables and figures: the paper's (a) SBG, (b) LSBG.
 _TYPE_ORDER = ("SBG", "LSBG")
@@ -169,7 +190,9 @@ def open_run(path) -> xr.Dataset:
             ds = ds.load()
     except (OSError, ValueError) as err:
         raise ValueError(f"{path}: not a readable NetCDF file ({err})") from None
-    missing = [name for name in ("time", *QUANTITIES) if name not in ds.variables]
+    missing = [name for name in ("time", "time_full", *SUMMARY_QUANTITIES,
+                                 *(v for v, _ in FULL_RATE_OF.values()))
+               if name not in ds.variables]
     missing += [name for name in _REQUIRED_ATTRIBUTES if name not in ds.attrs]
     if missing:
         raise ValueError(f"{path}: not a run dataset of lsbg.results (missing {missing})")
@@ -212,6 +235,33 @@ def open_pair(sbg_path, lsbg_path):
             raise ValueError(f"{_source(ds)}: a {gear_type(ds)} run "
                              f"({ds.attrs['design_trace']} trace) given as the {label} run")
     return runs
+
+
+def select_runs(runs, contact_model=None, engine=None) -> dict:
+    """The SBG and LSBG run of one contact model and engine.
+
+    Parameters
+    ----------
+    runs : sequence of xarray.Dataset
+    contact_model : str, optional
+        ``contact_model`` attribute to match.
+    engine : str, optional
+        ``solver_engine`` attribute to match.
+
+    Returns
+    -------
+    dict
+        ``{gear type: run}`` in the paper's order.
+
+    Raises
+    ------
+    ValueError
+        If a gear type matches twice.
+    """
+    chosen = [ds for ds in runs
+              if (contact_model is None or ds.attrs["contact_model"] == contact_model)
+              and (engine is None or ds.attrs["solver_engine"] == engine)]
+    return _by_type(chosen)
 
 
 def as_path_list(value) -> list:
@@ -288,33 +338,66 @@ def _by_type(runs):
 
 
 # ----------------------------------------------------------------- combine
-def combine_runs(paths) -> xr.Dataset:
-    """Stack the runs of one engine into the sweep dataset.
+#: Loaded-TCA attribute -> (variable of the sweep dataset, units, long_name).
+MESH_VARIABLES = {
+    "transmission_error_peak_to_peak_urad": (
+        "static_transmission_error_peak_to_peak", "urad",
+        "peak-to-peak loaded static transmission error (line model)"),
+    "transmission_error_harmonic_1_urad": (
+        "static_transmission_error_harmonic_1", "urad",
+        "first mesh harmonic of the loaded static transmission error"),
+    "transmission_error_harmonic_2_urad": (
+        "static_transmission_error_harmonic_2", "urad",
+        "second mesh harmonic of the loaded static transmission error"),
+    "transmission_error_harmonic_3_urad": (
+        "static_transmission_error_harmonic_3", "urad",
+        "third mesh harmonic of the loaded static transmission error"),
+    "mesh_stiffness_mean_N_per_um": ("mesh_stiffness_mean", "N/um",
+                                     "mean mesh stiffness along the line of action"),
+    "mesh_stiffness_per_face_width_N_per_mm_um": (
+        "mesh_stiffness_per_face_width", "N/(mm um)",
+        "mean mesh stiffness per unit face width (c_gamma)"),
+    "mesh_stiffness_peak_to_peak_N_per_um": (
+        "mesh_stiffness_peak_to_peak", "N/um", "peak-to-peak mesh stiffness over a mesh cycle"),
+    "mesh_stiffness_variation_percent": (
+        "mesh_stiffness_variation", "percent",
+        "peak-to-peak mesh stiffness over its mean"),
+}
+
+
+def combine_runs(paths, meshes=()) -> xr.Dataset:
+    """Stack the runs of one engine, and the loaded TCAs, into the sweep dataset.
 
     Parameters
     ----------
     paths : sequence of str or os.PathLike
-        Run files (``lsbg simulate``), one per design point, all of the same
-        engine and time axis.
+        Run files (``lsbg simulate``), one per contact model and design
+        point, all of the same engine and time axes.
+    meshes : sequence of str or os.PathLike
+        Loaded-TCA files (``lsbg ltca``), at most one per design point.
 
     Returns
     -------
     xarray.Dataset
-        Dims (trace, spiral_angle, time). Coordinates ``trace`` (with
-        ``gear_type``: 'LSBG'/'SBG'), ``spiral_angle`` [degree], ``time`` [s];
-        the run variables of :data:`lsbg.results.VARIABLES` with their units
-        on (trace, spiral_angle, time); per design point the variables of
-        :data:`POINT_VARIABLES` on (trace, spiral_angle). Missing (trace,
-        spiral angle) combinations are NaN. Global attributes: CF-1.11
-        ``title``, ``source``, ``history``, ``Conventions``, and every run
-        attribute that all runs share (e.g. ``solver_engine``).
+        Dims (contact_model, trace, spiral_angle, time) and time_full.
+        Coordinates ``contact_model``, ``trace`` (with ``gear_type``:
+        'LSBG'/'SBG'), ``spiral_angle`` [degree], ``time``, ``time_full`` [s];
+        the run variables of :data:`lsbg.results.VARIABLES` on (contact_model,
+        trace, spiral_angle, time) and those of
+        :data:`lsbg.results.FULL_RATE_VARIABLES` on (..., time_full); per
+        design point the variables of :data:`POINT_VARIABLES` and, from the
+        loaded TCAs, :data:`MESH_VARIABLES` and the ``static_transmission_error``
+        and ``mesh_stiffness`` curves on (trace, spiral_angle, mesh_phase).
+        Missing combinations are NaN. Global attributes: CF-1.11 ``title``,
+        ``source``, ``history``, ``Conventions``, and every run attribute
+        that all runs share (e.g. ``solver_engine``).
 
     Raises
     ------
     ValueError
-        If no path is given, a file is not a run dataset, the engines or the
-        time axes differ, or a design point occurs twice; the message names
-        the file.
+        If no run is given, a file is not a run or loaded-TCA dataset, the
+        engines or the time axes differ, or a point occurs twice; the message
+        names the file.
     FileNotFoundError
         If a file is missing.
     """
@@ -324,54 +407,91 @@ def combine_runs(paths) -> xr.Dataset:
     runs = [open_run(p) for p in paths]
     first, first_path = runs[0], paths[0]
     engine = first.attrs["solver_engine"]
-    time = first["time"].values
-    spacing = float(np.median(np.diff(time))) if time.size > 1 else 1.0
+    axes = {name: first[name].values for name in ("time", "time_full")}
     points = {}
     for path, ds in zip(paths, runs):
         if ds.attrs["solver_engine"] != engine:
             raise ValueError(f"{path}: engine {ds.attrs['solver_engine']!r} differs from "
                              f"{engine!r} of {first_path}; combine the runs of one engine")
-        t = ds["time"].values
-        if t.shape != time.shape or not np.allclose(t, time, rtol=0.0, atol=1e-9 * spacing):
-            raise ValueError(f"{path}: time axis ({t.size} samples, {t[0]:g}–{t[-1]:g} s) "
-                             f"differs from that of {first_path} ({time.size} samples, "
-                             f"{time[0]:g}–{time[-1]:g} s)")
-        key = (ds.attrs["design_trace"], _spiral_angle(ds))
+        for name, axis in axes.items():
+            t = ds[name].values
+            spacing = float(np.median(np.diff(axis))) if axis.size > 1 else 1.0
+            if t.shape != axis.shape or not np.allclose(t, axis, rtol=0.0, atol=1e-9 * spacing):
+                raise ValueError(f"{path}: {name} axis ({t.size} samples, {t[0]:g}–{t[-1]:g} s) "
+                                 f"differs from that of {first_path} ({axis.size} samples, "
+                                 f"{axis[0]:g}–{axis[-1]:g} s)")
+        key = (ds.attrs["contact_model"], ds.attrs["design_trace"], _spiral_angle(ds))
         if key in points:
-            raise ValueError(f"{path}: design point {key[0]}, {key[1]:g} deg already given "
-                             f"by {points[key][0]}")
+            raise ValueError(f"{path}: design point {key[1]}, {key[2]:g} deg ({key[0]} model) "
+                             f"already given by {points[key][0]}")
         points[key] = (path, ds)
-    present = {trace for trace, _ in points}
+    mesh_data = {}
+    for path in as_path_list(meshes):
+        ds = open_mesh(path)
+        key = (ds.attrs["design_trace"], round(float(ds.attrs["design_spiral_angle_deg"]), 9))
+        if key in mesh_data:
+            raise ValueError(f"{path}: design point {key[0]}, {key[1]:g} deg already given by "
+                             f"{mesh_data[key][0]}")
+        mesh_data[key] = (path, ds)
+    models = [m for m in CONTACT_MODELS if m in {k[0] for k in points}]
+    present = {k[1] for k in points} | {k[0] for k in mesh_data}
     traces = [t for t in TRACES if t in present] + sorted(present - set(TRACES))
-    angles = sorted({angle for _, angle in points})
-    shape = (len(traces), len(angles))
-    names = [name for name in VARIABLES if all(name in ds for ds in runs)]
-    data = {name: np.full(shape + time.shape, np.nan) for name in names}
-    point_data = {attr: np.full(shape, np.nan) for attr in POINT_VARIABLES}
-    for (trace, angle), (_, ds) in points.items():
-        i, j = traces.index(trace), angles.index(angle)
+    angles = sorted({k[2] for k in points} | {k[1] for k in mesh_data})
+    shape = (len(models), len(traces), len(angles))
+    names = {name: "time" for name in VARIABLES if all(name in ds for ds in runs)}
+    names.update({name: "time_full" for name in FULL_RATE_VARIABLES if all(name in ds for ds in runs)})
+    data = {name: np.full(shape + axes[axis].shape, np.nan) for name, axis in names.items()}
+    point_data = {attr: np.full(shape[1:], np.nan) for attr in POINT_VARIABLES}
+    for (model, trace, angle), (_, ds) in points.items():
+        m, i, j = models.index(model), traces.index(trace), angles.index(angle)
         for name in names:
-            data[name][i, j] = ds[name].values
+            data[name][m, i, j] = ds[name].values
         for attr in POINT_VARIABLES:
             if attr in ds.attrs:
                 point_data[attr][i, j] = float(ds.attrs[attr])
     out = xr.Dataset(coords={
+        "contact_model": ("contact_model", models, {
+            "long_name": "contact model (point: the paper's IMPACT incident per tooth pair; "
+                         "line: sliced contact lines)"}),
         "trace": ("trace", traces, {"long_name": "tooth trace (logarithmic: LSBG, "
                                                  "circular: SBG)"}),
         "gear_type": ("trace", [TRACE_LABELS.get(t, t) for t in traces],
                       {"long_name": "gear type as named in the paper"}),
         "spiral_angle": ("spiral_angle", np.asarray(angles, dtype=float),
                          {"units": "degree", "long_name": "mean spiral angle on the pitch cone"}),
-        "time": ("time", time, dict(first["time"].attrs)),
+        "time": ("time", axes["time"], dict(first["time"].attrs)),
+        "time_full": ("time_full", axes["time_full"], dict(first["time_full"].attrs)),
     })
-    for name in names:
-        out[name] = (("trace", "spiral_angle", "time"), data[name], {
+    for name, axis in names.items():
+        out[name] = (("contact_model", "trace", "spiral_angle", axis), data[name], {
             key: value for key, value in first[name].attrs.items()
             if key in ("units", "long_name", "standard_name")})
     for attr, (name, units, long_name) in POINT_VARIABLES.items():
         if np.isfinite(point_data[attr]).any():
             out[name] = (("trace", "spiral_angle"), point_data[attr],
                          {"units": units, "long_name": long_name})
+    if mesh_data:
+        phases = next(iter(mesh_data.values()))[1]["mesh_phase"]
+        curves = {name: np.full(shape[1:] + phases.shape, np.nan)
+                  for name in ("transmission_error", "mesh_stiffness")}
+        values = {attr: np.full(shape[1:], np.nan) for attr in MESH_VARIABLES}
+        for (trace, angle), (path, ds) in mesh_data.items():
+            if ds.sizes["mesh_phase"] != phases.size:
+                raise ValueError(f"{path}: {ds.sizes['mesh_phase']} mesh phases, the others "
+                                 f"{phases.size}")
+            i, j = traces.index(trace), angles.index(angle)
+            for attr in MESH_VARIABLES:
+                values[attr][i, j] = float(ds.attrs[attr])
+            for name in curves:
+                curves[name][i, j] = ds[name].values
+        out = out.assign_coords(mesh_phase=("mesh_phase", phases.values, dict(phases.attrs)))
+        for attr, (name, units, long_name) in MESH_VARIABLES.items():
+            out[name] = (("trace", "spiral_angle"), values[attr],
+                         {"units": units, "long_name": long_name})
+        for name, curve in curves.items():
+            source = next(iter(mesh_data.values()))[1][name]
+            out[f"static_{name}" if name == "transmission_error" else name] = (
+                ("trace", "spiral_angle", "mesh_phase"), curve, dict(source.attrs))
     shared = {key: value for key, value in first.attrs.items()
               if key not in _PER_RUN_ATTRIBUTES and key not in POINT_VARIABLES
               and all(key in ds.attrs and _same(ds.attrs[key], value) for ds in runs)}
@@ -380,11 +500,12 @@ def combine_runs(paths) -> xr.Dataset:
         "Conventions": "CF-1.11",
         "title": f"Meshing simulations of spiral bevel gear pairs: "
                  f"{', '.join(TRACE_LABELS.get(t, t) for t in traces)} at spiral angles "
-                 f"{', '.join(f'{a:g}' for a in angles)} deg ({engine} engine)",
+                 f"{', '.join(f'{a:g}' for a in angles)} deg ({engine} engine, "
+                 f"{' and '.join(models)} contact model)",
         "source": f"lsbg {lsbg.__version__} (lsbg.study.combine_runs), engine {engine}",
         "institution": "lsbg reproducible research workflow",
-        "history": f"{now} lsbg.study.combine_runs of {len(runs)} runs: "
-                   + ", ".join(Path(p).name for p in paths),
+        "history": f"{now} lsbg.study.combine_runs of {len(runs)} runs and {len(mesh_data)} "
+                   f"loaded TCAs: " + ", ".join(Path(p).name for p in [*paths, *as_path_list(meshes)]),
         "lsbg_version": lsbg.__version__,
         **{key: value for key, value in shared.items() if key != "lsbg_version"},
     })
@@ -452,16 +573,42 @@ def _is_number(value):
             and math.isfinite(value))
 
 
+def full_rate_series(ds, quantity, start=0.2):
+    """The full-rate record of a summary quantity from ``start`` on (inclusive).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Run dataset with a full-rate record.
+    quantity : str
+        One of :data:`FULL_RATE_OF`.
+    start : float
+        Start of the steady state [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        [unit of the quantity].
+    """
+    name, per_outer_radius = FULL_RATE_OF[quantity]
+    time = ds["time_full"].values
+    spacing = float(time[1] - time[0]) if time.size > 1 else 1.0
+    values = ds[name].values[time >= start - 1e-6 * spacing]
+    if per_outer_radius:
+        values = values / (float(ds.attrs["design_pitch_diameter_gear_mm"]) / 2e3)
+    return values
+
+
 def quantity_summary(ds, quantity, steady_state_after=0.2, window=(0.8, 1.0),
                      subgroup_size=4) -> dict:
-    """The §4 statistics of one quantity of one run: one row of :func:`summary_table`.
+    """The statistics of one quantity of one run: one row of :func:`summary_table`.
 
     Parameters
     ----------
     ds : xarray.Dataset
         Run dataset.
     quantity : str
-        One of :data:`QUANTITIES`.
+        One of :data:`SUMMARY_QUANTITIES`.
     steady_state_after : float, default 0.2
         End of the transient [s]; the statistics use the samples after it.
     window : (float, float), default (0.8, 1.0)
@@ -473,43 +620,118 @@ def quantity_summary(ds, quantity, steady_state_after=0.2, window=(0.8, 1.0),
     -------
     dict
         Keys :data:`SUMMARY_COLUMNS`: mean and std (ddof = 1) [unit of the
-        quantity], A² and p, the theoretical value (Eq. 12 or 13, from the run
-        attributes), ``error_rate_percent`` = 100 |mean − theory| / theory and
-        ``out_of_control``, the number of subgroups beyond the Xbar or R limits.
+        quantity], A² and p, the theoretical value (from the run attributes;
+        NaN for the transmission error), ``error_rate_percent`` =
+        100 |mean − theory| / theory, ``out_of_control``, the number of
+        subgroups beyond the Xbar or R limits; from the full-rate record its
+        std, the least and largest std of the output sampling over all
+        sampling phases, and (contact torque) the dynamic factor.
 
     Raises
     ------
     ValueError
         If the windows do not fit the run (e.g. no subgroups of that size).
     """
-    if quantity not in THEORY_ATTRIBUTES:
-        raise ValueError(f"quantity = {quantity!r}: must be one of {QUANTITIES}")
+    from lsbg import spectra
+
+    if quantity not in SUMMARY_QUANTITIES:
+        raise ValueError(f"quantity = {quantity!r}: must be one of {SUMMARY_QUANTITIES}")
     values, time = ds[quantity].values, ds["time"].values
     x = stats.steady_state(values, time, steady_state_after)
     description = stats.describe(x)
     ad = stats.anderson_darling(x)
-    theory_value = float(ds.attrs[THEORY_ATTRIBUTES[quantity]])
+    theory_value = (float(ds.attrs[THEORY_ATTRIBUTES[quantity]])
+                    if quantity in THEORY_ATTRIBUTES else np.nan)
     chart = stats.xbar_r_chart(stats.subgroups_from_window(values, time, window[0], window[1],
                                                            subgroup_size))
+    full = full_rate_series(ds, quantity, steady_state_after)
+    sample_rate = float(ds.attrs["solver_samples"]) / float(ds.attrs["solver_duration_s"])
+    spread = spectra.sampling_phase_spread(full, float(ds.attrs["solver_full_rate_hz"]),
+                                           sample_rate)
     return {
         "trace": ds.attrs["design_trace"],
         "spiral_angle_deg": _spiral_angle(ds),
+        "contact_model": ds.attrs["contact_model"],
         "engine": ds.attrs["solver_engine"],
+        "run": _run_name(ds),
         "quantity": quantity,
         "mean": description.mean,
         "std": description.std,
         "ad_statistic": ad.statistic,
         "ad_pvalue": ad.pvalue,
         "theory": theory_value,
-        "error_rate_percent": stats.compare_to_theory(description.mean,
-                                                      theory_value).error_rate_percent,
+        "error_rate_percent": (stats.compare_to_theory(description.mean,
+                                                       theory_value).error_rate_percent
+                               if np.isfinite(theory_value) else np.nan),
         "out_of_control": int(chart.out_of_control.size),
+        "full_rate_std": spectra.rms_fluctuation(full),
+        "sampling_std_min": float(spread.min()),
+        "sampling_std_max": float(spread.max()),
+        "dynamic_factor": (spectra.dynamic_factor(full, float(ds.attrs["solver_load_torque_N_m"]))
+                           if quantity == "contact_torque" else np.nan),
     }
 
 
+def _run_name(ds):
+    """The run's file name without its extension ("" for a dataset not from a file)."""
+    source = ds.encoding.get("source")
+    return Path(source).stem if source else ""
+
+
+def mesh_summary(ds) -> list:
+    """Summary rows of a loaded TCA (:func:`lsbg.ltca.loaded_tca`).
+
+    Returns
+    -------
+    list of dict
+        Two rows, keys :data:`SUMMARY_COLUMNS` (engine "ltca"): the static
+        transmission error [urad] (mean, std over the mesh cycle, peak to
+        peak, first three mesh harmonics) and the mesh stiffness [N/um]
+        (mean, std, peak to peak).
+    """
+    base = {column: np.nan for column in SUMMARY_COLUMNS}
+    base.update(trace=ds.attrs["design_trace"],
+                spiral_angle_deg=round(float(ds.attrs["design_spiral_angle_deg"]), 9),
+                contact_model="line", engine="ltca", run=_run_name(ds), out_of_control=None)
+    te, stiffness = ds["transmission_error"].values, ds["mesh_stiffness"].values
+    harmonics = {f"harmonic_{h}": float(ds.attrs[f"transmission_error_harmonic_{h}_urad"])
+                 for h in (1, 2, 3)}
+    return [
+        {**base, "quantity": "static_transmission_error", "mean": float(te.mean()),
+         "std": float(te.std(ddof=1)), "peak_to_peak": float(np.ptp(te)), **harmonics},
+        {**base, "quantity": "mesh_stiffness", "mean": float(stiffness.mean()),
+         "std": float(stiffness.std(ddof=1)), "peak_to_peak": float(np.ptp(stiffness))},
+    ]
+
+
+def open_mesh(path):
+    """Read a loaded-TCA dataset (``lsbg ltca``) into memory.
+
+    Raises
+    ------
+    FileNotFoundError, ValueError
+        Naming the file if it is missing or not a loaded-TCA dataset.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"{path}: no such mesh file")
+    try:
+        with xr.open_dataset(path) as ds:
+            ds = ds.load()
+    except (OSError, ValueError) as err:
+        raise ValueError(f"{path}: not a readable NetCDF file ({err})") from None
+    missing = [name for name in ("transmission_error", "mesh_stiffness") if name not in ds]
+    missing += [name for name in ("design_trace", "transmission_error_harmonic_1_urad")
+                if name not in ds.attrs]
+    if missing:
+        raise ValueError(f"{path}: not a loaded-TCA dataset of lsbg.ltca (missing {missing})")
+    ds.encoding["source"] = str(path)
+    return ds
+
+
 def summary_table(paths, steady_state_after=0.2, window=(0.8, 1.0),
-                  subgroup_size=4) -> pd.DataFrame:
-    """The paper's §4 statistics of every run and quantity.
+                  subgroup_size=4, meshes=()) -> pd.DataFrame:
+    """The statistics of every run and quantity, and of every loaded TCA.
 
     Parameters
     ----------
@@ -521,12 +743,15 @@ def summary_table(paths, steady_state_after=0.2, window=(0.8, 1.0),
         Xbar-R window [s] (paper: 0.8–1.0 s).
     subgroup_size : int, default 4
         Xbar-R subgroup size (paper: 4, 25 subgroups).
+    meshes : sequence of str or os.PathLike
+        Loaded-TCA files (``lsbg ltca``).
 
     Returns
     -------
     pandas.DataFrame
-        One row per run and quantity of :data:`QUANTITIES`, columns
-        :data:`SUMMARY_COLUMNS` (see :func:`quantity_summary`).
+        One row per run and quantity of :data:`SUMMARY_QUANTITIES` (see
+        :func:`quantity_summary`), then two per loaded TCA (see
+        :func:`mesh_summary`); columns :data:`SUMMARY_COLUMNS`.
 
     Raises
     ------
@@ -536,13 +761,17 @@ def summary_table(paths, steady_state_after=0.2, window=(0.8, 1.0),
     rows = []
     for path in as_path_list(paths):
         ds = open_run(path)
-        for quantity in QUANTITIES:
+        for quantity in SUMMARY_QUANTITIES:
             try:
                 rows.append(quantity_summary(ds, quantity, steady_state_after, window,
                                              subgroup_size))
             except ValueError as err:
                 raise ValueError(f"{path}: {quantity}: {err}") from None
-    return pd.DataFrame(rows, columns=list(SUMMARY_COLUMNS))
+    for path in as_path_list(meshes):
+        rows.extend(mesh_summary(open_mesh(path)))
+    table = pd.DataFrame(rows, columns=list(SUMMARY_COLUMNS))
+    table["out_of_control"] = table["out_of_control"].astype("Int64")
+    return table
 
 
 # ------------------------------------------------------- the paper's report
@@ -889,17 +1118,10 @@ def engine_agreement(runs, start=0.2, quantities=("gear_speed", "tangential_forc
 
 
 def _contact_parameters(ds):
-    """ContactParameters from a run's ``contact_*`` attributes (paper's if absent)."""
+    """ContactParameters from a run's ``contact_*`` attributes (the paper's if absent)."""
     from lsbg.contact import ContactParameters
 
-    default = ContactParameters()
-    fields = [f.name for f in dataclasses.fields(ContactParameters)]
-    keys = list(default.to_dict())
-    if ds is None or len(fields) != len(keys):
-        return default
-    values = {f: float(ds.attrs[f"contact_{k}"]) for f, k in zip(fields, keys)
-              if f"contact_{k}" in ds.attrs}
-    return ContactParameters(**{**dataclasses.asdict(default), **values})
+    return ContactParameters.from_dict({} if ds is None else ds.attrs, prefix="contact_")
 
 
 def contact_resonance(geometry_dir, run=None, positions=12) -> dict:
@@ -938,8 +1160,8 @@ def contact_resonance(geometry_dir, run=None, positions=12) -> dict:
     for phi1 in np.linspace(0.0, 2 * math.pi / z1, positions, endpoint=False):
         phi2 = model.contact.static_gear_angle(load, pinion_angle=phi1)
         h = 1e-7
-        plus = model.contact.evaluate(phi1, phi2 + h, 0.0, 0.0)[0]
-        minus = model.contact.evaluate(phi1, phi2 - h, 0.0, 0.0)[0]
+        plus = model.contact.forces(phi1, phi2 + h).gear_torque
+        minus = model.contact.forces(phi1, phi2 - h).gear_torque
         stiffness.append(abs(plus - minus) / (2 * h))
     stiffness = np.asarray(stiffness)
     freq = np.sqrt(stiffness / model.gear_inertia) / (2 * math.pi)
@@ -962,21 +1184,6 @@ def control_charts(runs, quantity, window=(0.8, 1.0), subgroup_size=4) -> dict:
 
 
 # ---------------------------------------------------------------- figures
-#: One colour per gear type in every figure.
-TYPE_COLORS = {"SBG": "C0", "LSBG": "C1"}
-
-
-def _color(label):
-    """The colour of a gear type (or a trace) in every figure."""
-    return TYPE_COLORS.get(TRACE_LABELS.get(label, label), "C2")
-
-
-def _figure(nrows=1, ncols=1, width=4.6, height=3.2, **subplot_kw):
-    fig = Figure(figsize=(width * ncols + 0.6, height * nrows + 0.4), layout="constrained")
-    axes = fig.subplots(nrows, ncols, squeeze=False, **subplot_kw)
-    return fig, axes
-
-
 def plot_pair_pictures(geometry_dirs) -> Figure:
     """The pictures of the assembled pairs (``pair.png``) side by side, SBG first.
 
@@ -997,7 +1204,7 @@ def plot_pair_pictures(geometry_dirs) -> Figure:
         dirs = {TRACE_LABELS.get(read_geometry_record(d)["trace"], str(d)): d
                 for d in as_path_list(geometry_dirs)}
     order = [t for t in _TYPE_ORDER if t in dirs] + [t for t in dirs if t not in _TYPE_ORDER]
-    fig, axes = _figure(1, len(order), width=4.8, height=4.0)
+    fig, axes = new_figure(1, len(order), width=4.8, height=4.0)
     for ax, label in zip(axes[0], order):
         picture = Path(dirs[label]) / "pair.png"
         if not picture.is_file():
@@ -1033,7 +1240,7 @@ def plot_time_series(runs, names, theory=None, overlay=False, xlim=None) -> Figu
     names = [names] if isinstance(names, str) else list(names)
     by_type = _by_type(runs)
     ncols = 1 if overlay else len(by_type)
-    fig, axes = _figure(1, ncols, sharex=True, sharey=True)
+    fig, axes = new_figure(1, ncols, sharex=True, sharey=True)
     styles = ["-", "--", ":", "-."]
     for i, (label, ds) in enumerate(by_type.items()):
         ax = axes[0, 0 if overlay else i]
@@ -1042,7 +1249,7 @@ def plot_time_series(runs, names, theory=None, overlay=False, xlim=None) -> Figu
             text, units = _label(ds, name)
             ax.plot(t, ds[name].values, lw=0.9,
                     ls=styles[i % 4] if overlay else "-",
-                    color=_color(label) if overlay or k == 0 else f"C{k + 1}",
+                    color=type_color(label) if overlay or k == 0 else f"C{k + 1}",
                     label=f"{label}: {text}")
         if theory == "gear_speed":
             ratio = ds.attrs["design_pinion_teeth"] / ds.attrs["design_gear_teeth"]
@@ -1079,14 +1286,14 @@ def plot_steady_scatter(runs, name, start=0.2) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    fig, axes = _figure(1, 1, width=8.0)
+    fig, axes = new_figure(1, 1, width=8.0)
     ax = axes[0, 0]
     by_type = _by_type(runs)
     for label, ds in by_type.items():
         t = ds["time"].values
         keep = t - start > 1e-9 * np.median(np.diff(t))
         x = ds[name].values[keep]
-        ax.plot(t[keep], x, "o", ms=2.5, color=_color(label),
+        ax.plot(t[keep], x, "o", ms=2.5, color=type_color(label),
                 label=f"{label} (std {x.std(ddof=1):.4g})")
     first = next(iter(by_type.values()))
     if name in THEORY_ATTRIBUTES:
@@ -1118,7 +1325,7 @@ def plot_normality(runs, name, start=0.2) -> Figure:
     by_type = _by_type(runs)
     series = {label: steady(ds, name, start) for label, ds in by_type.items()}
     xlim = _common_limits(series.values())
-    fig, axes = _figure(1, len(series))
+    fig, axes = new_figure(1, len(series))
     first = next(iter(by_type.values()))
     text, units = _label(first, name)
     for ax, (label, x) in zip(axes[0], series.items()):
@@ -1130,7 +1337,7 @@ def plot_normality(runs, name, start=0.2) -> Figure:
 def plot_boxplots(runs, names=("gear_speed", "tangential_force"), start=0.2) -> Figure:
     """Box plots of the steady state of each type, one panel per quantity (Fig. 16)."""
     by_type = _by_type(runs)
-    fig, axes = _figure(1, len(names))
+    fig, axes = new_figure(1, len(names))
     first = next(iter(by_type.values()))
     for ax, name in zip(axes[0], names):
         text, units = _label(first, name)
@@ -1270,11 +1477,11 @@ def plot_sweep(table, units=None) -> Figure:
         intervals, contact ratios (total, profile, face), mean forces.
     """
     units = {"gear_speed": "deg/s", "tangential_force": "N", **(units or {})}
-    fig, axes = _figure(2, 2, sharex=True)
+    fig, axes = new_figure(2, 2, sharex=True)
     (a, b), (c, d) = axes
     for label, part in table.groupby("gear_type", sort=False):
         part = part.sort_values("spiral_angle_deg")
-        color = _color(label)
+        color = type_color(label)
         _errorbar(a, part, "gear_speed_std", label, color, "o")
         _errorbar(b, part, "tangential_force_std", f"{label}: points of action", color, "o")
         _errorbar(b, part, "tangential_force_outer_std", f"{label}: at d2/2", color, "s")
@@ -1313,7 +1520,7 @@ def plot_sweep_ratio(ratios) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    fig, axes = _figure(1, 1, width=7.0)
+    fig, axes = new_figure(1, 1, width=7.0)
     ax = axes[0, 0]
     for i, (quantity, part) in enumerate(ratios.groupby("quantity", sort=False)):
         y = part["ratio"].to_numpy()
@@ -1368,23 +1575,33 @@ def convergence_table(table) -> pd.DataFrame:
     Returns
     -------
     pandas.DataFrame
-        ``table`` plus, per design point, ``gear_speed_std_rel_diff_percent``
-        and ``tangential_force_std_rel_diff_percent``: 100 (std − std_ref) /
-        std_ref with std_ref from the scipy run of the smallest rtol.
+        ``table`` plus, per design point and contact model,
+        ``<column>_rel_diff_percent`` for the output samples' and the
+        full-rate standard deviations of gear speed and tangential force:
+        100 (std − std_ref) / std_ref with std_ref from the scipy run of the
+        smallest rtol.
     """
     out = table.copy()
-    for column in ("gear_speed_std", "tangential_force_std"):
+    for column in _CONVERGENCE_DIFFERENCES:
         out[f"{column}_rel_diff_percent"] = np.nan
-    for _, part in out.groupby(["trace", "spiral_angle_deg"]):
+    for _, part in out.groupby(["trace", "spiral_angle_deg", "contact_model"]):
         scipy = part[part["engine"] == "scipy"]
         if scipy.empty:
             continue
         ref = scipy.loc[scipy["value"].idxmin()]
-        for column, source in (("gear_speed_std", "gear_speed_std_deg_s"),
-                               ("tangential_force_std", "tangential_force_std_N")):
+        for column, source in _CONVERGENCE_DIFFERENCES.items():
             out.loc[part.index, f"{column}_rel_diff_percent"] = (
                 100 * (part[source] - ref[source]) / ref[source])
     return out
+
+
+# Relative difference columns of convergence_table -> their source column.
+_CONVERGENCE_DIFFERENCES = {
+    "gear_speed_std": "gear_speed_std_deg_s",
+    "tangential_force_std": "tangential_force_std_N",
+    "gear_speed_full_std": "gear_speed_full_std_deg_s",
+    "tangential_force_full_std": "tangential_force_full_std_N",
+}
 
 
 def plot_convergence(table) -> Figure:
@@ -1398,12 +1615,13 @@ def plot_convergence(table) -> Figure:
     Returns
     -------
     matplotlib.figure.Figure
-        Rows: pybullet against its time step, scipy against its rtol (log
-        axes). Columns: std of gear speed, std of tangential force, relative
-        difference to the tightest scipy run. Default settings are ringed.
+        Rows: pybullet against its time step, scipy and compiled against
+        their rtol (log axes). Columns: std of gear speed, std of tangential
+        force, relative difference to the tightest scipy run. Default
+        settings are ringed.
     """
-    engines = [e for e in ("pybullet", "scipy") if (table["engine"] == e).any()]
-    fig, axes = _figure(len(engines), 3, width=3.6, height=2.9)
+    engines = [e for e in ("pybullet", "scipy", "compiled") if (table["engine"] == e).any()]
+    fig, axes = new_figure(len(engines), 3, width=3.6, height=2.9)
     columns = (("gear_speed_std_deg_s", "std of gear angular velocity [deg/s]"),
                ("tangential_force_std_N", "std of tangential force [N]"))
     for r, engine in enumerate(engines):
@@ -1414,7 +1632,7 @@ def plot_convergence(table) -> Figure:
             label = TRACE_LABELS.get(trace, trace)
             for c, (column, ylabel) in enumerate(columns):
                 ax = axes[r, c]
-                ax.plot(rows["value"], rows[column], "o-", color=_color(label), ms=4,
+                ax.plot(rows["value"], rows[column], "o-", color=type_color(label), ms=4,
                         label=label)
                 default = rows[rows["is_default"]]
                 ax.plot(default["value"], default[column], "o", ms=11, mfc="none",
@@ -1423,7 +1641,7 @@ def plot_convergence(table) -> Figure:
             ax = axes[r, 2]
             for name, marker in (("gear_speed_std", "o"), ("tangential_force_std", "s")):
                 ax.plot(rows["value"], rows[f"{name}_rel_diff_percent"], marker + "-",
-                        color=_color(label), ms=4,
+                        color=type_color(label), ms=4,
                         label=f"{label}: {'speed' if name == 'gear_speed_std' else 'force'}")
             ax.set_ylabel("difference to tightest scipy [%]")
         values = np.unique(part["value"].to_numpy())
@@ -1452,7 +1670,7 @@ def plot_engine_agreement(agreement, tolerance=0.03) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    fig, axes = _figure(1, 1, width=6.5)
+    fig, axes = new_figure(1, 1, width=6.5)
     ax = axes[0, 0]
     short = {"gear_speed": "speed", "tangential_force": "force",
              "tangential_force_outer": "force at d2/2"}
@@ -1501,11 +1719,11 @@ def plot_spiral_angle_along_face(geometry_dirs) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    fig, axes = _figure(1, 1, width=6.5)
+    fig, axes = new_figure(1, 1, width=6.5)
     ax = axes[0, 0]
     for label, record in _by_type_records(geometry_dirs).items():
         ax.plot(record["cone_distance_along_face_mm"], record["spiral_angle_along_face_deg"],
-                "o-", ms=3, color=_color(label), label=f"{label} ({record['trace']} trace)")
+                "o-", ms=3, color=type_color(label), label=f"{label} ({record['trace']} trace)")
         ax.axvline(record["mean_cone_distance_mm"], color="0.5", lw=0.8, ls=":")
     ax.set_xlabel("cone distance from the apex [mm]")
     ax.set_ylabel("spiral angle on the pitch cone [deg]")
@@ -1522,12 +1740,12 @@ def plot_pressure_angles(table) -> Figure:
     table : pandas.DataFrame
         From :func:`pressure_angle_table`.
     """
-    fig, axes = _figure(1, 1, width=6.5)
+    fig, axes = new_figure(1, 1, width=6.5)
     ax = axes[0, 0]
     deviation = np.abs(table["deviation_deg"].to_numpy())
     floor = 1e-16
     labels = [f"{r.gear_type}\n{r.member} {r.side}" for r in table.itertuples()]
-    colors = [_color(t) for t in table["gear_type"]]
+    colors = [type_color(t) for t in table["gear_type"]]
     ax.bar(range(len(table)), np.maximum(deviation, floor), color=colors)
     for k in np.flatnonzero(deviation < floor):
         ax.annotate("0", (k, floor), xytext=(0, 2), textcoords="offset points", ha="center",
@@ -1601,14 +1819,14 @@ def plot_conjugacy(errors) -> Figure:
     errors : dict
         ``{gear type: DataFrame}`` from :func:`conjugacy_errors`.
     """
-    fig, axes = _figure(1, 1, width=6.5)
+    fig, axes = new_figure(1, 1, width=6.5)
     ax = axes[0, 0]
     floor = 1e-18
     for label, table in errors.items():
         ax.semilogy(table["phase_deg"], np.maximum(table["pinion_distance_m"], floor), "o-",
-                    ms=3, color=_color(label), label=f"{label}: pinion flank")
+                    ms=3, color=type_color(label), label=f"{label}: pinion flank")
         ax.semilogy(table["phase_deg"], np.maximum(table["gear_distance_m"], floor), "s--",
-                    ms=3, color=_color(label), label=f"{label}: gear flank")
+                    ms=3, color=type_color(label), label=f"{label}: gear flank")
     ax.axhline(1e-9, color="C3", ls=":", lw=1, label="1 nm (test tolerance)")
     ax.set_ylim(1e-18, 1e-6)
     ax.set_xlabel("mesh position: turn Ψ of the contact line [deg]")

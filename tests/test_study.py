@@ -8,11 +8,13 @@ import pytest
 import xarray as xr
 import yaml
 
-from lsbg import cli, stats, study, theory
+from lsbg import cli, spectra, stats, study, theory
+from lsbg.contact import ContactParameters
 from lsbg.design import GearPairDesign
 from lsbg.dynamics import SimulationSettings, simulate
 from lsbg.export import write_geometry
-from lsbg.results import VARIABLES, write_dataset
+from lsbg.ltca import ltca_for_geometry
+from lsbg.results import FULL_RATE_VARIABLES, VARIABLES, write_dataset
 
 SHORT = SimulationSettings(duration=0.05, samples=25, ramp_time=0.01)
 # 26 instants 0, 0.002, ..., 0.05 s: 20 samples after 0.01 s, 4 subgroups of 5.
@@ -21,17 +23,24 @@ WINDOWS = dict(steady_state_after=0.01, window=(0.01, 0.05), subgroup_size=5)
 
 @pytest.fixture(scope="module")
 def runs(tmp_path_factory):
-    """LSBG at 35 and 30 deg, SBG at 35 deg (pybullet) and LSBG at 35 deg (scipy)."""
+    """Point model: LSBG at 35 and 30 deg, SBG at 35 deg (pybullet) and LSBG at 35 deg
+    (scipy); line model: LSBG and SBG at 35 deg (pybullet); their loaded TCAs."""
     root = tmp_path_factory.mktemp("study")
     points = {"lsbg35": ("logarithmic", 35), "sbg35": ("circular", 35),
               "lsbg30": ("logarithmic", 30)}
     paths = {}
+    line = ContactParameters(model="line")
     for name, (trace, spiral) in points.items():
         geometry = root / "geometry" / name
         write_geometry(GearPairDesign.from_config({"trace": trace, "spiral_angle_deg": spiral}),
                        geometry)
         paths[name] = root / "runs" / f"{name}_pybullet.nc"
         write_dataset(simulate(geometry, SHORT), paths[name])
+        if spiral == 35:
+            paths[f"{name}_line"] = root / "runs" / f"{name}_line_pybullet.nc"
+            write_dataset(simulate(geometry, SHORT, line), paths[f"{name}_line"])
+            paths[f"{name}_mesh"] = root / "mesh" / f"{name}.nc"
+            write_dataset(ltca_for_geometry(geometry, 1964.99, phases=64), paths[f"{name}_mesh"])
     paths["lsbg35_scipy"] = root / "runs" / "lsbg35_scipy.nc"
     write_dataset(simulate(root / "geometry" / "lsbg35", SHORT.replace(engine="scipy")),
                   paths["lsbg35_scipy"])
@@ -49,18 +58,27 @@ def sweep(pybullet_runs):
 
 
 def test_combine_runs_dims_coordinates_and_units(sweep, runs):
-    assert dict(sweep.sizes) == {"trace": 2, "spiral_angle": 2, "time": 26}
+    assert dict(sweep.sizes) == {"contact_model": 1, "trace": 2, "spiral_angle": 2, "time": 26,
+                                 "time_full": 2001}
+    assert list(sweep.contact_model.values) == ["point"]
     assert list(sweep.trace.values) == ["logarithmic", "circular"]
     assert list(sweep.gear_type.values) == ["LSBG", "SBG"]
     assert list(sweep.spiral_angle.values) == [30.0, 35.0]
     assert sweep.spiral_angle.attrs["units"] == "degree"
     assert sweep.time.attrs["units"] == "s"
     for name, (units, long_name) in VARIABLES.items():
-        assert sweep[name].dims == ("trace", "spiral_angle", "time")
+        assert sweep[name].dims == ("contact_model", "trace", "spiral_angle", "time")
         assert sweep[name].attrs["units"] == units and sweep[name].attrs["long_name"] == long_name
+    for name, source in FULL_RATE_VARIABLES.items():
+        assert sweep[name].dims == ("contact_model", "trace", "spiral_angle", "time_full")
+        assert sweep[name].attrs["units"] == VARIABLES[source][0]
+    sweep = sweep.sel(contact_model="point")
     with xr.open_dataset(runs["sbg35"]) as run:
         np.testing.assert_array_equal(
             sweep.gear_speed.sel(trace="circular", spiral_angle=35.0).values, run.gear_speed.values)
+        np.testing.assert_array_equal(
+            sweep.gear_speed_full.sel(trace="circular", spiral_angle=35.0).values,
+            run.gear_speed_full.values)
         point = sweep.sel(trace="circular", spiral_angle=35.0)
         assert float(point.contact_ratio) == run.attrs["design_contact_ratio"]
         assert float(point.contact_ratio_face) == run.attrs["design_contact_ratio_face"]
@@ -72,6 +90,49 @@ def test_combine_runs_dims_coordinates_and_units(sweep, runs):
     missing = sweep.sel(trace="circular", spiral_angle=30.0)
     assert np.isnan(missing.gear_speed).all() and np.isnan(missing.contact_ratio)
     assert np.isfinite(sweep.gear_speed.sel(trace="logarithmic", spiral_angle=30.0)).all()
+
+
+def test_combine_runs_stacks_contact_models_and_loaded_tcas(runs):
+    combined = study.combine_runs([runs["lsbg35"], runs["lsbg35_line"], runs["sbg35_line"]],
+                                  meshes=[runs["lsbg35_mesh"], runs["sbg35_mesh"]])
+    assert list(combined.contact_model.values) == ["point", "line"]
+    assert np.isnan(combined.gear_speed.sel(contact_model="point", trace="circular")).all()
+    assert np.isfinite(combined.gear_speed.sel(contact_model="line", trace="circular")).all()
+    with xr.open_dataset(runs["sbg35_mesh"]) as mesh:
+        point = combined.sel(trace="circular", spiral_angle=35.0)
+        assert float(point.static_transmission_error_peak_to_peak) == \
+            mesh.attrs["transmission_error_peak_to_peak_urad"]
+        np.testing.assert_array_equal(point.static_transmission_error.values,
+                                      mesh.transmission_error.values)
+        assert combined.mesh_stiffness.dims == ("trace", "spiral_angle", "mesh_phase")
+    with pytest.raises(ValueError, match="lsbg35.nc: design point logarithmic, 35 deg already"):
+        study.combine_runs([runs["lsbg35"]], meshes=[runs["lsbg35_mesh"], runs["lsbg35_mesh"]])
+    with pytest.raises(ValueError, match="lsbg35_pybullet.nc: not a loaded-TCA"):
+        study.combine_runs([runs["lsbg35"]], meshes=[runs["lsbg35"]])
+
+
+def test_full_rate_record_holds_the_output_samples(runs):
+    """The output instants inside the full-rate record are full-rate instants: the
+    values agree, and the sampling phase of the paper's statistic that starts
+    with the output sampling gives its standard deviation."""
+    for name in ("lsbg35", "sbg35_line"):
+        run = study.open_run(runs[name])
+        assert run.attrs["solver_full_rate_hz"] == 50000.0
+        t_full = run.time_full.values
+        assert t_full[0] == pytest.approx(0.01) and t_full[-1] == pytest.approx(0.05)
+        assert np.diff(t_full) == pytest.approx(2e-5)
+        on_grid = np.isin(np.round(run.time.values, 9), np.round(t_full, 9))
+        assert on_grid.sum() == 21
+        for quantity, (variable, _) in study.FULL_RATE_OF.items():
+            if quantity == "tangential_force_outer":
+                continue
+            full = run[variable].values
+            np.testing.assert_allclose(full[::100], run[quantity].values[on_grid], rtol=1e-12)
+            spread = spectra.sampling_phase_spread(study.full_rate_series(run, quantity, 0.01),
+                                                   50000.0, 500.0)
+            assert spread.size == 100
+            assert spread[0] == pytest.approx(study.steady(run, quantity, 0.01).std(ddof=1),
+                                              rel=1e-12)
 
 
 def test_combine_runs_global_attributes(sweep, pybullet_runs):
@@ -110,14 +171,25 @@ def test_combine_runs_rejects_other_time_axes_and_duplicates(runs, tmp_path):
 def test_summary_table_columns_and_values(runs, pybullet_runs):
     table = study.summary_table(pybullet_runs, **WINDOWS)
     assert list(table.columns) == list(study.SUMMARY_COLUMNS) == [
-        "trace", "spiral_angle_deg", "engine", "quantity", "mean", "std", "ad_statistic",
-        "ad_pvalue", "theory", "error_rate_percent", "out_of_control"]
-    assert len(table) == 3 * len(study.QUANTITIES)
+        "trace", "spiral_angle_deg", "contact_model", "engine", "run", "quantity", "mean", "std",
+        "ad_statistic", "ad_pvalue", "theory", "error_rate_percent", "out_of_control",
+        "full_rate_std", "sampling_std_min", "sampling_std_max", "dynamic_factor",
+        "peak_to_peak", "harmonic_1", "harmonic_2", "harmonic_3"]
+    assert len(table) == 3 * len(study.SUMMARY_QUANTITIES)
+    with_theory = table[table.theory.notna()]
+    assert set(table.quantity) - set(with_theory.quantity) == {"transmission_error"}
     np.testing.assert_allclose(
-        table.error_rate_percent, 100 * (table["mean"] - table.theory).abs() / table.theory)
+        with_theory.error_rate_percent,
+        100 * (with_theory["mean"] - with_theory.theory).abs() / with_theory.theory)
+    # the sampled std lies inside its spread over sampling phases
+    assert (table.sampling_std_min <= table["std"] * (1 + 1e-12)).all()
+    assert (table["std"] <= table.sampling_std_max * (1 + 1e-12)).all()
+    torque = table[table.quantity == "contact_torque"]
+    assert (torque.dynamic_factor > 1.0).all() and table.dynamic_factor.notna().sum() == 3
+    assert set(table.run) == {"lsbg35_pybullet", "sbg35_pybullet", "lsbg30_pybullet"}
     with xr.open_dataset(runs["lsbg30"]) as run:
         rows = table[(table.trace == "logarithmic") & (table.spiral_angle_deg == 30.0)]
-        assert list(rows.quantity) == list(study.QUANTITIES)
+        assert list(rows.quantity) == list(study.SUMMARY_QUANTITIES)
         for row in rows.itertuples():
             x = stats.steady_state(run[row.quantity].values, run.time.values, 0.01)
             assert x.size == 20
@@ -132,7 +204,22 @@ def test_summary_table_columns_and_values(runs, pybullet_runs):
     assert theories["gear_speed"] == pytest.approx(float(theory.gear_speed(7703.0, 9, 37)))
     assert theories["tangential_force"] == theories["tangential_force_outer"] == pytest.approx(
         23603.48, abs=0.01)
+    assert theories["contact_torque"] == 1964.99
     assert set(table.engine) == {"pybullet"}
+
+
+def test_summary_table_loaded_tca_rows(runs):
+    table = study.summary_table([runs["sbg35_line"]], meshes=[runs["sbg35_mesh"]], **WINDOWS)
+    mesh_rows = table[table.engine == "ltca"]
+    assert list(mesh_rows.quantity) == ["static_transmission_error", "mesh_stiffness"]
+    with xr.open_dataset(runs["sbg35_mesh"]) as mesh:
+        te = mesh_rows.iloc[0]
+        assert te.peak_to_peak == pytest.approx(np.ptp(mesh.transmission_error.values))
+        assert te.harmonic_1 == mesh.attrs["transmission_error_harmonic_1_urad"]
+        assert te.contact_model == "line" and te.run == "sbg35"
+        assert mesh_rows.iloc[1]["mean"] == pytest.approx(mesh.mesh_stiffness.values.mean())
+    assert mesh_rows.out_of_control.isna().all()
+    assert table[table.engine != "ltca"].contact_model.unique().tolist() == ["line"]
 
 
 def test_summary_table_default_windows_need_a_long_run(runs):
@@ -191,14 +278,15 @@ def test_cli_summary_reads_the_statistics_section(pybullet_runs, tmp_path):
     written = pd.read_csv(out)
     assert list(written.columns) == list(study.SUMMARY_COLUMNS)
     expected = study.summary_table(pybullet_runs, **WINDOWS)
-    pd.testing.assert_frame_equal(written, expected, check_exact=False, rtol=1e-12)
+    pd.testing.assert_frame_equal(written, expected, check_exact=False, rtol=1e-12,
+                                  check_dtype=False)
     assert [p.name for p in out.parent.iterdir()] == ["summary.csv"]
     # options override the configuration
     out2 = tmp_path / "summary2.csv"
     assert cli.main(["summary", "--runs", str(pybullet_runs[0]), "--config", str(config),
                      "--subgroup-size", "4", "--window", "0.018", "0.05",
                      "--out", str(out2)]) == 0
-    assert len(pd.read_csv(out2)) == 3
+    assert len(pd.read_csv(out2)) == len(study.SUMMARY_QUANTITIES)
 
 
 def test_cli_summary_bad_statistics_key_exit_2(pybullet_runs, tmp_path, capsys):

@@ -1,0 +1,173 @@
+"""The lsbg code each workflow stage runs: the inputs that rerun a rule when edited.
+
+Snakemake reruns a job when one of its input files changes, so every rule
+lists the lsbg modules its command runs (:data:`STAGE_MODULES`, written out
+here for a reader to see; :func:`stage_sources` turns them into files). A test
+(tests/test_stages.py) checks each list against the real import graph of the
+stage's entry points (:data:`STAGE_ENTRIES`), imports inside functions
+included, so that a new import cannot be forgotten.
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+#: The lsbg package directory.
+PACKAGE = Path(__file__).resolve().parent
+
+#: Stage -> the lsbg modules (or packages) its command imports, directly or not.
+STAGE_MODULES = {
+    "geometry": ("cli", "design", "geometry", "solids", "export"),
+    "ltca": ("cli", "design", "geometry", "solids", "export", "contact", "dynamics", "ltca",
+             "results", "theory"),
+    "simulate": ("cli", "design", "geometry", "solids", "export", "contact", "dynamics",
+                 "results", "theory"),
+    "convergence": ("cli", "design", "geometry", "solids", "export", "contact", "dynamics",
+                    "results", "theory", "verification"),
+    # study reaches the engines through functions only the reports call
+    "aggregate": ("cli", "design", "geometry", "solids", "export", "contact", "dynamics",
+                  "results", "theory", "stats", "spectra", "study", "verification", "figures"),
+    # the notebooks' imports too (tests/test_stages.py reads them)
+    "report": ("cli", "design", "geometry", "solids", "export", "contact", "dynamics", "results",
+               "theory", "stats", "spectra", "study", "ltca", "reports", "verification",
+               "tables", "figures"),
+}
+
+#: Stage -> where its command starts: the functions of lsbg.cli that handle it
+#: (the test follows their imports and, from there, every import of every
+#: module reached, inside functions too).
+STAGE_ENTRIES = {
+    "geometry": ("run_geometry", "design_from_args", "_read_yaml"),
+    "ltca": ("run_ltca", "contact_from_args", "_read_study_sections", "_read_yaml"),
+    "simulate": ("run_simulate", "simulation_from_args", "contact_from_args",
+                 "_read_study_sections", "_read_yaml"),
+    "convergence": ("run_convergence", "simulation_from_args", "contact_from_args",
+                    "_read_study_sections", "_read_yaml"),
+    "aggregate": ("run_combine", "run_summary", "_read_study_sections", "_read_yaml"),
+    "report": ("run_report",),
+}
+
+
+def module_files(name, package=PACKAGE):
+    """The source files of an lsbg module or subpackage (``"contact"``, ``"dynamics.model"``).
+
+    Returns
+    -------
+    list of pathlib.Path
+        Absolute paths, sorted.
+
+    Raises
+    ------
+    ValueError
+        If there is no such module.
+    """
+    base = package.joinpath(*name.split("."))
+    if base.is_dir():
+        return sorted(base.glob("*.py"))
+    path = base.with_suffix(".py")
+    if not path.is_file():
+        raise ValueError(f"lsbg module {name!r}: no {path.relative_to(package.parent)}")
+    return [path]
+
+
+def stage_sources(stage, root=None):
+    """The lsbg source files of a stage (:data:`STAGE_MODULES`), for rule inputs.
+
+    Parameters
+    ----------
+    stage : str
+        A key of :data:`STAGE_MODULES`.
+    root : str or pathlib.Path, optional
+        Directory the paths are made relative to (default: absolute paths).
+
+    Returns
+    -------
+    list of str
+        ``lsbg/__init__.py`` and the files of the stage's modules.
+    """
+    if stage not in STAGE_MODULES:
+        raise ValueError(f"stage = {stage!r}: must be one of {sorted(STAGE_MODULES)}")
+    files = {PACKAGE / "__init__.py"}
+    for name in STAGE_MODULES[stage]:
+        files.update(module_files(name))
+    if root is None:
+        return sorted(str(f) for f in files)
+    root = Path(root).resolve()
+    return sorted(f.relative_to(root).as_posix() if f.is_relative_to(root) else str(f)
+                  for f in files)
+
+
+def _imports(node, package):
+    """lsbg modules imported anywhere below an AST node (dotted names)."""
+    found = set()
+    for item in ast.walk(node):
+        if isinstance(item, ast.Import):
+            names = [alias.name for alias in item.names]
+        elif isinstance(item, ast.ImportFrom) and item.module and not item.level:
+            names = [item.module] + [f"{item.module}.{alias.name}" for alias in item.names]
+        else:
+            continue
+        for imported in names:
+            parts = imported.split(".")
+            if parts[0] != "lsbg" or len(parts) == 1:
+                continue
+            # the longest prefix that is a module or package of lsbg
+            for end in range(len(parts), 1, -1):
+                base = package.joinpath(*parts[1:end])
+                if base.is_dir() or base.with_suffix(".py").is_file():
+                    found.add(".".join(parts[1:end]))
+                    break
+    return found
+
+
+def imported_modules(name, functions=None, package=PACKAGE):
+    """The lsbg modules a module imports, at module level and inside functions.
+
+    Parameters
+    ----------
+    name : str
+        Dotted module name below lsbg (``"study"``, ``"dynamics.model"``).
+    functions : sequence of str, optional
+        Follow only the module-level statements and these functions.
+    package : pathlib.Path
+
+    Returns
+    -------
+    set of str
+        Dotted names; ``from lsbg import x`` names the module x.
+    """
+    found = set()
+    for path in module_files(name, package):
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        if functions is None:
+            found |= _imports(tree, package)
+            continue
+        for node in tree.body:
+            if isinstance(node, (ast.FunctionDef, ast.ClassDef)):
+                if node.name in functions:
+                    found |= _imports(node, package)
+            else:
+                found |= _imports(node, package)
+    return found
+
+
+def module_closure(names, package=PACKAGE):
+    """Every lsbg module reached from ``names`` by imports, inside functions too."""
+    todo, seen = list(names), set()
+    while todo:
+        name = todo.pop()
+        if name not in seen:
+            seen.add(name)
+            todo.extend(imported_modules(name, package=package))
+    return seen
+
+
+def stage_closure(stage, package=PACKAGE):
+    """Every lsbg module a stage's command can run (dotted names).
+
+    Starts from the stage's functions of lsbg.cli (:data:`STAGE_ENTRIES`) and
+    follows every import of every module reached.
+    """
+    return {"cli"} | module_closure(imported_modules("cli", STAGE_ENTRIES[stage], package),
+                                    package)

@@ -1,0 +1,409 @@
+"""Tables of the line model's verdict: LSBG against SBG, with the model form varied.
+
+Built from run datasets (:mod:`lsbg.results`, opened with
+:func:`lsbg.study.open_run`), loaded TCAs (:mod:`lsbg.ltca`) and the sweep
+dataset (:func:`lsbg.study.combine_runs`); every statistic comes from
+:mod:`lsbg.stats` and :mod:`lsbg.spectra`. Units are the datasets' (deg/s, N,
+µrad, N/µm).
+
+* :func:`mesh_table`: the loaded TCA of both gear types side by side;
+* :func:`fluctuation_table`: full-rate fluctuations with block-bootstrap
+  intervals, the paper's 500-sample statistic beside them, and the ratio
+  SBG/LSBG with its interval;
+* :func:`sampling_luck_table`: the 500-sample std at every sampling phase;
+* :func:`sensitivity_table` and :func:`verdict`: the ratio in every cell of
+  the model-form sensitivity, and a ranking stated only where every cell
+  agrees;
+* :func:`sweep_fluctuation_table` and :func:`trend_table`: the same against
+  spiral angle, and whether a series follows a trend or zig-zags.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+from scipy import stats as sps
+
+from lsbg import spectra, stats
+from lsbg.design import TRACE_LABELS
+from lsbg.study import QUANTITY_LABELS, full_rate_series, steady
+
+#: Gear types in the order of every table: the paper's (a) SBG, (b) LSBG.
+TYPES = ("SBG", "LSBG")
+#: Quantities compared under the line model (full-rate variables exist for them).
+VERDICT_QUANTITIES = ("gear_speed", "tangential_force", "transmission_error")
+
+#: Loaded-TCA figures of :func:`mesh_table`: attribute -> (label, unit).
+MESH_FIGURES = {
+    "transmission_error_peak_to_peak_urad": ("static transmission error, peak to peak", "urad"),
+    "transmission_error_harmonic_1_urad": ("  its 1st mesh harmonic", "urad"),
+    "transmission_error_harmonic_2_urad": ("  its 2nd mesh harmonic", "urad"),
+    "transmission_error_harmonic_3_urad": ("  its 3rd mesh harmonic", "urad"),
+    "transmission_error_mean_urad": ("static transmission error, mean", "urad"),
+    "mesh_stiffness_mean_N_per_um": ("mesh stiffness, mean", "N/um"),
+    "mesh_stiffness_per_face_width_N_per_mm_um": ("  per unit face width (c_gamma)", "N/(mm um)"),
+    "mesh_stiffness_peak_to_peak_N_per_um": ("mesh stiffness, peak to peak", "N/um"),
+    "mesh_stiffness_variation_percent": ("  over its mean", "%"),
+}
+
+
+def _ordered(by_type):
+    return {t: by_type[t] for t in TYPES if t in by_type}
+
+
+def mesh_table(meshes) -> pd.DataFrame:
+    """The loaded TCA of the gear types side by side (smaller is smoother).
+
+    Parameters
+    ----------
+    meshes : dict
+        ``{gear type: loaded-TCA dataset}``.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Rows of :data:`MESH_FIGURES` and the contact length's range; columns
+        ``figure``, ``unit``, one per gear type and ``ratio`` (SBG / LSBG).
+    """
+    meshes = _ordered(meshes)
+    rows = []
+    for attr, (label, unit) in MESH_FIGURES.items():
+        row = {"figure": label, "unit": unit}
+        row.update({t: float(ds.attrs[attr]) for t, ds in meshes.items()})
+        rows.append(row)
+    for label, reduce in (("contact length, least", np.min), ("contact length, most", np.max)):
+        row = {"figure": label, "unit": "mm"}
+        row.update({t: float(reduce(ds["contact_length"].values)) for t, ds in meshes.items()})
+        rows.append(row)
+    table = pd.DataFrame(rows)
+    if set(TYPES) <= set(meshes):
+        table["ratio"] = table["SBG"] / table["LSBG"]
+    return table
+
+
+def _series(ds, quantity, start, full_rate):
+    return full_rate_series(ds, quantity, start) if full_rate else steady(ds, quantity, start)
+
+
+def compare_fluctuation(runs, quantity, start=0.2, full_rate=True, confidence=0.95,
+                        n_boot=2000, seed=0) -> dict:
+    """std(SBG) / std(LSBG) of one quantity, with block-bootstrap intervals.
+
+    Parameters
+    ----------
+    runs : dict
+        ``{'SBG': run, 'LSBG': run}``.
+    quantity : str
+        A key of :data:`lsbg.study.FULL_RATE_OF`.
+    start : float
+        Start of the steady state [s].
+    full_rate : bool
+        The full-rate record (True) or the output samples (the paper's 500 Hz).
+    confidence, n_boot, seed
+        Of the block bootstrap (:func:`lsbg.stats.std_ci`, :func:`lsbg.stats.std_ratio_ci`).
+
+    Returns
+    -------
+    dict
+        ``std_SBG``, ``std_SBG_low``, ``std_SBG_high`` (the same for LSBG),
+        ``ratio``, ``ratio_low``, ``ratio_high`` and ``calmer``: the gear type
+        with the smaller fluctuation where the interval of the ratio excludes
+        1, else ``"neither"``.
+    """
+    series = {t: _series(runs[t], quantity, start, full_rate) for t in TYPES}
+    row = {}
+    for t, x in series.items():
+        ci = stats.std_ci(x, confidence=confidence, n_boot=n_boot, seed=seed)
+        row.update({f"std_{t}": ci.std, f"std_{t}_low": ci.low, f"std_{t}_high": ci.high})
+    ratio = stats.std_ratio_ci(series["SBG"], series["LSBG"], confidence=confidence,
+                               n_boot=n_boot, seed=seed)
+    calmer = "LSBG" if ratio.low > 1.0 else "SBG" if ratio.high < 1.0 else "neither"
+    row.update(ratio=ratio.ratio, ratio_low=ratio.low, ratio_high=ratio.high, calmer=calmer)
+    return row
+
+
+def fluctuation_table(runs, start=0.2, quantities=VERDICT_QUANTITIES, **options) -> pd.DataFrame:
+    """Full-rate fluctuations of SBG and LSBG, the 500-sample statistic beside them.
+
+    Parameters
+    ----------
+    runs : dict
+        ``{'SBG': run, 'LSBG': run}`` of one contact model and engine.
+    start : float
+        Start of the steady state [s].
+    quantities : sequence of str
+    **options
+        Passed to :func:`compare_fluctuation`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Per quantity and sampling ("full rate", "output samples"): the
+        columns of :func:`compare_fluctuation`, plus ``unit`` and, on the
+        full-rate rows, the dynamic factor of each type (contact torque: peak
+        over static).
+    """
+    rows = []
+    for quantity in quantities:
+        unit = runs["SBG"][quantity].attrs.get("units", "")
+        for full_rate, sampling in ((True, "full rate"), (False, "output samples")):
+            row = {"quantity": quantity, "unit": unit, "sampling": sampling}
+            row.update(compare_fluctuation(runs, quantity, start, full_rate, **options))
+            rows.append(row)
+    table = pd.DataFrame(rows)
+    for t in TYPES:
+        torque = full_rate_series(runs[t], "contact_torque", start)
+        table[f"dynamic_factor_{t}"] = spectra.dynamic_factor(
+            torque, float(runs[t].attrs["solver_load_torque_N_m"]))
+    return table
+
+
+def sampling_luck_table(runs, start=0.2, quantities=("gear_speed", "tangential_force")):
+    """The paper's 500-sample std at every sampling phase, against the full rate.
+
+    Parameters
+    ----------
+    runs : dict
+        ``{label: run}`` (e.g. per gear type and contact model).
+    start : float
+        Start of the steady state [s].
+    quantities : sequence of str
+
+    Returns
+    -------
+    pandas.DataFrame
+        Per run and quantity: ``sampled_std`` (the run's own output sampling),
+        ``phase_std_min``, ``phase_std_median``, ``phase_std_max`` over every
+        sampling phase, ``full_rate_std`` and ``spread_percent`` (max − min
+        over the median).
+    """
+    rows = []
+    for label, ds in runs.items():
+        rate = float(ds.attrs["solver_samples"]) / float(ds.attrs["solver_duration_s"])
+        for quantity in quantities:
+            full = full_rate_series(ds, quantity, start)
+            spread = spectra.sampling_phase_spread(full, float(ds.attrs["solver_full_rate_hz"]),
+                                                   rate)
+            median = float(np.median(spread))
+            rows.append({"run": label, "quantity": quantity,
+                         "unit": ds[quantity].attrs.get("units", ""),
+                         "sampled_std": float(steady(ds, quantity, start).std(ddof=1)),
+                         "phase_std_min": float(spread.min()), "phase_std_median": median,
+                         "phase_std_max": float(spread.max()),
+                         "full_rate_std": spectra.rms_fluctuation(full),
+                         "spread_percent": 100 * float(np.ptp(spread)) / median})
+    return pd.DataFrame(rows)
+
+
+def sensitivity_table(cells, start=0.2, quantities=("gear_speed", "tangential_force"),
+                      **options) -> pd.DataFrame:
+    """The ratio SBG/LSBG in every cell of a model-form sensitivity study.
+
+    Parameters
+    ----------
+    cells : sequence of (str, dict, bool)
+        (label, ``{'SBG': run, 'LSBG': run}``, full_rate) per cell; the first
+        cell is the baseline the others are compared with.
+    start : float
+        Start of the steady state [s].
+    quantities : sequence of str
+    **options
+        Passed to :func:`compare_fluctuation`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Per cell and quantity: ``ratio`` with ``ratio_low``/``ratio_high``,
+        ``calmer`` and ``holds``: the cell's interval excludes 1 on the same
+        side as the baseline's (False when the baseline itself names no
+        calmer type).
+    """
+    rows = []
+    baseline = {}
+    for k, (label, runs, full_rate) in enumerate(cells):
+        for quantity in quantities:
+            result = compare_fluctuation(runs, quantity, start, full_rate, **options)
+            if k == 0:
+                baseline[quantity] = result["calmer"]
+            holds = baseline[quantity] != "neither" and result["calmer"] == baseline[quantity]
+            rows.append({"cell": label, "quantity": quantity, "ratio": result["ratio"],
+                         "ratio_low": result["ratio_low"], "ratio_high": result["ratio_high"],
+                         "calmer": result["calmer"], "holds": bool(holds)})
+    return pd.DataFrame(rows)
+
+
+def verdict(sensitivity) -> str:
+    """One paragraph: which type meshes more smoothly, stated only where every cell agrees.
+
+    Parameters
+    ----------
+    sensitivity : pandas.DataFrame
+        From :func:`sensitivity_table`.
+
+    Returns
+    -------
+    str
+        Markdown built from the numbers.
+    """
+    sentences = []
+    for quantity, part in sensitivity.groupby("quantity", sort=False):
+        label = QUANTITY_LABELS.get(quantity, quantity)
+        baseline = part.iloc[0]
+        low, high = part["ratio"].min(), part["ratio"].max()
+        if part["holds"].all():
+            sentences.append(
+                f"**{label}**: the {baseline['calmer']} fluctuates less in every one of the "
+                f"{len(part)} cells (std(SBG)/std(LSBG) {low:.3g}–{high:.3g}, each interval "
+                f"excluding 1): this ranking survives the model form.")
+        elif baseline["calmer"] == "neither":
+            calmer = [f"{row.cell} ({row.calmer} calmer, {row.ratio:.3g})"
+                      for row in part.itertuples() if row.calmer != "neither"]
+            sentences.append(
+                f"**{label}**: in the baseline no type is significantly calmer (ratio "
+                f"{baseline['ratio']:.3g}, interval {baseline['ratio_low']:.3g}–"
+                f"{baseline['ratio_high']:.3g}), so no ranking is stated"
+                + (f"; a type is significantly calmer only in: {', '.join(calmer)}." if calmer
+                   else "; no cell finds a significant difference."))
+        else:
+            failing = ", ".join(
+                f"{row.cell} ({row.ratio:.3g}, "
+                f"{'no significant difference' if row.calmer == 'neither' else row.calmer + ' calmer'})"
+                for row in part.itertuples() if not row.holds)
+            sentences.append(
+                f"**{label}**: the {baseline['calmer']} is calmer in the baseline (ratio "
+                f"{baseline['ratio']:.3g}), but the ranking does not survive the model form: it "
+                f"fails in {failing}.")
+    return " ".join(sentences)
+
+
+# -------------------------------------------------------------------- sweep
+def sweep_fluctuation_table(sweep, start=0.2, quantities=VERDICT_QUANTITIES, confidence=0.95,
+                            n_boot=1000, seed=0) -> pd.DataFrame:
+    """Fluctuations of every design point and contact model of a sweep.
+
+    Parameters
+    ----------
+    sweep : xarray.Dataset
+        From :func:`lsbg.study.combine_runs` (with full-rate variables).
+    start : float
+        Start of the steady state [s].
+    quantities : sequence of str
+    confidence, n_boot, seed
+        Of the block bootstrap.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Per (contact model, gear type, spiral angle): for each quantity the
+        full-rate std with its interval (``<q>_std``, ``_low``, ``_high``) and
+        the std of the output samples (``<q>_sampled_std``); the dynamic
+        factor; and, where the sweep has loaded TCAs, their figures.
+    """
+    rows = []
+    time_full = sweep["time_full"].values
+    keep_full = time_full >= start - 1e-9
+    time = sweep["time"].values
+    for model in sweep["contact_model"].values:
+        for trace in sweep["trace"].values:
+            for angle in sweep["spiral_angle"].values:
+                point = sweep.sel(contact_model=model, trace=trace, spiral_angle=angle)
+                if not np.isfinite(point["gear_speed"].values).all():
+                    continue
+                row = {"contact_model": str(model), "gear_type": TRACE_LABELS.get(str(trace)),
+                       "spiral_angle_deg": float(angle)}
+                for quantity in quantities:
+                    full = point[f"{quantity}_full"].values[keep_full]
+                    ci = stats.std_ci(full, confidence=confidence, n_boot=n_boot, seed=seed)
+                    row.update({f"{quantity}_std": ci.std, f"{quantity}_std_low": ci.low,
+                                f"{quantity}_std_high": ci.high,
+                                f"{quantity}_sampled_std": float(stats.steady_state(
+                                    point[quantity].values, time, start).std(ddof=1))})
+                torque = point["contact_torque_full"].values[keep_full]
+                row["dynamic_factor"] = spectra.dynamic_factor(
+                    torque, float(sweep.attrs.get("solver_load_torque_N_m", np.nan)))
+                for name in ("static_transmission_error_peak_to_peak",
+                             "static_transmission_error_harmonic_1", "mesh_stiffness_variation",
+                             "mesh_stiffness_per_face_width", "contact_ratio"):
+                    if name in sweep:
+                        row[name] = float(sweep[name].sel(trace=trace, spiral_angle=angle))
+                rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def sweep_ratio_table(sweep, contact_model="line", quantities=VERDICT_QUANTITIES, start=0.2,
+                      full_rate=True, **options) -> pd.DataFrame:
+    """std(SBG)/std(LSBG) with its interval at every spiral angle of a sweep.
+
+    Parameters
+    ----------
+    sweep : xarray.Dataset
+        From :func:`lsbg.study.combine_runs`.
+    contact_model : str
+    quantities : sequence of str
+    start : float
+        Start of the steady state [s].
+    full_rate : bool
+        The full-rate record (True) or the output samples.
+    **options
+        Passed to :func:`compare_fluctuation`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Per spiral angle with both types and quantity: ``ratio``,
+        ``ratio_low``, ``ratio_high`` and ``calmer``.
+    """
+    model = sweep.sel(contact_model=contact_model)
+    types = {TRACE_LABELS.get(str(t), str(t)): str(t) for t in model["trace"].values}
+    rows = []
+    for angle in model["spiral_angle"].values:
+        point = {t: model.sel(trace=trace, spiral_angle=angle) for t, trace in types.items()}
+        if not all(t in point and np.isfinite(point[t]["gear_speed"].values).all() for t in TYPES):
+            continue
+        for quantity in quantities:
+            result = compare_fluctuation(point, quantity, start, full_rate, **options)
+            rows.append({"spiral_angle_deg": float(angle), "quantity": quantity,
+                         **{k: result[k] for k in ("ratio", "ratio_low", "ratio_high", "calmer")}})
+    return pd.DataFrame(rows, columns=["spiral_angle_deg", "quantity", "ratio", "ratio_low",
+                                       "ratio_high", "calmer"])
+
+
+def trend_table(table, columns) -> pd.DataFrame:
+    """Does a series follow the spiral angle or zig-zag from one angle to the next?
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        With ``spiral_angle_deg``, ``gear_type`` and optionally
+        ``contact_model`` columns, e.g. from :func:`sweep_fluctuation_table`.
+    columns : sequence of str
+        Columns to judge.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Per (contact model, gear type, column): the number of angles,
+        Spearman's rank correlation with the angle and its p-value, and
+        ``reversals``: how often the change from one angle to the next flips
+        sign, out of ``possible`` (n − 2). A monotone trend has none; a
+        neighbour-to-neighbour zig-zag has about all of them. Groups with
+        fewer than 3 angles are left out.
+    """
+    keys = [k for k in ("contact_model", "gear_type") if k in table.columns]
+    rows = []
+    for group, part in table.groupby(keys, sort=False):
+        part = part.sort_values("spiral_angle_deg")
+        group = group if isinstance(group, tuple) else (group,)
+        if len(part) < 3:  # too few angles to tell a trend from a zig-zag
+            continue
+        for column in columns:
+            if column not in part or part[column].isna().all():
+                continue
+            values = part[column].to_numpy()
+            change = np.sign(np.diff(values))
+            reversals = int(np.sum(change[1:] * change[:-1] < 0))
+            rho, p = sps.spearmanr(part["spiral_angle_deg"], values)
+            rows.append({**dict(zip(keys, group)), "column": column, "angles": len(values),
+                         "spearman_rho": float(rho), "spearman_p": float(p),
+                         "reversals": reversals, "possible": max(len(values) - 2, 0)})
+    return pd.DataFrame(rows)
