@@ -3,11 +3,14 @@
 import re
 
 import pytest
+import xarray as xr
 
 from lsbg import cli, reports, study
+from lsbg.contact import ContactParameters
 from lsbg.design import GearPairDesign
 from lsbg.dynamics import SimulationSettings, load_model, simulate
 from lsbg.export import write_geometry
+from lsbg.ltca import ltca_for_geometry
 from lsbg.results import write_dataset
 from lsbg.verification import convergence_study
 
@@ -19,40 +22,53 @@ STATISTICS = dict(steady_state_after_s=0.01, chart_window_start_s=0.01,
 
 @pytest.fixture(scope="module")
 def study_files(tmp_path_factory):
-    """Geometry, runs (pybullet and scipy), sweep, summary and a convergence table."""
+    """Geometry, runs (both contact models; pybullet, scipy and compiled), loaded TCAs,
+    a sensitivity case, the sweep, the summary and convergence tables."""
     root = tmp_path_factory.mktemp("reports")
-    files = {"root": root, "geometry": {}, "runs": {}}
+    files = {"root": root, "geometry": {}, "runs": {}, "meshes": {}, "sensitivity": []}
+    line = ContactParameters(model="line")
     for trace in ("logarithmic", "circular"):
         geometry = root / "results" / "geometry" / f"{trace}_beta35"
         write_geometry(GearPairDesign(trace=trace), geometry)
         files["geometry"][trace] = geometry
-        for engine in ("pybullet", "scipy"):
-            path = root / "results" / "runs" / f"{trace}_beta35_{engine}.nc"
-            write_dataset(simulate(geometry, SHORT.replace(engine=engine)), path)
-            files["runs"][(trace, engine)] = path
-    pybullet = [files["runs"][(t, "pybullet")] for t in ("logarithmic", "circular")]
+        for model, params in (("point", ContactParameters()), ("line", line)):
+            for engine in ("pybullet", "scipy", "compiled"):
+                path = root / "results" / "runs" / f"{trace}_beta35_{model}_{engine}.nc"
+                write_dataset(simulate(geometry, SHORT.replace(engine=engine), params), path)
+                files["runs"][(trace, model, engine)] = path
+        files["meshes"][trace] = root / "results" / "mesh" / f"{trace}_beta35.nc"
+        write_dataset(ltca_for_geometry(geometry, 1964.99, phases=64), files["meshes"][trace])
+        path = root / "results" / "sensitivity" / f"{trace}_beta35_mesh_damping_ratio_x2.nc"
+        write_dataset(simulate(geometry, SHORT.replace(engine="compiled"),
+                               line.replace(damping_ratio=0.1)), path)
+        files["sensitivity"].append(path)
+    compiled = [files["runs"][(t, m, "compiled")] for t in ("logarithmic", "circular")
+                for m in ("point", "line")]
     files["sweep"] = root / "results" / "sweep.nc"
-    write_dataset(study.combine_runs(pybullet), files["sweep"])
+    write_dataset(study.combine_runs(compiled, meshes=list(files["meshes"].values())),
+                  files["sweep"])
     files["summary"] = root / "results" / "summary.csv"
-    study.summary_table(list(files["runs"].values()), steady_state_after=0.01,
-                        window=(0.01, 0.05), subgroup_size=5).to_csv(files["summary"], index=False)
-    table = convergence_study(load_model(files["geometry"]["logarithmic"]), SHORT,
-                              steady_start=0.01, time_steps=(2e-6, 1e-6),
-                              tolerances=(1e-6, 1e-8))
-    files["convergence"] = root / "results" / "verification" / "convergence_logarithmic.csv"
-    files["convergence"].parent.mkdir(parents=True)
-    table.to_csv(files["convergence"], index=False)
+    study.summary_table([*files["runs"].values(), *files["sensitivity"]], steady_state_after=0.01,
+                        window=(0.01, 0.05), subgroup_size=5,
+                        meshes=list(files["meshes"].values())).to_csv(files["summary"], index=False)
+    files["convergence"] = []
+    for model, params in (("point", ContactParameters()), ("line", line)):
+        table = convergence_study(load_model(files["geometry"]["logarithmic"], params), SHORT,
+                                  steady_start=0.01, time_steps=(2e-6, 1e-6),
+                                  tolerances=(1e-6, 1e-8))
+        path = root / "results" / "verification" / f"convergence_logarithmic_{model}.csv"
+        path.parent.mkdir(parents=True, exist_ok=True)
+        table.to_csv(path, index=False)
+        files["convergence"].append(path)
     return files
 
 
 def paper_parameters(files):
-    runs, geometry = files["runs"], files["geometry"]
-    return {"lsbg_run": runs[("logarithmic", "pybullet")],
-            "sbg_run": runs[("circular", "pybullet")],
-            "lsbg_reference_run": runs[("logarithmic", "scipy")],
-            "sbg_reference_run": runs[("circular", "scipy")],
-            "lsbg_geometry": geometry["logarithmic"], "sbg_geometry": geometry["circular"],
-            "summary_file": files["summary"], **STATISTICS}
+    return {"runs": list(files["runs"].values()), "sensitivity_runs": files["sensitivity"],
+            "mesh_files": list(files["meshes"].values()),
+            "geometry_dirs": [files["geometry"][t] for t in ("logarithmic", "circular")],
+            "summary_file": files["summary"], "paper_engine": "pybullet",
+            "sensitivity_engine": "compiled", **STATISTICS}
 
 
 def check_html(path, headings, images, code_snippets):
@@ -82,18 +98,29 @@ def test_paper_report(study_files, tmp_path):
         out, ["Logarithmic against conventional", "1. The design", "2. Input", "3. The gear",
               "4. The tangential contact force", "5. Normality", "6. Histograms",
               "7. Xbar-R control charts", "8. Simulated means", "9. The paper", "10. Which gear",
-              "11. Agreement", "12. The workflow", "13. Conclusion"],
-        # pair picture, Fig. 8, 9-10, 11, 12, 13, 14, 15 (2), 16, 17 (2), 18 (2)
-        images=14, code_snippets=["study.open_pair", "import numpy", "rep = Report()"])
-    assert html.count("<b>Figure ") + html.count("<strong>Figure ") == 12
+              "11. Agreement", "12. What the paper", "13. The line model",
+              "14. Dynamics under the line model", "15. Model-form sensitivity",
+              "16. The workflow", "17. Conclusion"],
+        # pair picture, Fig. 8, 9-10, 11, 12, 13, 14, 15 (2), 16, 17 (2), 18 (2); sampling
+        # luck, spectrum, full-rate stretch; TE and stiffness, load sharing, contact
+        # pattern; two spectra, full-rate stretch; sensitivity
+        images=24, code_snippets=["study.select_runs", "import numpy", "rep = Report()"])
+    assert html.count("<b>Figure ") + html.count("<strong>Figure ") == 22
     # numbers are computed from the runs
-    runs = study.open_pair(study_files["runs"][("circular", "pybullet")],
-                           study_files["runs"][("logarithmic", "pybullet")])
+    runs = study.open_pair(study_files["runs"][("circular", "point", "pybullet")],
+                           study_files["runs"][("logarithmic", "point", "pybullet")])
     sbg_std = study.steady(runs["SBG"], "gear_speed", 0.01).std(ddof=1)
     assert f"{sbg_std:.4g} deg/s (SBG)" in html
     assert "1283.8 rpm" in html and "24799.9" in html
-    assert "the engines agree within 3 %" in html or "do NOT agree" in html
+    assert "the engines agree within 3 %" in html or "do NOT all agree" in html
     assert "<table" in html and "lsbg 0.1.0" in html
+    # the line model's verdict: the loaded TCA and the sensitivity cells
+    with xr.open_dataset(study_files["meshes"]["circular"]) as mesh:
+        pp = mesh.attrs["transmission_error_peak_to_peak_urad"]
+    assert f"{pp:.4g} µrad (SBG)" in html
+    for cell in ("line model (baseline)", "point model", "damping ratio ×2", "500-Hz sampling"):
+        assert cell in html
+    assert "survives the model form" in html or "no ranking is stated" in html
 
 
 def test_sweep_report(study_files, tmp_path):
@@ -101,11 +128,12 @@ def test_sweep_report(study_files, tmp_path):
     reports.render_report("sweep", out, {"sweep_file": study_files["sweep"],
                                          "summary_file": study_files["summary"],
                                          "steady_state_after_s": 0.01})
-    html = check_html(out, ["Spiral-angle sweep", "1. Fluctuation", "2. Which type",
-                            "3. Table of the design points", "4. Steady-state statistics",
-                            "5. Conclusion"],
-                      images=2, code_snippets=["study.sweep_table", "import xarray"])
-    assert "std(SBG)/std(LSBG)" in html and "too few for a trend" in html
+    html = check_html(out, ["Spiral-angle sweep", "1. Loaded tooth contact",
+                            "2. Fluctuations against", "3. Which type",
+                            "4. Table of the design points", "5. Conclusion"],
+                      # loaded TCA, fluctuations, ratios
+                      images=3, code_snippets=["tables.sweep_fluctuation_table", "import xarray"])
+    assert "std(SBG)/std(LSBG)" in html and "static_transmission_error_peak_to_peak" in html
 
 
 def test_verification_report_via_cli_with_relative_paths(study_files, monkeypatch, capsys):
@@ -113,27 +141,33 @@ def test_verification_report_via_cli_with_relative_paths(study_files, monkeypatc
     monkeypatch.chdir(root)
     relative = {key: path.relative_to(root) for key, path in study_files["runs"].items()}
     geometry = [study_files["geometry"][t].relative_to(root) for t in ("logarithmic", "circular")]
-    convergence = study_files["convergence"].relative_to(root)
+    convergence = [path.relative_to(root) for path in study_files["convergence"]]
+    meshes = [path.relative_to(root) for path in study_files["meshes"].values()]
     code = cli.main(["report", "verification", "--out", "reports/verification.html",
-                     "--param", f"convergence_files=[{convergence}]",
+                     "--param", f"convergence_files=[{', '.join(map(str, convergence))}]",
                      f"geometry_dirs=[{', '.join(map(str, geometry))}]",
                      f"runs=[{', '.join(map(str, relative.values()))}]",
+                     f"mesh_files=[{', '.join(map(str, meshes))}]",
                      "--param", "steady_state_after_s=0.01"])
     assert code == 0, capsys.readouterr().err
     html = check_html(root / "reports" / "verification.html",
-                      ["Verification", "1. Convergence", "2. The two engines",
+                      ["Verification", "1. Convergence", "2. The engines",
                        "3. Geometry checks", "3.1 Spiral angle", "3.2 Normal pressure angle",
-                       "3.3 Conjugacy", "4. Summary of the checks"],
-                      # convergence, engine agreement, spiral angle, pressure angle, conjugacy
-                      images=5, code_snippets=["study.conjugacy_errors(read_design"])
+                       "3.3 Conjugacy", "4. The loaded tooth contact analysis",
+                       "5. Summary of the checks"],
+                      # convergence (two models), engine agreement, spiral angle, pressure
+                      # angle, conjugacy
+                      images=6, code_snippets=["study.conjugacy_errors(read_design"])
     assert "PASS: LSBG spiral angle constant along the face" in html
     assert "PASS: flanks conjugate" in html
+    assert "PASS: no transmission error without load" in html
+    assert "PASS: loaded TCA linear in load" in html
     assert str(root / "results" / "runs") in html  # paths were made absolute
 
 
 def test_failing_notebook_raises_and_writes_nothing(study_files, tmp_path):
     out = tmp_path / "paper.html"
-    parameters = {**paper_parameters(study_files), "lsbg_run": tmp_path / "missing.nc"}
+    parameters = {**paper_parameters(study_files), "mesh_files": [tmp_path / "missing.nc"]}
     with pytest.raises(reports.ReportError, match=r"paper.ipynb failed in cell .*"
                                                    r"FileNotFoundError: .*missing.nc"):
         reports.render_report("paper", out, parameters)
@@ -152,11 +186,12 @@ def test_bad_report_input_exit_2(tmp_path, capsys):
 
 def test_notebooks_declare_the_interface_parameters():
     expected = {
-        "paper": {"lsbg_run", "sbg_run", "lsbg_reference_run", "sbg_reference_run",
-                  "lsbg_geometry", "sbg_geometry", "summary_file", "steady_state_after_s",
+        "paper": {"runs", "sensitivity_runs", "mesh_files", "geometry_dirs", "summary_file",
+                  "paper_engine", "sensitivity_engine", "steady_state_after_s",
                   "chart_window_start_s", "chart_window_stop_s", "subgroup_size"},
         "sweep": {"sweep_file", "summary_file", "steady_state_after_s"},
-        "verification": {"convergence_files", "geometry_dirs", "runs", "steady_state_after_s"},
+        "verification": {"convergence_files", "geometry_dirs", "runs", "mesh_files",
+                         "steady_state_after_s"},
     }
     import nbformat
 

@@ -27,16 +27,11 @@ REPO = Path(__file__).resolve().parents[1]
 SNAKEFILE = REPO / "Snakefile"
 TEST_CONFIG = "workflow/config-test.yaml"
 
-# The lsbg files each stage must list as inputs (besides what they import).
-STAGE_FILES = {
-    "geometry": {"__init__.py", "design.py", "geometry.py", "solids.py", "export.py", "cli.py"},
-}
-STAGE_FILES["simulate"] = STAGE_FILES["geometry"] | {"contact.py", "dynamics.py", "results.py",
-                                                      "theory.py"}
-STAGE_FILES["convergence"] = STAGE_FILES["simulate"] | {"verification.py"}
-STAGE_FILES["combine"] = STAGE_FILES["summary"] = {"study.py", "stats.py", "results.py", "cli.py"}
-for _name in ("report_paper", "report_sweep", "report_verification"):
-    STAGE_FILES[_name] = {"reports.py", "study.py", "stats.py", "cli.py"}
+# Rule -> the stage of lsbg.stages whose source files it lists as inputs.
+RULE_STAGES = {"geometry": "geometry", "ltca": "ltca", "simulate": "simulate",
+               "sensitivity": "simulate", "convergence": "convergence", "combine": "aggregate",
+               "summary": "aggregate", "report_paper": "report", "report_sweep": "report",
+               "report_verification": "report"}
 
 
 def snakemake(*args, cwd, env=None, check=None):
@@ -100,6 +95,21 @@ BAD_CONFIGS = {
     "no reference engine": ({"engines": {"sweep": "pybullet", "reference": []}},
                             "engines.reference"),
     "impossible design": ({"design": {"face_width_mm": 60}}, "face_width"),
+    # The line model and the sensitivity study.
+    "one slice": ({"contact": {"slices": 1}}, "contact.slices"),
+    "negative stiffness": ({"contact": {"line_stiffness_N_per_mm_um": -5}},
+                           "contact.line_stiffness_N_per_mm_um"),
+    "negative damping ratio": ({"contact": {"mesh_damping_ratio": -0.05}},
+                               "contact.mesh_damping_ratio"),
+    "unknown contact model": ({"contact": {"model": "surface"}}, "contact.model"),
+    "unknown sweep model": ({"sweep": {"contact_models": ["line", "spline"]}},
+                            "sweep.contact_models[1]"),
+    "sensitivity that halves the slices below 2": (
+        {"contact": {"slices": 2}, "sensitivity": {"slices": [0.5]}}, "sensitivity.slices[0]"),
+    "paper engine not run": ({"engines": {"sweep": "compiled", "reference": ["scipy"],
+                                          "paper": "pybullet"}}, "engines.paper"),
+    "full rate that does not divide the sampling": ({"simulation": {"full_rate_hz": 33333}},
+                                                    "simulation.full_rate_hz"),
 }
 
 
@@ -121,11 +131,16 @@ def test_default_and_test_configs_are_valid_and_plan_the_study(tmp_path):
     jobs = planned_jobs(proc.output)
     config = yaml.safe_load((REPO / "workflow" / "config.yaml").read_text(encoding="utf-8"))
     points = len(config["sweep"]["traces"]) * len(config["sweep"]["spiral_angles_deg"])
-    reference = 2 * len(config["engines"]["reference"])  # both traces at the paper's point
-    assert rules_of(jobs).count("geometry") == points
-    assert rules_of(jobs).count("simulate") == points + reference
-    for rule in ("design_file", "convergence", "combine", "summary", "report_paper",
-                 "report_sweep", "report_verification", "all"):
+    models = len(config["sweep"]["contact_models"])
+    # both traces and both models at the paper's point with every reference engine
+    reference = 2 * 2 * len(config["engines"]["reference"])
+    cases = sum(len(factors) for factors in config["sensitivity"].values())
+    assert rules_of(jobs).count("geometry") == rules_of(jobs).count("ltca") == points
+    assert rules_of(jobs).count("simulate") == points * models + reference
+    assert rules_of(jobs).count("sensitivity") == 2 * cases
+    assert rules_of(jobs).count("convergence") == 4  # both traces, both models
+    for rule in ("design_file", "combine", "summary", "report_paper", "report_sweep",
+                 "report_verification", "all"):
         assert rule in rules_of(jobs)
     # The settings lsbg reads, as validated (schema defaults filled in).
     written = yaml.safe_load((tmp_path / "results" / "config.yaml").read_text(encoding="utf-8"))
@@ -137,10 +152,13 @@ def test_rules_list_the_lsbg_files_they_run(tmp_path):
     proc = snakemake("-n", "--snakefile", SNAKEFILE, "--configfile", REPO / TEST_CONFIG,
                      cwd=tmp_path, check=True)
     inputs = job_inputs(proc.output)
-    for rule, files in STAGE_FILES.items():
-        listed = {Path(f).name for f in inputs[rule] if Path(f).parent.name == "lsbg"}
-        assert files <= listed, f"{rule}: missing {sorted(files - listed)}"
-    assert "verification.py" not in {Path(f).name for f in inputs["geometry"]}
+    from lsbg.stages import stage_sources
+
+    for rule, stage in RULE_STAGES.items():
+        listed = {f for f in inputs[rule] if "/lsbg/" in f or f.startswith("lsbg/")}
+        expected = set(stage_sources(stage, root=tmp_path))
+        assert listed == expected, f"{rule}: {sorted(listed ^ expected)}"
+    assert not any(f.endswith("verification.py") for f in inputs["geometry"])
     for name in ("paper", "sweep", "verification"):
         assert any(f.endswith(f"workflow/notebooks/{name}.ipynb")
                    for f in inputs[f"report_{name}"])
@@ -203,7 +221,9 @@ def dry_run(study, *configfiles):
 def test_study_writes_the_sweep_dataset_with_units(study):
     root, _ = study
     with xr.open_dataset(root / "results" / "sweep.nc") as ds:
-        assert set(ds.dims) == {"trace", "spiral_angle", "time"}
+        assert set(ds.dims) == {"contact_model", "trace", "spiral_angle", "time", "time_full",
+                                "mesh_phase"}
+        assert list(ds.contact_model.values) == ["point", "line"]
         assert list(ds.trace.values) == ["logarithmic", "circular"]
         assert list(ds.spiral_angle.values) == [35.0]
         assert ds["gear_speed"].attrs["units"] == "deg/s"
@@ -211,21 +231,28 @@ def test_study_writes_the_sweep_dataset_with_units(study):
         assert ds["tangential_force"].attrs["units"] == "N"
         assert ds["tangential_force_outer"].attrs["units"] == "N"
         assert ds.attrs["Conventions"].startswith("CF-")
-        assert ds.attrs["solver_engine"] == "pybullet"
+        assert ds.attrs["solver_engine"] == "compiled"
         assert ds.sizes["time"] == 26  # samples 25 -> 26 instants
+        assert ds.sizes["time_full"] == 2001  # 50 kHz from 0.01 s to 0.05 s
+        assert ds["static_transmission_error_peak_to_peak"].attrs["units"] == "urad"
+        assert ds.sizes["mesh_phase"] >= 200
 
 
 @pytest.mark.slow
 def test_study_writes_the_summary_table(study):
     root, _ = study
     table = pd.read_csv(root / "results" / "summary.csv")
-    assert list(table.columns) == ["trace", "spiral_angle_deg", "engine", "quantity", "mean",
-                                   "std", "ad_statistic", "ad_pvalue", "theory",
-                                   "error_rate_percent", "out_of_control"]
-    runs = table.groupby(["trace", "spiral_angle_deg", "engine"]).size()
-    assert len(runs) == 4  # two traces x (pybullet, scipy) at 35 deg
+    from lsbg.study import SUMMARY_COLUMNS
+
+    assert list(table.columns) == list(SUMMARY_COLUMNS)
+    runs = table[table.engine != "ltca"].groupby("run").size()
+    # two traces x two models x (compiled, pybullet, scipy), two sensitivity runs
+    assert len(runs) == 14
     speed = table[table.quantity == "gear_speed"]
     assert (abs(speed["mean"] - 1873.703) / 1873.703 < 0.02).all()
+    mesh = table[table.engine == "ltca"]
+    assert sorted(mesh.quantity) == ["mesh_stiffness"] * 2 + ["static_transmission_error"] * 2
+    assert mesh[mesh.quantity == "static_transmission_error"].harmonic_1.notna().all()
 
 
 @pytest.mark.slow
@@ -244,7 +271,8 @@ def test_study_renders_the_reports(study, name):
 def test_study_keeps_the_logs_and_the_validated_settings(study):
     root, _ = study
     assert (root / "logs" / "geometry" / "logarithmic_beta35.log").read_text().strip()
-    assert "lsbg.dynamics" in (root / "logs" / "simulate" / "circular_beta35_scipy.log").read_text()
+    assert "lsbg.dynamics" in (root / "logs" / "simulate"
+                               / "circular_beta35_line_scipy.log").read_text()
     settings = yaml.safe_load((root / "results" / "config.yaml").read_text(encoding="utf-8"))
     assert settings["simulation"]["duration_s"] == 0.05
     assert settings["statistics"]["subgroup_size"] == 5
@@ -261,37 +289,49 @@ def test_after_the_run_there_is_nothing_to_do(study):
 def test_a_new_spiral_angle_runs_only_its_points_and_the_aggregates(study, tmp_path):
     extra = write_yaml(tmp_path / "more.yaml", {"sweep": {"spiral_angles_deg": [35, 40]}})
     jobs, output = dry_run(study, extra)
-    assert rules_of(jobs) == sorted(["geometry", "geometry", "simulate", "simulate", "combine",
-                                     "summary", "report_paper", "report_sweep", "all"]), output
-    new = {out for rule, out in jobs if rule in ("geometry", "simulate")}
+    assert rules_of(jobs) == sorted(["geometry"] * 2 + ["ltca"] * 2 + ["simulate"] * 4
+                                    + ["combine", "summary", "report_paper", "report_sweep",
+                                       "all"]), output
+    new = {out for rule, out in jobs if rule in ("geometry", "ltca", "simulate")}
     assert new == {"results/geometry/logarithmic_beta40", "results/geometry/circular_beta40",
-                   "results/runs/logarithmic_beta40_pybullet.nc",
-                   "results/runs/circular_beta40_pybullet.nc"}
+                   "results/mesh/logarithmic_beta40.nc", "results/mesh/circular_beta40.nc",
+                   *(f"results/runs/{t}_beta40_{m}_compiled.nc" for t in ("logarithmic", "circular")
+                     for m in ("point", "line"))}
 
 
 @pytest.mark.slow
 def test_a_changed_setting_reruns_only_the_runs_that_use_it(study, tmp_path):
-    """The params trigger: the scipy tolerance concerns the scipy runs and convergence only."""
-    extra = write_yaml(tmp_path / "rtol.yaml", {"simulation": {"rtol": 1e-9}})
+    """The params trigger: the time step concerns the pybullet runs and convergence only, a
+    line-model setting the line-model runs and loaded TCAs only."""
+    extra = write_yaml(tmp_path / "dt.yaml", {"simulation": {"time_step_s": 2e-6}})
     jobs, output = dry_run(study, extra)
-    assert rules_of(jobs) == sorted(["simulate", "simulate", "convergence", "convergence",
-                                     "summary", "report_paper", "report_sweep",
-                                     "report_verification", "all"]), output
+    assert rules_of(jobs) == sorted(["simulate"] * 4 + ["convergence"] * 4
+                                    + ["summary", "report_paper", "report_sweep",
+                                       "report_verification", "all"]), output
     assert {out for rule, out in jobs if rule == "simulate"} == {
-        "results/runs/logarithmic_beta35_scipy.nc", "results/runs/circular_beta35_scipy.nc"}
+        f"results/runs/{t}_beta35_{m}_pybullet.nc" for t in ("logarithmic", "circular")
+        for m in ("point", "line")}
+    extra = write_yaml(tmp_path / "line.yaml", {"contact": {"mesh_damping_ratio": 0.07}})
+    jobs, output = dry_run(study, extra)
+    assert rules_of(jobs) == sorted(["ltca"] * 2 + ["simulate"] * 6 + ["sensitivity"] * 2
+                                    + ["convergence"] * 2
+                                    + ["combine", "summary", "report_paper", "report_sweep",
+                                       "report_verification", "all"]), output
+    assert all("_line_" in out for rule, out in jobs if rule == "simulate")
     # Statistics settings rerun the statistics, not the simulations.
     extra = write_yaml(tmp_path / "stats.yaml", {"statistics": {"subgroup_size": 4}})
     jobs, output = dry_run(study, extra)
     assert rules_of(jobs) == sorted(["summary", "report_paper", "report_sweep", "all"]), output
 
 
+_AGGREGATES = ["combine", "summary", "report_paper", "report_sweep", "report_verification",
+               "all"]
 CODE_CHANGES = {
-    "lsbg/verification.py": ["convergence", "convergence", "report_verification", "all"],
-    "lsbg/stats.py": ["combine", "summary", "report_paper", "report_sweep",
-                      "report_verification", "all"],
-    "lsbg/solids.py": ["geometry"] * 2 + ["simulate"] * 4 + ["convergence"] * 2
-                      + ["combine", "summary", "report_paper", "report_sweep",
-                         "report_verification", "all"],
+    "lsbg/verification.py": ["convergence"] * 4 + _AGGREGATES,
+    "lsbg/stats.py": _AGGREGATES,
+    "lsbg/ltca.py": ["ltca"] * 2 + _AGGREGATES,
+    "lsbg/solids.py": ["geometry"] * 2 + ["ltca"] * 2 + ["simulate"] * 12 + ["sensitivity"] * 2
+                      + ["convergence"] * 4 + _AGGREGATES,
     "workflow/notebooks/sweep.ipynb": ["report_sweep", "all"],
 }
 
@@ -324,7 +364,7 @@ def test_report_of_the_provenance(study):
     proc = snakemake("--report", "provenance.html", "--configfile", TEST_CONFIG, cwd=root,
                      env=env, check=True)
     html = (root / "provenance.html").read_text(encoding="utf-8")
-    for item in ("summary.csv", "paper.html", "convergence_circular.csv", "pair.png"):
+    for item in ("summary.csv", "paper.html", "convergence_circular_line.csv", "pair.png"):
         assert item in html, item
     assert "Report created" in proc.output
 
@@ -346,7 +386,7 @@ def test_load_sweep_extension_adds_only_its_jobs_and_runs(study, tmp_path):
     # Eq. 13 with the swept torque: F = 2 T / d2, d2 = 37 * 4.5 mm.
     assert force["theory"].tolist() == pytest.approx([2 * 1000 / 0.1665] * 2)
     with xr.open_dataset(root / "results" / "extensions" / "load_sweep" / "runs"
-                         / "circular_beta35_pybullet_T1500.nc") as ds:
+                         / "circular_beta35_point_compiled_T1500.nc") as ds:
         assert float(ds.attrs["solver_load_torque_N_m"]) == pytest.approx(1500)
     assert not dry_run(study, extra)[0]
     # Without the extension's config the study is unchanged.

@@ -6,18 +6,20 @@
 #     torques_N_m: [1000, 1964.99, 3000]
 #     traces: [logarithmic, circular]     # default: both
 #     engine: pybullet                    # default: engines.sweep
+#     contact_model: line                 # default: point
 #
 # The paper's design point (its geometry comes from the study's `geometry`
 # rule) is simulated at every torque, each run by `lsbg simulate --load-torque`;
 # one `lsbg summary` per torque tabulates its runs (the summary has no
 # load-torque column, the file name carries it). Outputs:
-#   results/extensions/load_sweep/runs/{trace}_beta{spiral}_{engine}_T{torque}.nc
+#   results/extensions/load_sweep/runs/{trace}_beta{spiral}_{model}_{engine}_T{torque}.nc
 #   results/extensions/load_sweep/summary_T{torque}.csv
 
 LOAD_SWEEP = config["load_sweep"]
 LOAD_ENGINE = LOAD_SWEEP.get("engine", SWEEP_ENGINE)
+LOAD_MODEL = LOAD_SWEEP.get("contact_model", "point")
 LOAD_TORQUES = [angle_label(torque) for torque in LOAD_SWEEP["torques_N_m"]]
-LOAD_RUN = "results/extensions/load_sweep/runs/{trace}_beta{spiral}_{engine}_T{torque}.nc"
+LOAD_RUN = "results/extensions/load_sweep/runs/{trace}_beta{spiral}_{model}_{engine}_T{torque}.nc"
 LOAD_SUMMARY = "results/extensions/load_sweep/summary_T{torque}.csv"
 
 EXTENSION_TARGETS.extend(LOAD_SUMMARY.format(torque=torque) for torque in LOAD_TORQUES)
@@ -31,11 +33,11 @@ rule load_sweep_simulate:
     output:
         LOAD_RUN,
     params:
-        settings=lambda wildcards: simulation_params(wildcards.engine),
+        settings=lambda wildcards: simulation_params(wildcards.engine, wildcards.model),
     wildcard_constraints:
         torque=WILDCARDS["spiral"],
     log:
-        "logs/load_sweep_simulate/{trace}_beta{spiral}_{engine}_T{torque}.log",
+        "logs/load_sweep_simulate/{trace}_beta{spiral}_{model}_{engine}_T{torque}.log",
     threads: 1
     resources:
         mem_mb=1000,
@@ -44,14 +46,15 @@ rule load_sweep_simulate:
         CONDA_ENV
     shell:
         "lsbg -v simulate --geometry {input.geometry} --engine {wildcards.engine}"
-        " --config {input.config} --load-torque {wildcards.torque} --out {output} > {log} 2>&1"
+        " --contact-model {wildcards.model} --config {input.config}"
+        " --load-torque {wildcards.torque} --out {output} > {log} 2>&1"
 
 
 rule load_sweep_summary:
     input:
         runs=lambda wildcards: [
-            LOAD_RUN.format(trace=trace, spiral=PAPER_SPIRAL, engine=LOAD_ENGINE,
-                            torque=wildcards.torque)
+            LOAD_RUN.format(trace=trace, spiral=PAPER_SPIRAL, model=LOAD_MODEL,
+                            engine=LOAD_ENGINE, torque=wildcards.torque)
             for trace in LOAD_SWEEP["traces"]
         ],
         config=ancient(STUDY_CONFIG),

@@ -4,6 +4,7 @@
 rule combine:
     input:
         runs=SWEEP_RUNS,
+        meshes=MESHES,
         sources=sources("aggregate"),
     output:
         SWEEP_FILE,
@@ -16,12 +17,13 @@ rule combine:
     conda:
         CONDA_ENV
     shell:
-        "lsbg -v combine --runs {input.runs} --out {output} > {log} 2>&1"
+        "lsbg -v combine --runs {input.runs} --meshes {input.meshes} --out {output} > {log} 2>&1"
 
 
 rule summary:
     input:
-        runs=ALL_RUNS,
+        runs=ALL_RUNS + SENSITIVITY_RUNS,
+        meshes=MESHES,
         config=ancient(STUDY_CONFIG),
         sources=sources("aggregate"),
     output:
@@ -38,4 +40,5 @@ rule summary:
     conda:
         CONDA_ENV
     shell:
-        "lsbg -v summary --runs {input.runs} --config {input.config} --out {output} > {log} 2>&1"
+        "lsbg -v summary --runs {input.runs} --meshes {input.meshes} --config {input.config}"
+        " --out {output} > {log} 2>&1"

@@ -14,8 +14,6 @@ reports/ are written); the repository's own files (lsbg/*.py, the notebooks)
 are found next to the top-level Snakefile, see :func:`repo_path`.
 """
 
-import ast
-import json
 import math
 import os
 from pathlib import Path
@@ -53,6 +51,23 @@ def repo_path(relative):
 def angle_label(value):
     """Wildcard text of an angle or a torque: 35 -> "35", 37.5 -> "37.5" (no exponent)."""
     return f"{float(value):.6f}".rstrip("0").rstrip(".")
+
+
+def sensitivity_contact(contact, key, factor):
+    """The line model's contact setting of a sensitivity case: ``key`` scaled by ``factor``."""
+    value = contact[key] * factor
+    return {key: int(round(value)) if key == "slices" else value}
+
+
+def sensitivity_case(key, factor):
+    """Name of a sensitivity case, e.g. ``mesh_damping_ratio_x0.5``."""
+    return f"{key}_x{angle_label(factor)}"
+
+
+def sensitivity_option(case):
+    """``lsbg simulate`` options of a sensitivity case (its changed contact setting)."""
+    changed = sensitivity_contact(config["contact"], *SENSITIVITY[case])
+    return " ".join(f"--set-contact {key}={value!r}" for key, value in changed.items())
 
 
 # ------------------------------------------------------------- configuration
@@ -104,6 +119,9 @@ def study_problems(config):
     if not set(reference) - {sweep_engine}:
         problems.append(f"engines.reference = {reference!r}: needs an engine other than "
                         f"engines.sweep = {sweep_engine!r} (the paper report compares them)")
+    if config["engines"]["paper"] not in {sweep_engine, *reference}:
+        problems.append(f"engines.paper = {config['engines']['paper']!r}: must be engines.sweep "
+                        f"or one of engines.reference {reference!r}")
     for engine in sorted({sweep_engine, *reference}):
         try:
             SimulationSettings.from_config(config["simulation"], engine=engine)
@@ -113,6 +131,13 @@ def study_problems(config):
         ContactParameters.from_config(config["contact"])
     except ValueError as error:
         problems.append(str(error))
+    for key, factors in config["sensitivity"].items():
+        for k, factor in enumerate(factors):
+            try:
+                ContactParameters.from_config({**config["contact"], "model": "line",
+                                               **sensitivity_contact(config["contact"], key, factor)})
+            except ValueError as error:
+                problems.append(f"sensitivity.{key}[{k}] = {factor!r}: {error}")
     duration = config["simulation"]["duration_s"]
     steady = config["statistics"]["steady_state_after_s"]
     if steady >= duration:
@@ -195,29 +220,47 @@ def write_study_config(path, only_if_missing=False):
     part.replace(path)
 
 
-#: Simulation keys that only one engine reads.
-ENGINE_ONLY_KEYS = {"pybullet": ("time_step_s",), "scipy": ("method", "rtol")}
+#: Simulation keys that only some engines read.
+ENGINE_ONLY_KEYS = {"time_step_s": ("pybullet",), "method": ("scipy",),
+                    "compiled_method": ("compiled",), "rtol": ("scipy", "compiled")}
+#: Contact keys that only one model reads (model itself: the rules name it).
+MODEL_ONLY_KEYS = {
+    "point": ("stiffness_N_per_mm1_5", "exponent", "damping_N_s_per_mm", "penetration_depth_mm"),
+    "line": ("line_stiffness_N_per_mm_um", "mesh_damping_ratio", "slices",
+             "line_approach_limit_mm"),
+}
 
 
-def simulation_params(engine):
-    """The simulation and contact settings that a run of ``engine`` depends on."""
-    others = {key for name, keys in ENGINE_ONLY_KEYS.items() if name != engine for key in keys}
-    simulation = {k: v for k, v in config["simulation"].items() if k not in others}
-    return canonical({"simulation": simulation, "contact": config["contact"]})
+def simulation_params(engine, model):
+    """The simulation and contact settings that a run of ``engine`` and ``model`` depends on."""
+    simulation = {k: v for k, v in config["simulation"].items()
+                  if engine in ENGINE_ONLY_KEYS.get(k, (engine,))}
+    others = {key for name, keys in MODEL_ONLY_KEYS.items() if name != model for key in keys}
+    contact = {k: v for k, v in config["contact"].items() if k not in others and k != "model"}
+    return canonical({"simulation": simulation, "contact": contact})
+
 
 
 # ------------------------------------------------------ design points, files
 TRACES = list(config["sweep"]["traces"])
 SPIRALS = [angle_label(a) for a in config["sweep"]["spiral_angles_deg"]]
+SWEEP_MODELS = list(config["sweep"]["contact_models"])
 PAPER_SPIRAL = angle_label(config["paper_spiral_angle_deg"])
 SWEEP_ENGINE = config["engines"]["sweep"]
 REFERENCE_ENGINES = [e for e in config["engines"]["reference"] if e != SWEEP_ENGINE]
 PAPER_ENGINES = [SWEEP_ENGINE, *REFERENCE_ENGINES]
+PAPER_ENGINE = config["engines"]["paper"]
+CONTACT_MODELS = ("point", "line")
+#: Sensitivity case -> (contact key, factor).
+SENSITIVITY = {sensitivity_case(key, factor): (key, factor)
+               for key, factors in config["sensitivity"].items() for factor in factors}
 
 WILDCARDS = {
     "trace": "|".join(PAPER_TRACES),
     "spiral": r"\d+(\.\d+)?",
-    "engine": "pybullet|scipy",
+    "engine": "pybullet|scipy|compiled",
+    "model": "point|line",
+    "case": "|".join(SENSITIVITY) or "none",
 }
 
 
@@ -228,8 +271,10 @@ wildcard_constraints:
 DESIGN_FILE = "results/design.yaml"
 STUDY_CONFIG = "results/config.yaml"
 GEOMETRY = "results/geometry/{trace}_beta{spiral}"
-RUN = "results/runs/{trace}_beta{spiral}_{engine}.nc"
-CONVERGENCE = "results/verification/convergence_{trace}.csv"
+MESH = "results/mesh/{trace}_beta{spiral}.nc"
+RUN = "results/runs/{trace}_beta{spiral}_{model}_{engine}.nc"
+SENSITIVITY_RUN = "results/sensitivity/{trace}_beta{spiral}_{case}.nc"
+CONVERGENCE = "results/verification/convergence_{trace}_{model}.csv"
 SWEEP_FILE = "results/sweep.nc"
 SUMMARY_FILE = "results/summary.csv"
 REPORT = "reports/{name}.html"
@@ -241,17 +286,32 @@ def geometry_dir(trace, spiral):
     return GEOMETRY.format(trace=trace, spiral=spiral)
 
 
-def run_file(trace, spiral, engine):
-    return RUN.format(trace=trace, spiral=spiral, engine=engine)
+def mesh_file(trace, spiral):
+    return MESH.format(trace=trace, spiral=spiral)
 
 
-#: Runs of the sweep: every trace at every spiral angle, with the sweep engine.
-SWEEP_RUNS = [run_file(t, s, SWEEP_ENGINE) for t in TRACES for s in SPIRALS]
-#: Runs at the paper's design point: both traces, every engine.
-PAPER_RUNS = [run_file(t, PAPER_SPIRAL, e) for e in PAPER_ENGINES for t in PAPER_TRACES]
+def run_file(trace, spiral, model, engine):
+    return RUN.format(trace=trace, spiral=spiral, model=model, engine=engine)
+
+
+def sensitivity_file(trace, spiral, case):
+    return SENSITIVITY_RUN.format(trace=trace, spiral=spiral, case=case)
+
+
+#: Runs of the sweep: every trace at every spiral angle, every sweep model, the sweep engine.
+SWEEP_RUNS = [run_file(t, s, m, SWEEP_ENGINE) for m in SWEEP_MODELS for t in TRACES for s in SPIRALS]
+#: Runs at the paper's design point: both traces, both models, every engine.
+PAPER_RUNS = [run_file(t, PAPER_SPIRAL, m, e) for m in CONTACT_MODELS for e in PAPER_ENGINES
+              for t in PAPER_TRACES]
 ALL_RUNS = list(dict.fromkeys(SWEEP_RUNS + PAPER_RUNS))
+#: Loaded TCAs: every design point of the sweep and the paper's.
+MESHES = list(dict.fromkeys([mesh_file(t, s) for t in TRACES for s in SPIRALS]
+                            + [mesh_file(t, PAPER_SPIRAL) for t in PAPER_TRACES]))
+SENSITIVITY_RUNS = [sensitivity_file(t, PAPER_SPIRAL, case) for case in SENSITIVITY
+                    for t in PAPER_TRACES]
 PAPER_GEOMETRY = [geometry_dir(t, PAPER_SPIRAL) for t in PAPER_TRACES]
-CONVERGENCE_FILES = [CONVERGENCE.format(trace=t) for t in PAPER_TRACES]
+CONVERGENCE_FILES = [CONVERGENCE.format(trace=t, model=m) for m in CONTACT_MODELS
+                     for t in PAPER_TRACES]
 REPORTS = {name: REPORT.format(name=name) for name in REPORT_NAMES}
 
 #: Targets of ``rule all``; an extension appends its own (see workflow/extensions).
@@ -265,76 +325,11 @@ def yaml_list(items):
 
 
 # ---------------------------------------------------------- lsbg per stage
-def _lsbg_imports(tree, top_level_only=True):
-    """Names of the lsbg modules imported in the syntax ``tree``."""
-    found = set()
-    for node in tree.body if top_level_only else ast.walk(tree):
-        if isinstance(node, ast.Import):
-            names = [alias.name for alias in node.names]
-        elif isinstance(node, ast.ImportFrom) and node.module and not node.level:
-            names = [node.module] + [f"{node.module}.{alias.name}" for alias in node.names]
-        else:
-            continue
-        for parts in (imported.split(".") for imported in names):
-            if parts[0] == "lsbg":
-                found.add("__init__")
-                if len(parts) > 1 and (LSBG / f"{parts[1]}.py").exists():
-                    found.add(parts[1])
-    return found
-
-
-def lsbg_sources(*names):
-    """The lsbg/*.py files of a stage: cli, the modules ``names`` and what they import.
-
-    Imports at module level are followed transitively; imports inside
-    functions are not (cli.py imports every command's modules in its handler,
-    study.py imports for functions that only the reports call): the modules a
-    command loads that way are named in :data:`STAGE_MODULES`.
-    """
-    missing = [name for name in names if not (LSBG / f"{name}.py").exists()]
-    if missing:
-        raise WorkflowError(f"lsbg modules not found in {LSBG}: {', '.join(missing)}")
-    todo, seen = ["cli", *names], set()
-    while todo:
-        name = todo.pop()
-        if name not in seen:
-            seen.add(name)
-            todo.extend(_lsbg_imports(ast.parse((LSBG / f"{name}.py").read_text(encoding="utf-8"))))
-    return [repo_path(f"lsbg/{name}.py") for name in sorted(seen)]
-
-
-def notebook_imports(name):
-    """lsbg modules that the code cells of report notebook ``name`` import."""
-    with open(REPO / "workflow" / "notebooks" / f"{name}.ipynb", encoding="utf-8") as handle:
-        cells = json.load(handle)["cells"]
-    found = set()
-    for cell in cells:
-        if cell["cell_type"] == "code":
-            code = "".join(cell["source"])
-            code = "\n".join(line for line in code.splitlines()
-                             if not line.lstrip().startswith(("%", "!")))  # IPython magics
-            found |= _lsbg_imports(ast.parse(code), top_level_only=False)
-    return sorted(found)
-
-
-#: lsbg modules each stage's command runs (lsbg_sources adds their imports).
-STAGE_MODULES = {
-    "geometry": ("export",),
-    "simulate": ("dynamics", "export", "results"),
-    "convergence": ("dynamics", "export", "results", "verification"),
-    "aggregate": ("study", "stats", "results"),
-    "report": ("reports", "study", "stats"),
-}
-
-
 def sources(stage):
-    """Inputs of the rules of ``stage``: the lsbg files it runs."""
-    return lsbg_sources(*STAGE_MODULES[stage])
+    """Inputs of the rules of ``stage``: the lsbg files it runs (lsbg.stages.STAGE_MODULES)."""
+    from lsbg.stages import stage_sources
 
-
-def report_sources(name):
-    """Inputs of report ``name``: the stage's lsbg files and those its notebook imports."""
-    return lsbg_sources(*STAGE_MODULES["report"], *notebook_imports(name))
+    return stage_sources(stage, root=os.getcwd())
 
 
 def notebook(name):
@@ -342,13 +337,13 @@ def notebook(name):
 
 
 def check_installed_lsbg():
-    """Warn if the ``lsbg`` that the rules run is not the one whose files are tracked."""
+    """Warn if the ``lsbg`` that the rules run is not the one next to this Snakefile."""
     import lsbg
 
     installed = Path(lsbg.__file__).resolve().parent
     if installed != LSBG:
-        logger.warning(f"lsbg is imported from {installed}, but the workflow tracks the sources "
-                       f"in {LSBG}: code changes there rerun jobs, the jobs run {installed}.")
+        logger.warning(f"lsbg is imported from {installed}, not from {LSBG}: the rules run "
+                       f"and track the sources there.")
 
 
 check_installed_lsbg()
@@ -358,9 +353,9 @@ check_installed_lsbg()
 def simulation_runtime(runs=1):
     """Cluster time limit [min] of ``runs`` simulations (generous, at least 10 min).
 
-    Measured (tests/benchmarks/bench_study.py): 1 s simulated takes 15-24 s of
-    wall time with PyBullet at 1 µs steps, 12-14 s with scipy at rtol 1e-8; a
-    convergence study (6 runs) about 70 s. Budgeted: 100 s per simulated
-    second and run.
+    Measured (tests/benchmarks/bench_dynamics.py): 1 s simulated takes about
+    9 s of wall time with PyBullet at 1 µs steps, 3-9 s with scipy at rtol
+    1e-8 and about 1 s with the compiled engine. Budgeted: 100 s per
+    simulated second and run.
     """
     return max(10, math.ceil(runs * config["simulation"]["duration_s"] * 100 / 60))

@@ -6,19 +6,23 @@
 rule report_paper:
     input:
         notebook=notebook("paper"),
-        lsbg_run=run_file("logarithmic", PAPER_SPIRAL, SWEEP_ENGINE),
-        sbg_run=run_file("circular", PAPER_SPIRAL, SWEEP_ENGINE),
-        lsbg_reference_run=run_file("logarithmic", PAPER_SPIRAL, REFERENCE_ENGINES[0]),
-        sbg_reference_run=run_file("circular", PAPER_SPIRAL, REFERENCE_ENGINES[0]),
-        lsbg_geometry=geometry_dir("logarithmic", PAPER_SPIRAL),
-        sbg_geometry=geometry_dir("circular", PAPER_SPIRAL),
+        runs=PAPER_RUNS,
+        sensitivity=SENSITIVITY_RUNS,
+        meshes=[mesh_file(t, PAPER_SPIRAL) for t in PAPER_TRACES],
+        geometry=PAPER_GEOMETRY,
         summary=SUMMARY_FILE,
-        sources=report_sources("paper"),
+        sources=sources("report"),
     output:
         report(REPORTS["paper"], caption="../report/reports.rst", category="Reports",
                labels={"report": "paper"}),
     params:
         notebook_dir=lambda wildcards, input: os.path.dirname(input.notebook),
+        runs=lambda wildcards, input: yaml_list(input.runs),
+        sensitivity=lambda wildcards, input: yaml_list(input.sensitivity),
+        meshes=lambda wildcards, input: yaml_list(input.meshes),
+        geometry=lambda wildcards, input: yaml_list(input.geometry),
+        paper_engine=PAPER_ENGINE,
+        sensitivity_engine=SWEEP_ENGINE,
         steady_state_after=config["statistics"]["steady_state_after_s"],
         window_start=config["statistics"]["control_chart_window_s"][0],
         window_stop=config["statistics"]["control_chart_window_s"][1],
@@ -33,11 +37,11 @@ rule report_paper:
         CONDA_ENV
     shell:
         "lsbg -v report paper --notebook-dir {params.notebook_dir} --out {output}"
-        " --param lsbg_run={input.lsbg_run} --param sbg_run={input.sbg_run}"
-        " --param lsbg_reference_run={input.lsbg_reference_run}"
-        " --param sbg_reference_run={input.sbg_reference_run}"
-        " --param lsbg_geometry={input.lsbg_geometry} --param sbg_geometry={input.sbg_geometry}"
+        " --param 'runs={params.runs}' --param 'sensitivity_runs={params.sensitivity}'"
+        " --param 'mesh_files={params.meshes}' --param 'geometry_dirs={params.geometry}'"
         " --param summary_file={input.summary}"
+        " --param paper_engine={params.paper_engine}"
+        " --param sensitivity_engine={params.sensitivity_engine}"
         " --param steady_state_after_s={params.steady_state_after}"
         " --param chart_window_start_s={params.window_start}"
         " --param chart_window_stop_s={params.window_stop}"
@@ -49,7 +53,7 @@ rule report_sweep:
         notebook=notebook("sweep"),
         sweep=SWEEP_FILE,
         summary=SUMMARY_FILE,
-        sources=report_sources("sweep"),
+        sources=sources("report"),
     output:
         report(REPORTS["sweep"], caption="../report/reports.rst", category="Reports",
                labels={"report": "sweep"}),
@@ -76,7 +80,8 @@ rule report_verification:
         convergence=CONVERGENCE_FILES,
         geometry=PAPER_GEOMETRY,
         runs=PAPER_RUNS,
-        sources=report_sources("verification"),
+        meshes=[mesh_file(t, PAPER_SPIRAL) for t in PAPER_TRACES],
+        sources=sources("report"),
     output:
         report(REPORTS["verification"], caption="../report/reports.rst", category="Reports",
                labels={"report": "verification"}),
@@ -85,6 +90,7 @@ rule report_verification:
         convergence=lambda wildcards, input: yaml_list(input.convergence),
         geometry=lambda wildcards, input: yaml_list(input.geometry),
         runs=lambda wildcards, input: yaml_list(input.runs),
+        meshes=lambda wildcards, input: yaml_list(input.meshes),
         steady_state_after=config["statistics"]["steady_state_after_s"],
     log:
         "logs/report_verification/verification.log",
@@ -98,4 +104,5 @@ rule report_verification:
         "lsbg -v report verification --notebook-dir {params.notebook_dir} --out {output}"
         " --param 'convergence_files={params.convergence}'"
         " --param 'geometry_dirs={params.geometry}' --param 'runs={params.runs}'"
+        " --param 'mesh_files={params.meshes}'"
         " --param steady_state_after_s={params.steady_state_after} > {log} 2>&1"
