@@ -10,7 +10,8 @@ leaves nothing half-written. The files:
     every derived quantity (:meth:`GearPairDesign.derived`) and measurements
     on the exact flanks and solids. Keys carry their unit as a suffix
     (``_mm``, ``_deg``, ``_kg``, ``_kg_m2``); values are plain numbers,
-    strings or lists. :func:`read_design` reads the design back exactly.
+    strings or lists. :func:`lsbg.files.read_design` reads the design back
+    exactly.
 ``flanks.nc``
     Points and outward normals of tooth 0's flanks, both members and sides,
     on a (cone distance, polar angle) grid (CF-1.11).
@@ -39,21 +40,15 @@ import numpy as np
 
 import lsbg
 from lsbg import solids
-from lsbg.design import CONFIG_KEYS, GearPairDesign
+from lsbg.design import GearPairDesign
+from lsbg.files import FILE_NAMES, read_design
 from lsbg.geometry import MEMBER_NAMES, MEMBERS, SIDES, GearPair
 
 __all__ = ["GeometryFiles", "write_geometry", "read_design", "design_record",
-           "flank_dataset", "FILE_NAMES", "STAGES"]
+           "flank_dataset", "FILE_NAMES", "STAGES"]  # read_design, FILE_NAMES: lsbg.files
 
 log = logging.getLogger(__name__)
 
-#: File names inside a geometry directory.
-FILE_NAMES = {
-    "design": "design.json", "flanks": "flanks.nc",
-    "pinion_stl": "pinion.stl", "gear_stl": "gear.stl",
-    "pinion_obj": "pinion.obj", "gear_obj": "gear.obj",
-    "urdf": "pair.urdf", "picture": "pair.png",
-}
 #: Timed stages of :func:`write_geometry`, in order.
 STAGES = ("surfaces", "meshes", "mass_properties", "urdf", "picture")
 
@@ -83,27 +78,6 @@ class GeometryFiles:
 
 
 # ------------------------------------------------------------------ design
-def read_design(geometry_dir) -> GearPairDesign:
-    """The design written by :func:`write_geometry` into ``geometry_dir``.
-
-    Parameters
-    ----------
-    geometry_dir : str or os.PathLike
-        Directory holding ``design.json`` (or the file itself).
-
-    Returns
-    -------
-    GearPairDesign
-        Equal to the design that was written.
-    """
-    path = Path(geometry_dir)
-    if path.is_dir():
-        path = path / FILE_NAMES["design"]
-    with open(path, encoding="utf-8") as handle:
-        record = json.load(handle)
-    return GearPairDesign.from_config({key: record[key] for key in CONFIG_KEYS if key in record})
-
-
 def _plain(value):
     """numpy scalars and arrays as plain Python numbers and lists."""
     if isinstance(value, np.ndarray):

@@ -337,7 +337,7 @@ def ltca_for_geometry(geometry_dir, load_torque, contact_params=None, phases=PHA
     -------
     xarray.Dataset
     """
-    from lsbg.export import read_design
+    from lsbg.files import read_design
     from lsbg.geometry import GearPair
 
     params = (contact_params or ContactParameters()).replace(model="line")

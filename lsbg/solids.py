@@ -921,8 +921,10 @@ def write_urdf(path, pair, props, mesh_files):
 def render_pair(path, pair, meshes, size=(900, 700)):
     """PNG picture of the assembled pair (both gears at rotation 0).
 
-    Rendered by matplotlib: flat-shaded triangles (Lambert with an ambient
-    part), drawn back to front.
+    An orthographic view drawn by matplotlib as flat 2-D polygons:
+    flat-shaded triangles (Lambert with an ambient part) facing the viewer,
+    projected on the view plane and drawn back to front (a 2-D collection
+    draws about three times faster than matplotlib's 3-D one).
 
     Parameters
     ----------
@@ -941,50 +943,45 @@ def render_pair(path, pair, meshes, size=(900, 700)):
     """
     # Agg canvas without pyplot: no global backend switch, no GUI.
     from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.collections import PolyCollection
     from matplotlib.figure import Figure
-    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
     d = pair.design
     # Look at the gear's tooth face (from its apex side, against a2), a little
     # towards the heel and from above the axial plane, so the pinion shows in mesh.
     view = -0.9 * pair.axis[2] + 0.3 * pair.pitch_dir + np.array([0.0, 0.0, 0.55])
     view /= np.linalg.norm(view)
+    right = np.cross([0.0, 0.0, 1.0], view)
+    right /= np.linalg.norm(right)
+    up = np.cross(view, right)
     light = np.array([0.3, 0.6, 0.75])
     light /= np.linalg.norm(light)
-    fig = Figure(figsize=(size[0] / 100, size[1] / 100), dpi=100)
-    FigureCanvasAgg(fig)
-    ax = fig.add_subplot(projection="3d", computed_zorder=False)
     colours = {1: np.array([0.85, 0.50, 0.22]), 2: np.array([0.55, 0.62, 0.75])}
-    polys, shades = [], []
+    polys, shades, depths = [], [], []
     for member in MEMBERS:
         mesh = meshes[member]
-        tri = 1e3 * mesh.triangles
         normals = mesh.face_normals
         facing = normals @ view > 0   # back faces are hidden by the solid anyway
+        tri = 1e3 * mesh.triangles[facing]
         lambert = np.clip(normals[facing] @ light, 0.0, 1.0)
-        shade = (0.35 + 0.65 * lambert)[:, None] * colours[member]
-        polys.append(tri[facing])
-        shades.append(shade)
-    polys = np.concatenate(polys)
-    shades = np.concatenate(shades)
-    # Painter's order along the view direction.
-    order = np.argsort(polys.mean(axis=1) @ view)
-    collection = Poly3DCollection(polys[order], facecolors=shades[order], edgecolors="none",
-                                  linewidths=0, antialiased=False)
-    ax.add_collection3d(collection)
-    corner = 1e3 * np.concatenate([meshes[m].bounds for m in MEMBERS])
-    lo, hi = corner.min(axis=0), corner.max(axis=0)
-    centre, half = (lo + hi) / 2, (hi - lo).max() / 2
-    for setter, c in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), centre):
-        setter(c - half, c + half)
-    ax.set_box_aspect((1, 1, 1), zoom=1.45)
-    elev = math.degrees(math.asin(view[2]))
-    azim = math.degrees(math.atan2(view[1], view[0]))
-    ax.view_init(elev=elev, azim=azim, vertical_axis="z")
+        shades.append((0.35 + 0.65 * lambert)[:, None] * colours[member])
+        polys.append(np.stack([tri @ right, tri @ up], axis=-1))
+        depths.append(tri.mean(axis=1) @ view)
+    polys, shades = np.concatenate(polys), np.concatenate(shades)
+    order = np.argsort(np.concatenate(depths))  # painter's order: far first
+    fig = Figure(figsize=(size[0] / 100, size[1] / 100), dpi=100)
+    FigureCanvasAgg(fig)
+    ax = fig.add_axes((0.02, 0.02, 0.96, 0.9))
+    ax.add_collection(PolyCollection(polys[order], facecolors=shades[order], edgecolors="none",
+                                     linewidths=0, antialiased=False))
+    flat = polys.reshape(-1, 2)
+    lo, hi = flat.min(axis=0), flat.max(axis=0)
+    ax.set_xlim(lo[0], hi[0])
+    ax.set_ylim(lo[1], hi[1])
+    ax.set_aspect("equal")
     ax.set_axis_off()
     trace = "LSBG (logarithmic spiral)" if d.trace == "logarithmic" else "SBG (circular arc)"
-    ax.set_title(f"{trace}, spiral angle {math.degrees(d.spiral_angle):g}°, "
+    fig.suptitle(f"{trace}, spiral angle {math.degrees(d.spiral_angle):g}°, "
                  f"{d.pinion_teeth}:{d.gear_teeth}, m = {1e3 * d.module:g} mm")
-    fig.tight_layout()
     fig.savefig(os.fspath(path), dpi=100)
     return os.fspath(path)

@@ -18,20 +18,20 @@ PACKAGE = Path(__file__).resolve().parent
 
 #: Stage -> the lsbg modules (or packages) its command imports, directly or not.
 STAGE_MODULES = {
-    "geometry": ("cli", "design", "geometry", "solids", "export"),
-    "ltca": ("cli", "design", "geometry", "solids", "export", "contact", "dynamics", "ltca",
-             "results", "theory"),
-    "simulate": ("cli", "design", "geometry", "solids", "export", "contact", "dynamics",
-                 "results", "theory"),
-    "convergence": ("cli", "design", "geometry", "solids", "export", "contact", "dynamics",
-                    "results", "theory", "verification"),
+    "geometry": ("cli", "design", "files", "geometry", "solids", "export"),
+    "ltca": ("cli", "design", "files", "geometry", "contact", "dynamics", "ltca", "results",
+             "theory"),
+    "simulate": ("cli", "design", "files", "geometry", "contact", "dynamics", "results",
+                 "theory"),
+    "convergence": ("cli", "design", "files", "geometry", "contact", "dynamics", "results",
+                    "theory", "verification"),
     # study reaches the engines through functions only the reports call
-    "aggregate": ("cli", "design", "geometry", "solids", "export", "contact", "dynamics",
-                  "results", "theory", "stats", "spectra", "study", "verification", "figures"),
+    "aggregate": ("cli", "design", "files", "geometry", "contact", "dynamics", "results",
+                  "theory", "stats", "spectra", "study", "verification", "figures"),
     # the notebooks' imports too (tests/test_stages.py reads them)
-    "report": ("cli", "design", "geometry", "solids", "export", "contact", "dynamics", "results",
-               "theory", "stats", "spectra", "study", "ltca", "reports", "verification",
-               "tables", "figures"),
+    "report": ("cli", "design", "files", "geometry", "contact", "dynamics", "results", "theory",
+               "stats", "spectra", "study", "ltca", "reports", "verification", "tables",
+               "figures"),
 }
 
 #: Stage -> where its command starts: the functions of lsbg.cli that handle it

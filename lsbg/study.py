@@ -40,6 +40,7 @@ import lsbg
 from lsbg import stats
 from lsbg.contact.law import CONTACT_MODELS
 from lsbg.design import TRACE_LABELS, TRACES
+from lsbg.files import read_record
 from lsbg.figures.base import TYPE_COLORS, new_figure, type_color
 from lsbg.results import FULL_RATE_VARIABLES, VARIABLES
 
@@ -49,7 +50,7 @@ __all__ = [
     "full_rate_series", "mesh_summary", "open_mesh",
     "open_run", "open_runs", "open_pair", "select_runs", "gear_type", "steady", "as_path_list",
     "combine_runs", "statistics_options", "quantity_summary", "summary_table",
-    "read_geometry_record", "design_table", "theory_table", "paper_comparison_table",
+    "design_table", "theory_table", "paper_comparison_table",
     "compare_types", "fluctuation_table", "fluctuation_conclusion", "engine_agreement",
     "contact_resonance", "control_charts",
     "plot_pair_pictures", "plot_time_series", "plot_steady_scatter", "plot_normality",
@@ -775,32 +776,14 @@ def summary_table(paths, steady_state_after=0.2, window=(0.8, 1.0),
 
 
 # ------------------------------------------------------- the paper's report
-def read_geometry_record(geometry_dir) -> dict:
-    """The ``design.json`` record of a geometry directory.
-
-    Raises
-    ------
-    FileNotFoundError
-        Naming the directory if it holds no ``design.json``.
-    """
-    path = Path(geometry_dir)
-    if path.is_dir():
-        path = path / "design.json"
-    if not path.is_file():
-        raise FileNotFoundError(f"{geometry_dir}: no design.json (not a geometry directory "
-                                f"of 'lsbg geometry')")
-    with open(path, encoding="utf-8") as handle:
-        return json.load(handle)
-
-
 def _by_type_records(geometry_dirs):
     """{gear type: design.json record} in the paper's order."""
     if isinstance(geometry_dirs, dict):
-        records = {label: read_geometry_record(d) for label, d in geometry_dirs.items()}
+        records = {label: read_record(d) for label, d in geometry_dirs.items()}
     else:
         records = {}
         for d in as_path_list(geometry_dirs):
-            record = read_geometry_record(d)
+            record = read_record(d)
             label = TRACE_LABELS.get(record["trace"], record["trace"])
             records[label] = record
     order = [t for t in _TYPE_ORDER if t in records] + [t for t in records
@@ -1201,7 +1184,7 @@ def plot_pair_pictures(geometry_dirs) -> Figure:
     if isinstance(geometry_dirs, dict):
         dirs = {label: as_path_list(d)[0] for label, d in geometry_dirs.items()}
     else:
-        dirs = {TRACE_LABELS.get(read_geometry_record(d)["trace"], str(d)): d
+        dirs = {TRACE_LABELS.get(read_record(d)["trace"], str(d)): d
                 for d in as_path_list(geometry_dirs)}
     order = [t for t in _TYPE_ORDER if t in dirs] + [t for t in dirs if t not in _TYPE_ORDER]
     fig, axes = new_figure(1, len(order), width=4.8, height=4.0)
@@ -1210,7 +1193,7 @@ def plot_pair_pictures(geometry_dirs) -> Figure:
         if not picture.is_file():
             raise FileNotFoundError(f"{dirs[label]}: no pair.png")
         ax.imshow(imread(picture))
-        ax.set_title(f"{label} ({read_geometry_record(dirs[label])['trace']} trace)")
+        ax.set_title(f"{label} ({read_record(dirs[label])['trace']} trace)")
         ax.set_axis_off()
     return fig
 
