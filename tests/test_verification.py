@@ -33,8 +33,15 @@ def test_convergence_table_has_every_setting(model):
 
 
 def test_step_cost_breakdown(model):
-    costs = pybullet_step_costs(model, SHORT, n=500)
-    assert set(costs) == {"joint_states", "contact_kernel", "apply_torque", "step_simulation",
-                          "floor", "engine_step", "engine_over_floor"}
+    costs = pybullet_step_costs(model, SHORT, n=2000, repeats=3)
+    assert set(costs) == {"joint_states", "contact_kernel", "apply_torque", "motor_target",
+                          "step_simulation", "floor_steady", "floor_ramp", "floor",
+                          "engine_step", "ramp_share", "engine_over_floor"}
     assert all(v > 0 for v in costs.values())
-    assert costs["engine_over_floor"] == pytest.approx(costs["engine_step"] / costs["floor"])
+    assert costs["ramp_share"] == pytest.approx(SHORT.ramp_time / SHORT.duration)
+    # the floor is made of the parts: a step's calls cost at least their sum
+    assert costs["floor_steady"] > 0.9 * (costs["joint_states"] + costs["apply_torque"]
+                                          + costs["step_simulation"])
+    assert costs["floor_ramp"] > costs["floor_steady"] - 0.5 * costs["motor_target"]
+    # the engine does the floor's calls and a kernel call more
+    assert 0.9 < costs["engine_over_floor"] < 5.0

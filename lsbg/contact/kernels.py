@@ -146,7 +146,7 @@ def _point_side(side, eps, eps_rate, sign, phase, w1, w2, params, sides, table, 
             pairs += 1
         if x > deepest:
             deepest = x
-        if count < details.shape[0]:
+        if details is not None and count < details.shape[0]:
             row = details[count]
             row[D_SIDE], row[D_PHASE], row[D_LEVER] = side, here, lever
             row[D_PENETRATION], row[D_RATE], row[D_NORMAL] = x, xdot, force
@@ -217,7 +217,7 @@ def _line_side(side, eps, eps_rate, sign, phase, w1, w2, params, sides, table, d
             if x > pair_deepest:
                 pair_deepest, pair_lever, pair_rate = x, lever, xdot
             load = line_load_scalar(x, xdot, stiffness, damping)
-            if count < slices.shape[0]:
+            if slices is not None and count < slices.shape[0]:
                 slices[count, j] = load
             if load <= 0.0:
                 continue
@@ -270,7 +270,7 @@ def _line_side(side, eps, eps_rate, sign, phase, w1, w2, params, sides, table, d
             pairs += 1
         if pair_deepest > deepest:
             deepest = pair_deepest
-        if count < details.shape[0]:
+        if details is not None and count < details.shape[0]:
             row = details[count]
             weight = 1.0 / pair_normal if pair_normal > 0.0 else 0.0
             row[D_SIDE], row[D_PHASE], row[D_LEVER] = side, here, pair_lever
@@ -360,11 +360,19 @@ def mesh_forces(phi1, phi2, w1, w2, params, sides, table):
     pairs : int
         Tooth pairs carrying load [-].
     """
-    # Empty detail arrays: nothing is written (numba freezes global arrays
-    # read-only, so they are made here; a 0-size array costs a few ns).
-    g, p, x, t, n, k, _ = _mesh(phi1, phi2, w1, w2, params, sides, table,
-                                np.empty((0, N_DETAILS)), np.empty((0, 0)))
+    # No detail arrays: numba compiles the writes out of this specialisation.
+    g, p, x, t, n, k, _ = _mesh(phi1, phi2, w1, w2, params, sides, table, None, None)
     return g, p, x, t, n, k
+
+
+@njit(cache=True)
+def gear_torque(phi1, phi2, w1, w2, params, sides, table):
+    """The contact torque on the gear only [N m]: the PyBullet engine's step.
+
+    Parameters and units as :func:`mesh_forces`; returning one float keeps the
+    call from Python cheap.
+    """
+    return _mesh(phi1, phi2, w1, w2, params, sides, table, None, None)[0]
 
 
 @njit(cache=True)

@@ -149,6 +149,39 @@ class MeshingModel:
                 f"{settings.runaway_factor:g} x the theoretical "
                 f"{math.degrees(limit / settings.runaway_factor):.6g} deg/s")
 
+    def check_states(self, settings, times, phi1, phi2, w1, w2):
+        """:meth:`check_state` at many states, at once.
+
+        Parameters
+        ----------
+        settings : SimulationSettings
+        times : numpy.ndarray
+            Instants of the states [s].
+        phi1, phi2, w1, w2 : array_like
+            Pinion and gear rotation [rad] and speed [rad/s].
+
+        Returns
+        -------
+        arrays : list of numpy.ndarray
+            ``phi1, phi2, w1, w2`` as contiguous float arrays.
+        mesh : numpy.ndarray, shape (n, 6)
+            :func:`lsbg.contact.kernels.mesh_series` at the states.
+
+        Raises
+        ------
+        SimulationError
+            At the first bad state.
+        """
+        arrays = [np.ascontiguousarray(a, dtype=float) for a in (phi1, phi2, w1, w2)]
+        mesh = kernels.mesh_series(*arrays, *self.contact.arrays)
+        deepest = mesh[:, 2]
+        bad = ~(np.isfinite(arrays[3]) & np.isfinite(deepest)) | (deepest > self.penetration_limit) \
+            | (np.abs(arrays[3]) > self.speed_limit(settings))
+        if bad.any():
+            i = int(np.argmax(bad))
+            self.check_state(times[i], arrays[3][i], deepest[i], settings)
+        return arrays, mesh
+
     def initial_gear_angle(self, settings):
         """Gear rotation at which the drive flanks carry the load at rest [rad]."""
         return self.contact.static_gear_angle(settings.load_torque)
@@ -189,14 +222,8 @@ class MeshingModel:
             At the first instant with a non-finite state, a penetration
             beyond the law's limit or a runaway speed.
         """
-        arrays = [np.ascontiguousarray(a, dtype=float) for a in (phi1, phi2, w1, w2)]
-        out = kernels.mesh_series(*arrays, *self.contact.arrays)
+        arrays, out = self.check_states(settings, times, phi1, phi2, w1, w2)
         deepest = out[:, 2]
-        bad = ~(np.isfinite(arrays[3]) & np.isfinite(deepest)) | (deepest > self.penetration_limit) \
-            | (np.abs(arrays[3]) > self.speed_limit(settings))
-        if bad.any():
-            i = int(np.argmax(bad))
-            self.check_state(times[i], arrays[3][i], deepest[i], settings)
         series = Series(np.asarray(times, dtype=float), *arrays, out[:, 0], out[:, 1], out[:, 3],
                         out[:, 4], out[:, 5].astype(np.int32), np.maximum(deepest, 0.0))
         _, _, is_sample = settings.record_grid()
@@ -233,14 +260,13 @@ def load_model(geometry_dir, contact_params=None) -> MeshingModel:
     -------
     MeshingModel
     """
-    import json
     from pathlib import Path
 
-    from lsbg.export import FILE_NAMES, read_design
+    from lsbg.files import FILE_NAMES, read_design, read_record
     from lsbg.geometry import GearPair
 
     geometry_dir = Path(geometry_dir)
-    record = json.loads((geometry_dir / FILE_NAMES["design"]).read_text())
+    record = read_record(geometry_dir)
     pair = GearPair(read_design(geometry_dir))
     gear_inertia = record["axial_inertia_gear_kg_m2"]
     return MeshingModel(MeshContact(pair, contact_params, gear_inertia=gear_inertia), gear_inertia,

@@ -7,7 +7,10 @@ every fixed step (semi-implicit Euler, 1 µs by default). Bullet's own contact
 is not used (DESIGN.md §3).
 
 The per-step Python glue is cut to one joint-state read, one kernel call and
-one torque write (the motor's target changes during the ramp only). The mesh
+one torque write (the motor's target changes during the ramp only); the
+read that starts a step is the state at the record instant the previous
+step ended on, and the states are checked for a blow-up in blocks of
+record instants by the compiled kernel. The mesh
 reaction on the pinion is not applied: the velocity motor holds the pinion on
 its prescribed speed and would absorb it (measured: applying it changes the
 gear speed by less than 1e-9 relative, tests/test_dynamics.py). The pybullet
@@ -91,7 +94,7 @@ def run_pybullet(model, settings: SimulationSettings, apply_pinion_torque=False)
     Raises
     ------
     SimulationError
-        On a blow-up (checked every step).
+        On a blow-up (the states checked every ``CHECK_BLOCK`` record instants).
     """
     import pybullet
 
@@ -102,60 +105,125 @@ def run_pybullet(model, settings: SimulationSettings, apply_pinion_torque=False)
         pybullet.disconnect(client)
 
 
+#: Record instants per blow-up check and progress report [-].
+CHECK_BLOCK = 1000
+
+
 def _run(model, pb, client, settings, apply_pinion_torque):
     dt = settings.time_step
     ticks, times, _ = settings.record_grid()
     # whole steps per full-rate interval (SimulationSettings checks it)
-    record_steps = ticks * int(round(settings.full_rate_interval / dt))
+    record_steps = [int(k) for k in ticks * int(round(settings.full_rate_interval / dt))]
     body, pj, gj = load_pybullet(model, pb, client, settings)
     phi2_0 = model.initial_gear_angle(settings)
     pb.resetJointState(body, pj, 0.0, 0.0, physicsClientId=client)
     pb.resetJointState(body, gj, phi2_0, 0.0, physicsClientId=client)
 
-    ux, uy, uz = map(float, model.pair.rotation_axis[2])
-    vx, vy, vz = map(float, model.pair.rotation_axis[1])
-    servo_force = 1e3 * max(settings.load_torque, 1.0)
-    load = settings.load_torque
-    limit = model.penetration_limit
     arrays = model.contact.arrays
-    forces = kernels.compiled_entry(kernels.mesh_forces, 0.0, phi2_0, 0.0, 0.0, *arrays)
-    params, sides, table = arrays
-    get_states, apply_torque = pb.getJointStates, pb.applyExternalTorque
-    step_simulation, motor = pb.stepSimulation, pb.setJointMotorControl2
-    world, velocity = pb.WORLD_FRAME, pb.VELOCITY_CONTROL
-    joints = (pj, gj)
+    calls = _Calls(pb, client, body, pj, gj, model, settings, arrays, phi2_0)
     # The motor's target during the ramp: the prescribed speed at the end of
     # each step, then the final speed once.
-    ramp_steps = int(math.floor(settings.ramp_time / dt + 1e-9)) + 1
+    ramp_steps = int(math.floor(settings.ramp_time / dt * (1 + 1e-12))) + 1
     targets = [pinion_state((n + 1) * dt, settings.pinion_speed, settings.ramp_time)[1]
                for n in range(ramp_steps)]
     targets[-1] = settings.pinion_speed
+    # record intervals that hold a ramp step take the step-by-step loop
+    ramp_intervals = int(np.searchsorted(record_steps, ramp_steps, side="left"))
+    if apply_pinion_torque:
+        ramp_intervals = len(record_steps) - 1
 
-    states = np.empty((len(ticks), 4))
-    states[0] = (0.0, phi2_0, 0.0, 0.0)
+    states = [(0.0, phi2_0, 0.0, 0.0)]
     start = last = time.monotonic()
-    n = 0
-    for r in range(1, len(ticks)):
-        for n in range(n, int(record_steps[r])):
-            (q1, w1, _, _), (q2, w2, _, _) = get_states(body, joints, client)
-            gear_torque, pinion_torque, deepest, _, _, _ = forces(q1, q2, w1, w2, params, sides,
-                                                                  table)
-            if deepest > limit or not gear_torque == gear_torque:
-                model.check_state(n * dt, w2, deepest, settings)
-            if n < ramp_steps:
-                motor(body, pj, velocity, targetVelocity=targets[n], force=servo_force,
-                      physicsClientId=client)
-            net = gear_torque - load
-            apply_torque(body, gj, (net * ux, net * uy, net * uz), world, client)
-            if apply_pinion_torque:
-                apply_torque(body, pj, (pinion_torque * vx, pinion_torque * vy,
-                                        pinion_torque * vz), world, client)
-            step_simulation(client)
-        n = int(record_steps[r])
-        (q1, w1, _, _), (q2, w2, _, _) = get_states(body, joints, client)
-        states[r] = (q1, q2, w1, w2)
-        if r % 1000 == 0:
-            last = model.progress(times[r], settings, start, last)
+    checked = 0
+    r = 0
+    while r < len(record_steps) - 1:
+        stop = min(r + CHECK_BLOCK, len(record_steps) - 1)
+        if r < ramp_intervals:
+            stop = min(stop, ramp_intervals)
+            _ramp(calls, record_steps, r, stop, targets, states, apply_pinion_torque)
+        else:
+            _steady(calls, record_steps, r, stop, states)
+        r = stop
+        # a blow-up persists once it happens: check the block's states
+        block = np.array(states[checked:])
+        model.check_states(settings, times[checked:r + 1], *block.T)
+        checked = r + 1
+        last = model.progress(times[r], settings, start, last)
     wall = time.monotonic() - start
-    return model.record(settings, times, states[:, 0], states[:, 1], states[:, 2], states[:, 3],
-                        wall, n)
+    phi1, phi2, w1, w2 = np.array(states).T
+    return model.record(settings, times, phi1, phi2, w1, w2, wall, record_steps[-1])
+
+
+class _Calls:
+    """The PyBullet calls and constants of a step, looked up once."""
+
+    def __init__(self, pb, client, body, pj, gj, model, settings, arrays, phi2_0):
+        self.client, self.body, self.pj, self.gj = client, body, pj, gj
+        self.joints = (pj, gj)
+        self.get_states, self.apply_torque = pb.getJointStates, pb.applyExternalTorque
+        self.step_simulation, self.motor = pb.stepSimulation, pb.setJointMotorControl2
+        self.world, self.velocity = pb.WORLD_FRAME, pb.VELOCITY_CONTROL
+        self.gear_axis = tuple(map(float, model.pair.rotation_axis[2]))
+        self.pinion_axis = tuple(map(float, model.pair.rotation_axis[1]))
+        self.servo_force = 1e3 * max(settings.load_torque, 1.0)
+        self.load = settings.load_torque
+        self.params, self.sides, self.table = arrays
+        self.torque_of = kernels.compiled_entry(kernels.gear_torque, 0.0, phi2_0, 0.0, 0.0, *arrays)
+        self.forces = kernels.compiled_entry(kernels.mesh_forces, 0.0, phi2_0, 0.0, 0.0, *arrays)
+
+
+def _ramp(c, record_steps, first, stop, targets, states, apply_pinion_torque):
+    """Record intervals ``first`` to ``stop`` step by step, the motor's target
+    set at every ramp step (and the mesh reaction on the pinion if asked)."""
+    get_states, body, joints, client = c.get_states, c.body, c.joints, c.client
+    torque_of, forces, params, sides, table, load = (c.torque_of, c.forces, c.params, c.sides,
+                                                     c.table, c.load)
+    apply_torque, gear_joint, world, step_simulation = (c.apply_torque, c.gj, c.world,
+                                                        c.step_simulation)
+    motor, pinion_joint, velocity, servo_force = c.motor, c.pj, c.velocity, c.servo_force
+    ux, uy, uz = c.gear_axis
+    vx, vy, vz = c.pinion_axis
+    ramp_steps = len(targets)
+    for r in range(first, stop):
+        for n in range(record_steps[r], record_steps[r + 1]):
+            (q1, w1, _, _), (q2, w2, _, _) = get_states(body, joints, client)
+            if n < ramp_steps:
+                # positional: targetPosition, targetVelocity, force, positionGain,
+                # velocityGain, maxVelocity (pybullet's defaults), client
+                motor(body, pinion_joint, velocity, 0.0, targets[n], servo_force, 0.1, 1.0, -1.0,
+                      client)
+            if apply_pinion_torque:
+                torque, pinion, _, _, _, _ = forces(q1, q2, w1, w2, params, sides, table)
+                apply_torque(body, pinion_joint, (pinion * vx, pinion * vy, pinion * vz), world,
+                             client)
+            else:
+                torque = torque_of(q1, q2, w1, w2, params, sides, table)
+            net = torque - load
+            apply_torque(body, gear_joint, (net * ux, net * uy, net * uz), world, client)
+            step_simulation(client)
+        (q1, w1, _, _), (q2, w2, _, _) = get_states(body, joints, client)
+        states.append((q1, q2, w1, w2))
+
+
+def _steady(c, record_steps, first, stop, states):
+    """Record intervals ``first`` to ``stop`` after the ramp: one joint-state
+    read, one kernel call and one torque write per step, every name a local
+    (the hottest Python loop of lsbg). The read that starts a step is the
+    state at the instant the previous step ended, so the record instants'
+    states come without a read of their own."""
+    get_states, body, joints, client = c.get_states, c.body, c.joints, c.client
+    torque_of, params, sides, table, load = c.torque_of, c.params, c.sides, c.table, c.load
+    apply_torque, gear_joint, world, step_simulation = (c.apply_torque, c.gj, c.world,
+                                                        c.step_simulation)
+    ux, uy, uz = c.gear_axis
+    append = states.append
+    now = get_states(body, joints, client)
+    for r in range(first, stop):
+        for _ in range(record_steps[r + 1] - record_steps[r]):
+            (q1, w1, _, _), (q2, w2, _, _) = now
+            net = torque_of(q1, q2, w1, w2, params, sides, table) - load
+            apply_torque(body, gear_joint, (net * ux, net * uy, net * uz), world, client)
+            step_simulation(client)
+            now = get_states(body, joints, client)
+        (q1, w1, _, _), (q2, w2, _, _) = now
+        append((q1, q2, w1, w2))

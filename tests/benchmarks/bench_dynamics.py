@@ -150,9 +150,11 @@ def main(argv=None):
                   f"{verdict(ratio, LINE_OVER_POINT)}")
         print("\n== one PyBullet step [us] (point model) ==")
         costs = pybullet_step_costs(models["point"], settings, n=100000)
-        for key in ("joint_states", "contact_kernel", "apply_torque", "step_simulation", "floor",
-                    "engine_step"):
+        for key in ("joint_states", "contact_kernel", "apply_torque", "motor_target",
+                    "step_simulation", "floor_steady", "floor_ramp", "floor", "engine_step"):
             print(f"  {key:16s}: {costs[key]:6.2f}")
+        print(f"  (floor: the PyBullet calls alone, the motor's target write on the "
+              f"{costs['ramp_share']:.0%} ramp steps)")
         print(f"  engine / floor  : {costs['engine_over_floor']:6.2f} "
               f"(target <= {ENGINE_OVER_FLOOR}) {verdict(costs['engine_over_floor'], ENGINE_OVER_FLOOR)}")
         if args.convergence:
