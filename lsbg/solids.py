@@ -23,8 +23,8 @@ a generated pinion would be undercut there instead (``GearPair.undercut``:
 the gear's tip passes the pinion's base cone by 0.5 deg in the plane of
 action), which these solids ignore.
 
-Mass properties come twice: from the triangle mesh (trimesh's divergence-theorem
-integrals) and from an independent quadrature over the sections in spherical
+Mass properties come twice: from the triangle mesh (divergence-theorem
+integrals, :mod:`lsbg.polyhedra`) and from an independent quadrature over the sections in spherical
 coordinates (:func:`quadrature_mass_properties`), which the tests compare.
 
 All lengths in metres, angles in radians, masses in kilograms.
@@ -38,15 +38,15 @@ from dataclasses import dataclass
 from xml.etree import ElementTree
 
 import numpy as np
-import trimesh
 
 from lsbg.geometry import MEMBER_NAMES, MEMBERS
+from lsbg.polyhedra import TriangleMesh, mesh_mass_properties
 
 __all__ = [
     "MeshResolution", "SectionOutline", "MassProperties", "QuadratureMassProperties",
     "side_order", "section_outline", "section_cone_distances", "gear_mesh", "gear_meshes",
     "mass_properties", "section_integrals", "quadrature_mass_properties",
-    "principal_frame", "write_urdf", "render_pair",
+    "principal_frame", "write_urdf",
 ]
 
 
@@ -521,7 +521,7 @@ def gear_mesh(pair, member, resolution=DEFAULT_RESOLUTION):
 
     Returns
     -------
-    trimesh.Trimesh
+    lsbg.polyhedra.TriangleMesh
         Watertight, consistently wound, outward normals [m]. ``metadata``
         holds ``member``, ``name`` and ``sections``.
     """
@@ -593,9 +593,9 @@ def gear_mesh(pair, member, resolution=DEFAULT_RESOLUTION):
                "inner": lambda c: -spherical(c), "outer": spherical}
     faces.update(end_faces)
     all_faces = np.concatenate([_orient(vertices, f, outward[name]) for name, f in faces.items()])
-    mesh = trimesh.Trimesh(vertices, all_faces, process=False,
-                           metadata={"member": member, "name": MEMBER_NAMES[member],
-                                     "sections": n_sec})
+    mesh = TriangleMesh(vertices, all_faces,
+                        metadata={"member": member, "name": MEMBER_NAMES[member],
+                                  "sections": n_sec})
     return mesh
 
 
@@ -663,7 +663,7 @@ def mass_properties(mesh, pair, member, density=None):
 
     Parameters
     ----------
-    mesh : trimesh.Trimesh
+    mesh : lsbg.polyhedra.TriangleMesh
         Watertight gear mesh from :func:`gear_mesh` [m].
     pair : lsbg.geometry.GearPair
     member : {1, 2}
@@ -675,7 +675,7 @@ def mass_properties(mesh, pair, member, density=None):
     MassProperties
     """
     rho = pair.design.density if density is None else float(density)
-    props = trimesh.triangles.mass_properties(mesh.triangles, density=rho)
+    props = mesh_mass_properties(mesh.triangles, density=rho)
     com = np.asarray(props.center_mass, dtype=float)
     inertia = np.asarray(props.inertia, dtype=float)
     u = pair.rotation_axis[member]
@@ -918,70 +918,3 @@ def write_urdf(path, pair, props, mesh_files):
 
 
 # ------------------------------------------------------------------ picture
-def render_pair(path, pair, meshes, size=(900, 700)):
-    """PNG picture of the assembled pair (both gears at rotation 0).
-
-    An orthographic view drawn by matplotlib as flat 2-D polygons:
-    flat-shaded triangles (Lambert with an ambient part) facing the viewer,
-    projected on the view plane and drawn back to front (a 2-D collection
-    draws about three times faster than matplotlib's 3-D one).
-
-    Parameters
-    ----------
-    path : str or os.PathLike
-        PNG file to write.
-    pair : lsbg.geometry.GearPair
-    meshes : dict
-        ``{member: trimesh.Trimesh}`` for members 1 and 2 [m].
-    size : tuple of int
-        Width and height [pixel].
-
-    Returns
-    -------
-    str
-        The path written.
-    """
-    # Agg canvas without pyplot: no global backend switch, no GUI.
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.collections import PolyCollection
-    from matplotlib.figure import Figure
-
-    d = pair.design
-    # Look at the gear's tooth face (from its apex side, against a2), a little
-    # towards the heel and from above the axial plane, so the pinion shows in mesh.
-    view = -0.9 * pair.axis[2] + 0.3 * pair.pitch_dir + np.array([0.0, 0.0, 0.55])
-    view /= np.linalg.norm(view)
-    right = np.cross([0.0, 0.0, 1.0], view)
-    right /= np.linalg.norm(right)
-    up = np.cross(view, right)
-    light = np.array([0.3, 0.6, 0.75])
-    light /= np.linalg.norm(light)
-    colours = {1: np.array([0.85, 0.50, 0.22]), 2: np.array([0.55, 0.62, 0.75])}
-    polys, shades, depths = [], [], []
-    for member in MEMBERS:
-        mesh = meshes[member]
-        normals = mesh.face_normals
-        facing = normals @ view > 0   # back faces are hidden by the solid anyway
-        tri = 1e3 * mesh.triangles[facing]
-        lambert = np.clip(normals[facing] @ light, 0.0, 1.0)
-        shades.append((0.35 + 0.65 * lambert)[:, None] * colours[member])
-        polys.append(np.stack([tri @ right, tri @ up], axis=-1))
-        depths.append(tri.mean(axis=1) @ view)
-    polys, shades = np.concatenate(polys), np.concatenate(shades)
-    order = np.argsort(np.concatenate(depths))  # painter's order: far first
-    fig = Figure(figsize=(size[0] / 100, size[1] / 100), dpi=100)
-    FigureCanvasAgg(fig)
-    ax = fig.add_axes((0.02, 0.02, 0.96, 0.9))
-    ax.add_collection(PolyCollection(polys[order], facecolors=shades[order], edgecolors="none",
-                                     linewidths=0, antialiased=False))
-    flat = polys.reshape(-1, 2)
-    lo, hi = flat.min(axis=0), flat.max(axis=0)
-    ax.set_xlim(lo[0], hi[0])
-    ax.set_ylim(lo[1], hi[1])
-    ax.set_aspect("equal")
-    ax.set_axis_off()
-    trace = "LSBG (logarithmic spiral)" if d.trace == "logarithmic" else "SBG (circular arc)"
-    fig.suptitle(f"{trace}, spiral angle {math.degrees(d.spiral_angle):g}°, "
-                 f"{d.pinion_teeth}:{d.gear_teeth}, m = {1e3 * d.module:g} mm")
-    fig.savefig(os.fspath(path), dpi=100)
-    return os.fspath(path)
