@@ -502,6 +502,26 @@ def test_static_preload_carries_the_load(kernel):
     assert 1e-6 < deepest < 6e-6
 
 
+@pytest.mark.parametrize("load", [1.0, LOAD, 4 * LOAD])
+@pytest.mark.parametrize("pinion_angle", [0.0, 0.13, 0.41])
+def test_static_gear_angle_matches_an_independent_root_finder(kernel, load, pinion_angle):
+    from scipy.optimize import brentq
+
+    base = pinion_angle * kernel.e1 / kernel.e2
+
+    def residual(eps):
+        return kernel.forces(pinion_angle, base - eps / kernel.e2).gear_torque - load
+
+    eps = brentq(residual, 0.0, 1e-3, xtol=1e-18, rtol=1e-14)
+    got = (base - kernel.static_gear_angle(load, pinion_angle)) * kernel.e2
+    assert got == pytest.approx(eps, rel=1e-9)
+
+
+def test_static_gear_angle_names_an_impossible_load(kernel):
+    with pytest.raises(ValueError, match="load_torque = 1000000000000000.0: the contact cannot carry it"):
+        kernel.static_gear_angle(1e15)
+
+
 def test_no_force_with_clearance_and_backlash(kernel):
     # pinion behind by less than the backlash: neither side touches
     gap = kernel.pair.design.backlash * kernel.pair.design.base_cone_constant / kernel.pair.design.mean_cone_distance

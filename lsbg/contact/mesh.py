@@ -345,22 +345,14 @@ class MeshContact:
             If the contact cannot carry the load within a tenth of a base
             pitch of approach.
         """
-        from scipy.optimize import brentq
-
         base = pinion_angle * self.e1 / self.e2
         if load_torque <= 0.0:
             return base
-
-        def residual(eps):
-            return self.forces(pinion_angle, base - eps / self.e2).gear_torque - load_torque
-
-        upper = 1e-6
-        while residual(upper) < 0.0:
-            upper *= 2.0
-            if upper > 0.1 * self.pitch:
-                raise ValueError(f"load_torque = {load_torque!r}: the contact cannot carry it "
-                                 f"within a tenth of a base pitch of approach")
-        eps = brentq(residual, 0.0, upper, xtol=1e-18, rtol=1e-14)
+        eps = k.static_mismatch(float(pinion_angle), base, self.e2, float(load_torque),
+                                0.1 * self.pitch, *self.arrays)
+        if eps < 0.0:
+            raise ValueError(f"load_torque = {load_torque!r}: the contact cannot carry it "
+                             f"within a tenth of a base pitch of approach")
         return base - eps / self.e2
 
     # ------------------------------------------------------ line model: stiffness
