@@ -2,7 +2,7 @@
 
 ``lsbg geometry`` (:mod:`lsbg.export`) writes a directory per design point;
 the later stages (dynamics, loaded TCA, reports) read it back through this
-module, which needs neither the meshes nor trimesh.
+module, which needs neither the meshes nor the solids' code.
 """
 
 from __future__ import annotations
@@ -16,7 +16,6 @@ from lsbg.design import CONFIG_KEYS, GearPairDesign
 FILE_NAMES = {
     "design": "design.json", "flanks": "flanks.nc",
     "pinion_stl": "pinion.stl", "gear_stl": "gear.stl",
-    "pinion_obj": "pinion.obj", "gear_obj": "gear.obj",
     "urdf": "pair.urdf", "picture": "pair.png",
 }
 
@@ -63,3 +62,46 @@ def read_design(geometry_dir) -> GearPairDesign:
     """
     record = read_record(geometry_dir)
     return GearPairDesign.from_config({key: record[key] for key in CONFIG_KEYS if key in record})
+
+
+def number_label(value):
+    """A number as it appears in file names: 35 -> "35", 37.5 -> "37.5" (no exponent).
+
+    Parameters
+    ----------
+    value : float
+        A spiral angle [deg], a torque [N m], a speed [deg/s], a factor [-].
+
+    Returns
+    -------
+    str
+    """
+    return f"{float(value):.6f}".rstrip("0").rstrip(".")
+
+
+def fill_template(template, option, **fields):
+    """A file name from a template with ``{name}`` fields (``lsbg points``, ``sensitivity``).
+
+    Parameters
+    ----------
+    template : str
+        E.g. ``results/runs/logarithmic_beta{spiral}_line_compiled.nc``.
+    option : str
+        The option that gave it, for the error message.
+    **fields : str
+        Values of the fields.
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    ValueError
+        Naming the option if the template names an unknown field.
+    """
+    try:
+        return template.format(**fields)
+    except (KeyError, IndexError, ValueError) as error:
+        raise ValueError(f"{option} {template!r}: bad template ({error!r}); fields: "
+                         f"{', '.join('{' + name + '}' for name in fields)}") from None

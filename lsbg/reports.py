@@ -277,7 +277,7 @@ def render_report(name, out_html, parameters=None, notebook_dir=None, cwd=None,
 
 # ------------------------------------------------------ inside a notebook
 def figure_png(fig, dpi=100, palette=True) -> bytes:
-    """A matplotlib figure as PNG bytes (tight bounding box).
+    """A matplotlib figure as PNG bytes (tight bounding box unless its layout is constrained).
 
     Parameters
     ----------
@@ -288,8 +288,12 @@ def figure_png(fig, dpi=100, palette=True) -> bytes:
         Store the image with a 256-colour palette (no dithering): line plots
         look the same at about a third of the size.
     """
+    from matplotlib.layout_engine import ConstrainedLayoutEngine
+
     buffer = io.BytesIO()
-    fig.savefig(buffer, format="png", dpi=dpi, bbox_inches="tight")
+    # a constrained layout already fits the figure; "tight" would draw it twice
+    tight = None if isinstance(fig.get_layout_engine(), ConstrainedLayoutEngine) else "tight"
+    fig.savefig(buffer, format="png", dpi=dpi, bbox_inches=tight)
     if not palette:
         return buffer.getvalue()
     from PIL import Image

@@ -196,3 +196,69 @@ def write_dataset(ds, path):
     encoding = {name: {"zlib": True, "complevel": 1, "shuffle": True}
                 for name, var in ds.data_vars.items() if "time_full" in var.dims}
     write_atomically(path, lambda tmp: ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding))
+
+
+#: Attributes every run dataset carries (checked by :func:`open_run`).
+REQUIRED_ATTRIBUTES = ("design_trace", "design_spiral_angle_deg", "solver_engine",
+                       "contact_model", "solver_full_rate_hz", "solver_load_torque_N_m",
+                       "theory_gear_speed_deg_s", "theory_tangential_force_N")
+
+
+def as_path_list(value) -> list:
+    """A list of paths from a path, a list of paths, or ``""``/``None`` (empty).
+
+    Parameters
+    ----------
+    value : str, os.PathLike, sequence of them, or None
+
+    Returns
+    -------
+    list of pathlib.Path
+    """
+    if value is None or (isinstance(value, str) and not value.strip()):
+        return []
+    if isinstance(value, (str, Path)):
+        return [Path(value)]
+    return [Path(v) for v in value if str(v).strip()]
+
+
+def open_run(path) -> xr.Dataset:
+    """Read a run dataset (:func:`run_dataset`, written by ``lsbg simulate``) into memory.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        NetCDF file.
+
+    Returns
+    -------
+    xarray.Dataset
+        Loaded (the file is closed); ``encoding['source']`` is the path.
+
+    Raises
+    ------
+    FileNotFoundError
+        If the file does not exist (the message names it).
+    ValueError
+        If the file is not a run dataset (missing variables or attributes).
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"{path}: no such run file")
+    try:
+        with xr.open_dataset(path) as ds:
+            ds = ds.load()
+    except (OSError, ValueError) as err:
+        raise ValueError(f"{path}: not a readable NetCDF file ({err})") from None
+    missing = [name for name in ("time", "time_full", *VARIABLES, *FULL_RATE_VARIABLES)
+               if name not in ds.variables]
+    missing += [name for name in REQUIRED_ATTRIBUTES if name not in ds.attrs]
+    if missing:
+        raise ValueError(f"{path}: not a run dataset of lsbg.results (missing {missing})")
+    ds.encoding["source"] = str(path)
+    return ds
+
+
+def open_runs(paths) -> list:
+    """:func:`open_run` for each path (a single path is accepted too)."""
+    return [open_run(p) for p in as_path_list(paths)]

@@ -35,12 +35,24 @@ COLUMNS = ("trace", "spiral_angle_deg", "contact_model", "engine", "parameter", 
            "tangential_force_full_std_N", "wall_time_s", "steps")
 
 
+def _statistics(time, speed, force, time_full, speed_full, force_full, start):
+    keep = time > start
+    keep_full = time_full >= start - 1e-9
+    return {"gear_speed_mean_deg_s": float(speed[keep].mean()),
+            "gear_speed_std_deg_s": float(speed[keep].std(ddof=1)),
+            "tangential_force_mean_N": float(force[keep].mean()),
+            "tangential_force_std_N": float(force[keep].std(ddof=1)),
+            "gear_speed_full_std_deg_s": float(speed_full[keep_full].std(ddof=1)),
+            "tangential_force_full_std_N": float(force_full[keep_full].std(ddof=1))}
+
+
 def steady_statistics(record, start):
     """Mean and standard deviation of gear speed and tangential force after ``start``.
 
     Parameters
     ----------
-    record : lsbg.dynamics.RunRecord
+    record : lsbg.dynamics.RunRecord or xarray.Dataset
+        A run, in memory or as written (``lsbg simulate``).
     start : float
         Start of the steady state [s]; samples strictly after it count.
 
@@ -52,21 +64,80 @@ def steady_statistics(record, start):
         samples, ``gear_speed_full_std_deg_s`` and
         ``tangential_force_full_std_N`` of the full-rate record.
     """
+    if hasattr(record, "data_vars"):
+        return _statistics(record["time"].values, record["gear_speed"].values,
+                           record["tangential_force"].values, record["time_full"].values,
+                           record["gear_speed_full"].values,
+                           record["tangential_force_full"].values, start)
     samples, full = record.samples, record.full_rate
-    keep = samples.time > start
-    speed = np.degrees(samples.gear_speed[keep])
-    force = samples.tangential_force[keep]
-    keep_full = full.time >= start - 1e-9
-    return {"gear_speed_mean_deg_s": float(speed.mean()),
-            "gear_speed_std_deg_s": float(speed.std(ddof=1)),
-            "tangential_force_mean_N": float(force.mean()),
-            "tangential_force_std_N": float(force.std(ddof=1)),
-            "gear_speed_full_std_deg_s": float(np.degrees(full.gear_speed[keep_full]).std(ddof=1)),
-            "tangential_force_full_std_N": float(full.tangential_force[keep_full].std(ddof=1))}
+    return _statistics(samples.time, np.degrees(samples.gear_speed), samples.tangential_force,
+                       full.time, np.degrees(full.gear_speed), full.tangential_force, start)
+
+
+#: Settings a run of each engine depends on (keys of SimulationSettings.to_dict).
+_ENGINE_KEYS = {
+    "pybullet": ("time_step_s",),
+    "scipy": ("rtol", "atol_angle_rad", "atol_speed_rad_s", "method"),
+    "compiled": ("rtol", "atol_angle_rad", "atol_speed_rad_s", "compiled_method"),
+}
+_COMMON_KEYS = ("engine", "duration_s", "samples", "pinion_speed_deg_s", "ramp_time_s",
+                "load_torque_N_m", "full_rate_hz", "full_rate_after_s")
+
+
+def convergence_plan(settings: SimulationSettings, engines, time_steps=TIME_STEPS,
+                     tolerances=TOLERANCES):
+    """The runs of a convergence study: each engine at each of its settings.
+
+    Parameters
+    ----------
+    settings : lsbg.dynamics.SimulationSettings
+        The defaults (their ``time_step`` and ``rtol`` are marked ``is_default``).
+    engines : sequence of str
+        Engines to study: pybullet over ``time_steps``, scipy and compiled over
+        ``tolerances``.
+    time_steps, tolerances : sequence of float
+        [s], [-]
+
+    Returns
+    -------
+    list of tuple
+        ``(engine, parameter, value, settings, is_default)`` per run.
+    """
+    plan = []
+    for engine in engines:
+        if engine == "pybullet":
+            plan += [(engine, "time_step_s", dt, settings.replace(engine=engine, time_step=dt),
+                      math.isclose(dt, settings.time_step)) for dt in time_steps]
+        elif engine in TOLERANCE_ENGINES:
+            plan += [(engine, "rtol", tol, settings.replace(engine=engine, rtol=tol),
+                      math.isclose(tol, settings.rtol)) for tol in tolerances]
+        else:
+            raise ValueError(f"engine {engine!r}: must be one of pybullet, "
+                             f"{', '.join(TOLERANCE_ENGINES)}")
+    return plan
+
+
+def _matches(ds, settings, params):
+    """The first setting in which a written run differs from ``settings`` and
+    ``params`` (None if it is the run they describe)."""
+    from lsbg.contact import ContactParameters
+
+    wanted = settings.to_dict()
+    for key in _COMMON_KEYS + _ENGINE_KEYS[settings.engine]:
+        have = ds.attrs.get(f"solver_{key}")
+        value = wanted[key]
+        same = (have == value if isinstance(value, str)
+                else have is not None and math.isclose(float(have), float(value), rel_tol=1e-9))
+        if not same:
+            return f"solver_{key} = {have!r}, not {value!r}"
+    if ContactParameters.from_dict(ds.attrs, prefix="contact_") != params:
+        return "contact settings"
+    return None
 
 
 def convergence_study(model: MeshingModel, settings: SimulationSettings, steady_start=0.2,
-                      time_steps=TIME_STEPS, tolerances=TOLERANCES):
+                      time_steps=TIME_STEPS, tolerances=TOLERANCES, engines=None, known=(),
+                      default_runs=None):
     """Standard deviations against time step (PyBullet) and tolerance (scipy, compiled).
 
     Parameters
@@ -81,25 +152,62 @@ def convergence_study(model: MeshingModel, settings: SimulationSettings, steady_
         PyBullet time steps [s].
     tolerances : sequence of float
         Relative tolerances of the scipy and compiled engines [-].
+    engines : sequence of str, optional
+        Engines in the table (default all three).
+    known : sequence of xarray.Dataset
+        Runs already made (``lsbg simulate``): a run of the plan that is among
+        them is read, not run again.
+    default_runs : dict, optional
+        Filled with engine -> :class:`lsbg.dynamics.RunRecord` of each run made
+        here at the default settings (so that a caller can write it instead of
+        running it once more).
 
     Returns
     -------
     pandas.DataFrame
         One row per run, columns :data:`COLUMNS`.
+
+    Raises
+    ------
+    ValueError
+        If a known run is of this model and engine at a value of the plan but
+        differs from it in another setting (naming the file and the setting).
     """
     design = model.pair.design
+    engines = ("pybullet",) + TOLERANCE_ENGINES if engines is None else tuple(engines)
+    plan = convergence_plan(settings, engines, time_steps, tolerances)
+    params = model.contact.params
+    made = {}
+    for ds in known:
+        engine = ds.attrs.get("solver_engine")
+        if ds.attrs.get("contact_model") != params.model or engine not in engines:
+            continue
+        key = "time_step_s" if engine == "pybullet" else "rtol"
+        for slot in plan:
+            if slot[0] == engine and math.isclose(float(ds.attrs[f"solver_{key}"]), slot[2],
+                                                  rel_tol=1e-9):
+                differs = _matches(ds, slot[3], params)
+                if differs:
+                    raise ValueError(f"{ds.encoding.get('source', 'known run')}: a {engine} "
+                                     f"run at {key} = {slot[2]:g} with {differs}")
+                made[id(slot)] = ds
     rows = []
-    runs = [("pybullet", "time_step_s", dt, settings.replace(engine="pybullet", time_step=dt),
-             math.isclose(dt, settings.time_step)) for dt in time_steps]
-    runs += [(engine, "rtol", tol, settings.replace(engine=engine, rtol=tol),
-              math.isclose(tol, settings.rtol)) for engine in TOLERANCE_ENGINES
-             for tol in tolerances]
-    for engine, parameter, value, run_settings, is_default in runs:
-        record = model.run(run_settings)
+    for slot in plan:
+        engine, parameter, value, run_settings, is_default = slot
+        if id(slot) in made:
+            ds = made[id(slot)]
+            statistics = steady_statistics(ds, steady_start)
+            wall, steps = float(ds.attrs["wall_time_s"]), int(ds.attrs["integrator_steps"])
+        else:
+            record = model.run(run_settings)
+            if is_default and default_runs is not None:
+                default_runs[engine] = record
+            statistics = steady_statistics(record, steady_start)
+            wall, steps = record.wall_time, record.steps
         rows.append({"trace": design.trace, "spiral_angle_deg": math.degrees(design.spiral_angle),
-                     "contact_model": model.contact.params.model, "engine": engine, "parameter": parameter, "value": value,
-                     "is_default": bool(is_default), **steady_statistics(record, steady_start),
-                     "wall_time_s": record.wall_time, "steps": record.steps})
+                     "contact_model": params.model, "engine": engine, "parameter": parameter,
+                     "value": value, "is_default": bool(is_default), **statistics,
+                     "wall_time_s": wall, "steps": steps})
     return pd.DataFrame(rows, columns=list(COLUMNS))
 
 

@@ -6,11 +6,12 @@ import math
 import numpy as np
 import pytest
 
-from lsbg import cli, export, solids
+from lsbg import cli, export, render
 from lsbg.design import CONFIG_KEYS, GearPairDesign
 from lsbg.geometry import GearPair
+from lsbg.polyhedra import read_stl
 
-FILES = ("design.json", "flanks.nc", "pinion.stl", "gear.stl", "pinion.obj", "gear.obj",
+FILES = ("design.json", "flanks.nc", "pinion.stl", "gear.stl",
          "pair.urdf", "pair.png")
 UNIT_SUFFIXES = ("_mm", "_mm3", "_deg", "_kg", "_kg_m2", "_kg_m3")
 UNITLESS = {"pinion_teeth", "gear_teeth", "pinion_hand", "trace", "base_cone_rule",
@@ -42,10 +43,12 @@ def test_geometry_writes_every_file(geometry, trace):
     assert not [p for p in directory.parent.iterdir() if p.name.startswith(".")]
     with open(directory / "pair.png", "rb") as handle:
         assert handle.read(8) == b"\x89PNG\r\n\x1a\n"
-    trimesh = pytest.importorskip("trimesh")
-    for name in ("pinion.stl", "gear.obj"):
-        mesh = trimesh.load(directory / name, force="mesh")
-        assert mesh.is_watertight and mesh.volume > 0
+    rec = record(directory)
+    for name in ("pinion", "gear"):
+        mesh = read_stl(directory / f"{name}.stl")
+        assert mesh.is_watertight and mesh.is_winding_consistent
+        # the file's (single precision) solid has the volume of the record's mesh
+        assert mesh.volume * 1e9 == pytest.approx(rec[f"volume_{name}_mm3"], rel=1e-6)
 
 
 @pytest.mark.parametrize("trace", ["logarithmic", "circular"])
@@ -203,7 +206,7 @@ def test_failure_leaves_nothing_half_written(tmp_path, monkeypatch):
     def broken(*args, **kwargs):
         raise RuntimeError("renderer crashed")
 
-    monkeypatch.setattr(solids, "render_pair", broken)
+    monkeypatch.setattr(render, "render_pair", broken)
     with pytest.raises(RuntimeError, match="renderer crashed"):
         export.write_geometry(GearPairDesign(), out)
     # the previous output is untouched and no temporary directory is left

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from lsbg import spectra
-from lsbg.figures.base import new_figure, type_color
+from lsbg.figures.base import envelope, new_figure, type_color
 from lsbg.study import QUANTITY_LABELS, full_rate_series
 
 
@@ -39,7 +39,7 @@ def plot_spectra(runs, quantity, start=0.2, harmonics=6, title=""):
         frequency, amplitude = spectra.amplitude_spectrum(full_rate_series(ds, quantity, start),
                                                           rate)
         style = "-" if k % 2 == 0 else "--"
-        ax.loglog(frequency[1:], amplitude[1:], style, lw=0.8,
+        ax.loglog(*envelope(frequency[1:], amplitude[1:], log=True), style, lw=0.8,
                   color=type_color(label.split()[0]), label=label)
         mesh = spectra.mesh_frequency(float(ds.attrs["solver_pinion_speed_deg_s"]),
                                       int(ds.attrs["design_pinion_teeth"]))

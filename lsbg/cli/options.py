@@ -1,0 +1,232 @@
+"""Options shared by the subcommands: the design, the study configuration's
+sections, the contact and simulation settings; :class:`CommandError`.
+
+Every option is in the paper's units (mm, deg, deg/s, N m) as in the
+workflow's configuration; the handlers convert to SI through
+:class:`lsbg.design.GearPairDesign`, :class:`lsbg.contact.ContactParameters`
+and :class:`lsbg.dynamics.SimulationSettings`.
+"""
+
+from __future__ import annotations
+
+from lsbg.design import BASE_CONE_RULES, CONFIG_KEYS, HANDS, TRACES, GearPairDesign
+
+__all__ = ["CommandError", "add_design_options", "design_from_args", "read_study_sections",
+           "add_contact_options", "contact_from_args", "add_simulation_options",
+           "simulation_from_args", "SIMULATION_OPTIONS"]
+
+
+class CommandError(ValueError):
+    """Bad command-line input that is not a design parameter (exit code 2)."""
+
+
+# What each design key means; the unit comes from the key's suffix.
+_DESCRIPTIONS = {
+    "pinion_teeth": "number of pinion teeth z1",
+    "gear_teeth": "number of gear teeth z2",
+    "module_mm": "outer transverse module m",
+    "shaft_angle_deg": "shaft angle Sigma",
+    "normal_pressure_angle_deg": "normal pressure angle at the mean point",
+    "spiral_angle_deg": "mean spiral angle on the pitch cone",
+    "pinion_hand": "hand of spiral of the pinion",
+    "addendum_mm": "outer addendum",
+    "dedendum_mm": "outer dedendum",
+    "trace": "tooth trace: logarithmic (LSBG) or circular (SBG)",
+    "face_width_mm": "face width along the pitch cone generator",
+    "cutter_radius_mm": "radius of the circular cutter arc (SBG)",
+    "base_cone_rule": "base cone rule: involute (20 deg normal pressure angle) or paper (Eq. 6)",
+    "backlash_mm": "circumferential backlash on the mean pitch circle",
+    "density_kg_m3": "density of both gears",
+    "pinion_bore_mm": "pinion bore diameter",
+    "gear_bore_mm": "gear bore diameter",
+}
+_UNITS = {"_mm": "mm", "_deg": "deg", "_kg_m3": "kg/m^3"}
+_CHOICES = {"trace": TRACES, "base_cone_rule": BASE_CONE_RULES, "pinion_hand": HANDS}
+# Short spellings used in the paper's workflow, besides --<key>.
+_ALIASES = {"spiral_angle_deg": ("--spiral-angle",)}
+
+
+def _unit(key):
+    for suffix, unit in _UNITS.items():
+        if key.endswith(suffix):
+            return unit
+    return None
+
+
+def add_design_options(parser):
+    """Add ``--design FILE.yaml`` and one option per design parameter.
+
+    Options are generated from :data:`lsbg.design.CONFIG_KEYS` (``module_mm``
+    -> ``--module-mm``), in the paper's units; each defaults to ``None`` so
+    that :func:`design_from_args` can tell what was given.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+    """
+    paper = GearPairDesign().to_config()
+    group = parser.add_argument_group(
+        "design parameters (paper units; they override --design; defaults: the paper's "
+        "Table 1 and lsbg.design.GearPairDesign)")
+    group.add_argument("--design", metavar="FILE.yaml",
+                       help="YAML file with design keys as in lsbg.design.CONFIG_KEYS, or a study "
+                       "configuration with them under 'design:'")
+    for key in CONFIG_KEYS:
+        unit = _unit(key)
+        value = paper[key]
+        shown = f"{value:g}" if isinstance(value, float) else value
+        description = _DESCRIPTIONS.get(key, key.replace("_", " "))
+        units = f" [{unit}]" if unit else ""
+        kwargs = dict(dest=key, default=None, help=f"{description}{units} (default: {shown})")
+        if key in _CHOICES:
+            kwargs["choices"] = _CHOICES[key]
+        elif isinstance(value, int) and not isinstance(value, bool):
+            kwargs["type"] = int
+            kwargs["metavar"] = "N"
+        elif isinstance(value, float):
+            kwargs["type"] = float
+        if unit:
+            kwargs["metavar"] = unit.upper().replace("/", "_").replace("^", "")
+        flags = _ALIASES.get(key, ()) + ("--" + key.replace("_", "-"),)
+        group.add_argument(*flags, **kwargs)
+
+
+def _read_yaml(path, option="--design"):
+    import yaml
+
+    try:
+        with open(path, encoding="utf-8") as handle:
+            data = yaml.safe_load(handle)
+    except OSError as error:
+        raise CommandError(f"{option} {path}: {error.strerror}") from None
+    except yaml.YAMLError as error:
+        raise CommandError(f"{option} {path}: not valid YAML ({error})") from None
+    if data is None:
+        return {}
+    if not isinstance(data, dict):
+        raise CommandError(f"{option} {path}: must hold a mapping of keys")
+    return data
+
+
+def design_from_args(args) -> GearPairDesign:
+    """The design from ``--design`` (if any) overridden by the design options.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed by a parser with :func:`add_design_options`.
+
+    Returns
+    -------
+    GearPairDesign
+
+    Raises
+    ------
+    DesignError
+        Unknown key in the YAML file or an invalid value; the message names the key.
+    CommandError
+        The YAML file cannot be read.
+    """
+    config = _read_yaml(args.design) if getattr(args, "design", None) else {}
+    if isinstance(config.get("design"), dict):
+        # a study configuration (workflow/config.yaml, results/config.yaml)
+        config = dict(config["design"])
+    for key in CONFIG_KEYS:
+        value = getattr(args, key, None)
+        if value is not None:
+            config[key] = value
+    return GearPairDesign.from_config(config)
+
+
+def read_study_sections(path, *sections):
+    """The named sections of a study configuration file (``{}`` if no file)."""
+    if path is None:
+        return [{} for _ in sections]
+    config = _read_yaml(path, "--config")
+    return [config.get(section) or {} for section in sections]
+
+
+#: Command-line options of ``lsbg simulate`` -> key of the ``simulation`` section.
+SIMULATION_OPTIONS = {
+    "duration": ("duration_s", float, "simulated time [s] (paper: 1)"),
+    "samples": ("samples", int, "output intervals; samples+1 instants (paper: 500)"),
+    "dt": ("time_step_s", float, "fixed time step of the pybullet engine [s] (1e-6)"),
+    "rtol": ("rtol", float, "relative tolerance of the scipy engine (1e-8)"),
+    "method": ("method", str, "solve_ivp method of the scipy engine (LSODA)"),
+    "pinion_speed": ("pinion_speed_deg_s", float, "final pinion speed [deg/s] (paper: 7703)"),
+    "ramp_time": ("ramp_time_s", float, "STEP ramp time of the pinion speed [s] (paper: 0.2)"),
+    "load_torque": ("load_torque_N_m", float, "resisting torque on the gear [N m] (paper: 1964.99)"),
+    "full_rate": ("full_rate_hz", float, "rate of the full-rate record [1/s] (50000)"),
+    "full_rate_after": ("full_rate_after_s", float,
+                        "start of the full-rate record [s] (default: the end of the ramp)"),
+}
+
+
+def add_contact_options(parser, model=True):
+    """Add ``--config`` (its ``contact`` section), ``--set-contact`` and, with
+    ``model``, ``--contact-model``."""
+    parser.add_argument("--config", metavar="FILE.yaml",
+                        help="study configuration; its 'simulation' and 'contact' sections are used")
+    if model:
+        parser.add_argument("--contact-model", choices=("point", "line"),
+                            help="contact model: point (the paper's IMPACT law, one incident "
+                                 "per tooth pair) or line (sliced contact lines) (default: "
+                                 "contact.model of --config, else point)")
+    parser.add_argument("--set-contact", action="append", default=[], metavar="KEY=VALUE",
+                        help="override a key of the contact section (paper units), e.g. "
+                             "mesh_damping_ratio=0.1; repeatable")
+
+
+def contact_from_args(args):
+    """Contact parameters from the ``contact`` section of ``--config``, ``--set-contact``
+    and ``--contact-model``."""
+    import yaml
+
+    from lsbg.contact import ContactParameters
+
+    (contact,) = read_study_sections(args.config, "contact")
+    contact = dict(contact)
+    for text in getattr(args, "set_contact", []):
+        key, sep, value = text.partition("=")
+        if not sep or not key.strip():
+            raise CommandError(f"--set-contact {text!r}: must be KEY=VALUE")
+        contact[key.strip()] = yaml.safe_load(value)
+    if args.contact_model is not None:
+        contact["model"] = args.contact_model
+    try:
+        return ContactParameters.from_config(contact)
+    except ValueError as err:
+        raise CommandError(str(err)) from None
+
+
+def add_simulation_options(parser, contact_model=True):
+    """Add ``--geometry``, ``--engine``, the contact options (``--contact-model`` with
+    ``contact_model``) and the simulation settings."""
+    parser.add_argument("--geometry", required=True, metavar="DIR",
+                        help="geometry directory written by 'lsbg geometry'")
+    parser.add_argument("--engine", choices=("pybullet", "scipy", "compiled"), default="pybullet",
+                        help="integrator: pybullet (multibody, fixed step), scipy (solve_ivp) or "
+                             "compiled (embedded Runge-Kutta compiled with numba) "
+                             "(default: pybullet)")
+    add_contact_options(parser, model=contact_model)
+    for option, (key, kind, text) in SIMULATION_OPTIONS.items():
+        parser.add_argument(f"--{option.replace('_', '-')}", dest=option, type=kind, help=text)
+
+
+def simulation_from_args(args):
+    """(settings, contact parameters) from ``--config`` and the options."""
+    from lsbg.dynamics import SimulationSettings
+
+    (simulation,) = read_study_sections(args.config, "simulation")
+    simulation = dict(simulation)
+    for option, (key, _, _) in SIMULATION_OPTIONS.items():
+        value = getattr(args, option, None)
+        if value is not None:
+            simulation[key] = value
+    try:
+        settings = SimulationSettings.from_config(simulation, engine=args.engine)
+    except ValueError as err:
+        raise CommandError(str(err)) from None
+    return settings, contact_from_args(args)
+
+
