@@ -15,7 +15,9 @@ dataset (:func:`lsbg.study.combine_runs`); every statistic comes from
   the model-form sensitivity, and a ranking stated only where every cell
   agrees;
 * :func:`sweep_fluctuation_table` and :func:`trend_table`: the same against
-  spiral angle, and whether a series follows a trend or zig-zags.
+  spiral angle, and whether a series follows a trend or zig-zags;
+* :func:`speed_curve_table` and :func:`speed_ratio_table`: the dynamic-factor
+  curve's resonances and peaks, and SBG over LSBG at each pinion speed.
 """
 
 from __future__ import annotations
@@ -407,3 +409,65 @@ def trend_table(table, columns) -> pd.DataFrame:
                          "spearman_rho": float(rho), "spearman_p": float(p),
                          "reversals": reversals, "possible": max(len(values) - 2, 0)})
     return pd.DataFrame(rows)
+
+
+# ------------------------------------------------------------ speed sweep
+def speed_curve_table(curve) -> pd.DataFrame:
+    """Per gear type: the mesh mode, the resonance speeds and the peaks of the curves.
+
+    Parameters
+    ----------
+    curve : xarray.Dataset
+        From :func:`lsbg.speed.speed_curve`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``gear_type``, ``natural_frequency_hz``, ``resonance_speed_deg_s``
+        (f_mesh = f_n) and ``..._half``/``..._third`` (f_n/2, f_n/3), and for
+        RMS DTE [urad], dynamic factor [-] and gear-speed fluctuation [%] the
+        peak and the pinion speed where it occurs [deg/s].
+    """
+    speeds = curve["pinion_speed"].values
+    rows = []
+    for trace in curve["trace"].values:
+        row = {"gear_type": TRACE_LABELS.get(str(trace), str(trace)),
+               "natural_frequency_hz": float(curve["natural_frequency"].sel(trace=trace))}
+        for order, suffix in ((1, ""), (2, "_half"), (3, "_third")):
+            row[f"resonance_speed{suffix}_deg_s"] = float(
+                curve["resonance_speed"].sel(trace=trace, order=order))
+        for name, label in (("dte_rms", "dte_rms_peak_urad"),
+                            ("dynamic_factor", "dynamic_factor_peak"),
+                            ("gear_speed_fluctuation", "gear_speed_fluctuation_peak_percent")):
+            values = curve[name].sel(trace=trace).values
+            k = int(np.nanargmax(values))
+            row[label] = float(values[k])
+            row[f"{name}_peak_speed_deg_s"] = float(speeds[k])
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def speed_ratio_table(curve) -> pd.DataFrame:
+    """SBG over LSBG at each pinion speed (empty unless both traces ran).
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``pinion_speed_deg_s``, ``mesh_frequency_over_fn`` (the LSBG's f_n),
+        and the ratios SBG/LSBG of the RMS DTE, of the dynamic increment
+        (dynamic factor − 1) and of the gear-speed fluctuation [-].
+    """
+    traces = [str(t) for t in curve["trace"].values]
+    if not {"logarithmic", "circular"} <= set(traces):
+        return pd.DataFrame()
+    sbg, lsbg = curve.sel(trace="circular"), curve.sel(trace="logarithmic")
+    return pd.DataFrame({
+        "pinion_speed_deg_s": curve["pinion_speed"].values,
+        "mesh_frequency_over_fn": curve["mesh_frequency"].values
+        / float(lsbg["natural_frequency"]),
+        "dte_rms_ratio": sbg["dte_rms"].values / lsbg["dte_rms"].values,
+        "dynamic_increment_ratio": (sbg["dynamic_factor"].values - 1)
+        / (lsbg["dynamic_factor"].values - 1),
+        "gear_speed_fluctuation_ratio": sbg["gear_speed_fluctuation"].values
+        / lsbg["gear_speed_fluctuation"].values,
+    })
