@@ -8,9 +8,11 @@
 # The configuration (workflow/config.yaml, validated against
 # workflow/schemas/config.schema.yaml before any job runs) holds the design, the
 # sweep, the engines, the simulation, contact and statistics settings. Rules
-# live in workflow/rules/*.smk and call the lsbg command line only; helpers are
-# in workflow/rules/common.smk. Optional extensions (workflow/extensions/*.smk)
-# are included when their config key is set.
+# live in workflow/rules/*.smk and call the lsbg command line only; the plan
+# (config checks, design points, file names) is lsbg.workflow, glued in by
+# workflow/rules/common.smk. The speed sweep (workflow/rules/speed.smk, e.g.
+# --configfile workflow/config-speed.yaml) and extensions
+# (workflow/extensions/*.smk) are included when their config key is set.
 
 from snakemake.utils import min_version
 
@@ -24,23 +26,28 @@ report: "workflow/report/workflow.rst"
 
 
 include: "workflow/rules/common.smk"
-include: "workflow/rules/config.smk"
-include: "workflow/rules/geometry.smk"
+include: "workflow/rules/points.smk"
 include: "workflow/rules/simulate.smk"
 include: "workflow/rules/aggregate.smk"
 include: "workflow/rules/reports.smk"
 
 
-# Extensions: each adds rules and appends its targets to EXTENSION_TARGETS.
+# Optional stages and extensions: each adds rules and appends its targets to
+# EXTENSION_TARGETS.
+if STUDY.speed_sweep:
+
+    include: "workflow/rules/speed.smk"
+
+
 if config.get("load_sweep"):
 
     include: "workflow/extensions/load_sweep.smk"
 
 
 # results/config.yaml (the settings lsbg reads) follows the configuration of
-# every run that executes jobs (see write_study_config in common.smk).
+# every run that executes jobs (see lsbg.workflow.write_study_config).
 onstart:
-    write_study_config(STUDY_CONFIG)
+    plan.write_study_config(FILES["study_config"], config)
 
 
 # The default target must be defined here, in the top-level Snakefile
@@ -48,5 +55,5 @@ onstart:
 rule all:
     default_target: True
     input:
-        STUDY_TARGETS,
+        STUDY.targets,
         EXTENSION_TARGETS,

@@ -18,34 +18,51 @@ PACKAGE = Path(__file__).resolve().parent
 
 #: Stage -> the lsbg modules (or packages) its command imports, directly or not.
 STAGE_MODULES = {
-    "geometry": ("cli", "design", "files", "geometry", "solids", "export"),
+    # (contact ... theory: lsbg.cli.options reads contact and simulation options too)
+    "geometry": ("cli", "design", "files", "geometry", "polyhedra", "solids", "render", "export",
+                 "contact", "dynamics", "results", "theory"),
     "ltca": ("cli", "design", "files", "geometry", "contact", "dynamics", "ltca", "results",
              "theory"),
+    "points": ("cli", "design", "files", "geometry", "polyhedra", "solids", "render", "export",
+               "contact", "dynamics", "ltca", "results", "theory"),
     "simulate": ("cli", "design", "files", "geometry", "contact", "dynamics", "results",
-                 "theory"),
+                 "theory", "sensitivity"),
     "convergence": ("cli", "design", "files", "geometry", "contact", "dynamics", "results",
                     "theory", "verification"),
+    "speed": ("cli", "design", "files", "geometry", "contact", "dynamics", "results", "theory",
+              "spectra", "speed"),
     # study reaches the engines through functions only the reports call
     "aggregate": ("cli", "design", "files", "geometry", "contact", "dynamics", "results",
                   "theory", "stats", "spectra", "study", "verification", "figures"),
     # the notebooks' imports too (tests/test_stages.py reads them)
     "report": ("cli", "design", "files", "geometry", "contact", "dynamics", "results", "theory",
                "stats", "spectra", "study", "ltca", "reports", "verification", "tables",
-               "figures"),
+               "figures", "sensitivity", "speed"),
 }
 
-#: Stage -> where its command starts: the functions of lsbg.cli that handle it
-#: (the test follows their imports and, from there, every import of every
-#: module reached, inside functions too).
+#: Stage -> where its command starts: ``"module:function"`` of the lsbg.cli
+#: handlers (the test follows their imports and, from there, every import of
+#: every module reached, inside functions too; the module-level imports of all
+#: of lsbg.cli count for every stage, since building the parser imports them).
 STAGE_ENTRIES = {
-    "geometry": ("run_geometry", "design_from_args", "_read_yaml"),
-    "ltca": ("run_ltca", "contact_from_args", "_read_study_sections", "_read_yaml"),
-    "simulate": ("run_simulate", "simulation_from_args", "contact_from_args",
-                 "_read_study_sections", "_read_yaml"),
-    "convergence": ("run_convergence", "simulation_from_args", "contact_from_args",
-                    "_read_study_sections", "_read_yaml"),
-    "aggregate": ("run_combine", "run_summary", "_read_study_sections", "_read_yaml"),
-    "report": ("run_report",),
+    "geometry": ("cli.geometry:run_geometry", "cli.options:design_from_args",
+                 "cli.options:_read_yaml"),
+    "ltca": ("cli.analysis:run_ltca", "cli.options:contact_from_args",
+             "cli.options:read_study_sections", "cli.options:_read_yaml"),
+    "points": ("cli.geometry:run_points", "cli.options:design_from_args",
+               "cli.options:read_study_sections", "cli.options:_read_yaml"),
+    "simulate": ("cli.simulate:run_simulate", "cli.simulate:run_sensitivity",
+                 "cli.options:simulation_from_args", "cli.options:contact_from_args",
+                 "cli.options:read_study_sections", "cli.options:_read_yaml"),
+    "convergence": ("cli.simulate:run_convergence", "cli.options:simulation_from_args",
+                    "cli.options:contact_from_args", "cli.options:read_study_sections",
+                    "cli.options:_read_yaml"),
+    "speed": ("cli.speed:run_speed_run", "cli.speed:run_speed_curve",
+              "cli.options:simulation_from_args", "cli.options:contact_from_args",
+              "cli.options:read_study_sections", "cli.options:_read_yaml"),
+    "aggregate": ("cli.analysis:run_combine", "cli.analysis:run_summary",
+                  "cli.options:read_study_sections", "cli.options:_read_yaml"),
+    "report": ("cli.analysis:run_report",),
 }
 
 
@@ -166,8 +183,11 @@ def module_closure(names, package=PACKAGE):
 def stage_closure(stage, package=PACKAGE):
     """Every lsbg module a stage's command can run (dotted names).
 
-    Starts from the stage's functions of lsbg.cli (:data:`STAGE_ENTRIES`) and
-    follows every import of every module reached.
+    Starts from the module-level imports of lsbg.cli and the stage's handlers
+    (:data:`STAGE_ENTRIES`) and follows every import of every module reached.
     """
-    return {"cli"} | module_closure(imported_modules("cli", STAGE_ENTRIES[stage], package),
-                                    package)
+    start = imported_modules("cli", functions=(), package=package)
+    for entry in STAGE_ENTRIES[stage]:
+        module, _, function = entry.partition(":")
+        start |= imported_modules(module, functions=(function,), package=package)
+    return {"cli"} | module_closure(start, package)

@@ -1,11 +1,12 @@
 """The report notebooks execute on short real runs and render to self-contained HTML."""
 
+import math
 import re
 
 import pytest
 import xarray as xr
 
-from lsbg import cli, reports, study
+from lsbg import cli, reports, speed, study
 from lsbg.contact import ContactParameters
 from lsbg.design import GearPairDesign
 from lsbg.dynamics import SimulationSettings, load_model, simulate
@@ -51,6 +52,15 @@ def study_files(tmp_path_factory):
     study.summary_table([*files["runs"].values(), *files["sensitivity"]], steady_state_after=0.01,
                         window=(0.01, 0.05), subgroup_size=5,
                         meshes=list(files["meshes"].values())).to_csv(files["summary"], index=False)
+    speed_runs = []
+    for trace in ("logarithmic", "circular"):
+        for omega in (40000.0, 73000.0, 120000.0):
+            settings = speed.speed_settings(SHORT.replace(engine="compiled"), math.radians(omega),
+                                            9, mesh_cycles=20, min_window=0.01,
+                                            settle_time=0.02, ramp_time=0.02)
+            speed_runs.append(simulate(files["geometry"][trace], settings, line))
+    files["speed_curve"] = root / "results" / "speed_curve.nc"
+    write_dataset(speed.speed_curve(speed_runs), files["speed_curve"])
     files["convergence"] = []
     for model, params in (("point", ContactParameters()), ("line", line)):
         table = convergence_study(load_model(files["geometry"]["logarithmic"], params), SHORT,
@@ -68,7 +78,7 @@ def paper_parameters(files):
             "mesh_files": list(files["meshes"].values()),
             "geometry_dirs": [files["geometry"][t] for t in ("logarithmic", "circular")],
             "summary_file": files["summary"], "paper_engine": "pybullet",
-            "sensitivity_engine": "compiled", **STATISTICS}
+            "line_engine": "compiled", **STATISTICS}
 
 
 def check_html(path, headings, images, code_snippets):
@@ -127,13 +137,16 @@ def test_sweep_report(study_files, tmp_path):
     out = tmp_path / "sweep.html"
     reports.render_report("sweep", out, {"sweep_file": study_files["sweep"],
                                          "summary_file": study_files["summary"],
+                                         "speed_curve_file": study_files["speed_curve"],
                                          "steady_state_after_s": 0.01})
     html = check_html(out, ["Spiral-angle sweep", "1. Loaded tooth contact",
                             "2. Fluctuations against", "3. Which type",
-                            "4. Table of the design points", "5. Conclusion"],
-                      # loaded TCA, fluctuations, ratios
-                      images=3, code_snippets=["tables.sweep_fluctuation_table", "import xarray"])
+                            "4. The dynamic-factor curve", "5. Table of the design points",
+                            "6. Conclusion"],
+                      # loaded TCA, fluctuations, ratios, speed curve, Campbell map
+                      images=5, code_snippets=["tables.sweep_fluctuation_table", "import xarray"])
     assert "std(SBG)/std(LSBG)" in html and "static_transmission_error_peak_to_peak" in html
+    assert "natural_frequency_hz" in html and "3 speeds" in html
 
 
 def test_verification_report_via_cli_with_relative_paths(study_files, monkeypatch, capsys):
@@ -187,9 +200,9 @@ def test_bad_report_input_exit_2(tmp_path, capsys):
 def test_notebooks_declare_the_interface_parameters():
     expected = {
         "paper": {"runs", "sensitivity_runs", "mesh_files", "geometry_dirs", "summary_file",
-                  "paper_engine", "sensitivity_engine", "steady_state_after_s",
+                  "paper_engine", "line_engine", "steady_state_after_s",
                   "chart_window_start_s", "chart_window_stop_s", "subgroup_size"},
-        "sweep": {"sweep_file", "summary_file", "steady_state_after_s"},
+        "sweep": {"sweep_file", "summary_file", "speed_curve_file", "steady_state_after_s"},
         "verification": {"convergence_files", "geometry_dirs", "runs", "mesh_files",
                          "steady_state_after_s"},
     }

@@ -28,7 +28,7 @@ SNAKEFILE = REPO / "Snakefile"
 TEST_CONFIG = "workflow/config-test.yaml"
 
 # Rule -> the stage of lsbg.stages whose source files it lists as inputs.
-RULE_STAGES = {"geometry": "geometry", "ltca": "ltca", "simulate": "simulate",
+RULE_STAGES = {"paper_geometry": "geometry", "paper_ltca": "ltca", "sweep_points": "points", "simulate": "simulate",
                "sensitivity": "simulate", "convergence": "convergence", "combine": "aggregate",
                "summary": "aggregate", "report_paper": "report", "report_sweep": "report",
                "report_verification": "report"}
@@ -106,7 +106,7 @@ BAD_CONFIGS = {
                             "sweep.contact_models[1]"),
     "sensitivity that halves the slices below 2": (
         {"contact": {"slices": 2}, "sensitivity": {"slices": [0.5]}}, "sensitivity.slices[0]"),
-    "paper engine not run": ({"engines": {"sweep": "compiled", "reference": ["scipy"],
+    "paper engine not run": ({"engines": {"sweep": "compiled", "reference": {"point": ["scipy"]},
                                           "paper": "pybullet"}}, "engines.paper"),
     "full rate that does not divide the sampling": ({"simulation": {"full_rate_hz": 33333}},
                                                     "simulation.full_rate_hz"),
@@ -130,27 +130,30 @@ def test_default_and_test_configs_are_valid_and_plan_the_study(tmp_path):
     proc = snakemake("-n", "--snakefile", SNAKEFILE, cwd=tmp_path, check=True)
     jobs = planned_jobs(proc.output)
     config = yaml.safe_load((REPO / "workflow" / "config.yaml").read_text(encoding="utf-8"))
-    points = len(config["sweep"]["traces"]) * len(config["sweep"]["spiral_angles_deg"])
-    models = len(config["sweep"]["contact_models"])
-    # both traces and both models at the paper's point with every reference engine
-    reference = 2 * 2 * len(config["engines"]["reference"])
-    cases = sum(len(factors) for factors in config["sensitivity"].values())
-    assert rules_of(jobs).count("geometry") == rules_of(jobs).count("ltca") == points
-    assert rules_of(jobs).count("simulate") == points * models + reference
-    assert rules_of(jobs).count("sensitivity") == 2 * cases
+    traces = config["sweep"]["traces"]
+    # the paper's point of each trace (geometry, loaded TCA), then the other angles of
+    # each trace in one job
+    assert rules_of(jobs).count("paper_geometry") == rules_of(jobs).count("paper_ltca") == 2
+    assert rules_of(jobs).count("sweep_points") == len(traces)
+    points = [f for rule, out in jobs if rule in ("paper_geometry", "sweep_points")
+              for f in out.split(", ") if f.startswith("results/geometry/")]
+    assert len(points) == len(set(points)) == len(traces) * len(config["sweep"]["spiral_angles_deg"])
+    # both traces at the paper's point with each model's reference engines
+    reference = 2 * sum(len(engines) for engines in config["engines"]["reference"].values())
+    assert rules_of(jobs).count("simulate") == reference
+    assert rules_of(jobs).count("sensitivity") == 2  # one job per trace, every case
     assert rules_of(jobs).count("convergence") == 4  # both traces, both models
-    for rule in ("design_file", "combine", "summary", "report_paper", "report_sweep",
-                 "report_verification", "all"):
+    for rule in ("combine", "summary", "report_paper", "report_sweep", "report_verification",
+                 "all"):
         assert rule in rules_of(jobs)
     # The settings lsbg reads, as validated (schema defaults filled in).
     written = yaml.safe_load((tmp_path / "results" / "config.yaml").read_text(encoding="utf-8"))
-    assert set(written) == {"simulation", "contact", "statistics"}
+    assert set(written) == {"design", "simulation", "contact", "statistics"}
     assert written["simulation"]["duration_s"] == config["simulation"]["duration_s"]
 
 
 def test_rules_list_the_lsbg_files_they_run(tmp_path):
-    proc = snakemake("-n", "--snakefile", SNAKEFILE, "--configfile", REPO / TEST_CONFIG,
-                     cwd=tmp_path, check=True)
+    proc = snakemake("-n", "--snakefile", SNAKEFILE, cwd=tmp_path, check=True)
     inputs = job_inputs(proc.output)
     from lsbg.stages import stage_sources
 
@@ -158,7 +161,8 @@ def test_rules_list_the_lsbg_files_they_run(tmp_path):
         listed = {f for f in inputs[rule] if "/lsbg/" in f or f.startswith("lsbg/")}
         expected = set(stage_sources(stage, root=tmp_path))
         assert listed == expected, f"{rule}: {sorted(listed ^ expected)}"
-    assert not any(f.endswith("verification.py") for f in inputs["geometry"])
+    assert not any(f.endswith("verification.py") for f in inputs["paper_geometry"])
+    assert not any(f.endswith("ltca.py") for f in inputs["paper_geometry"])
     for name in ("paper", "sweep", "verification"):
         assert any(f.endswith(f"workflow/notebooks/{name}.ipynb")
                    for f in inputs[f"report_{name}"])
@@ -246,8 +250,9 @@ def test_study_writes_the_summary_table(study):
 
     assert list(table.columns) == list(SUMMARY_COLUMNS)
     runs = table[table.engine != "ltca"].groupby("run").size()
-    # two traces x two models x (compiled, pybullet, scipy), two sensitivity runs
-    assert len(runs) == 14
+    # two traces x (point, line) x compiled, the point model on pybullet, the line model
+    # on scipy, two sensitivity runs
+    assert len(runs) == 10
     speed = table[table.quantity == "gear_speed"]
     assert (abs(speed["mean"] - 1873.703) / 1873.703 < 0.02).all()
     mesh = table[table.engine == "ltca"]
@@ -270,11 +275,13 @@ def test_study_renders_the_reports(study, name):
 @pytest.mark.slow
 def test_study_keeps_the_logs_and_the_validated_settings(study):
     root, _ = study
-    assert (root / "logs" / "geometry" / "logarithmic_beta35.log").read_text().strip()
+    assert "lsbg.export" in (root / "logs" / "paper_geometry"
+                             / "logarithmic_beta35.log").read_text()
     assert "lsbg.dynamics" in (root / "logs" / "simulate"
                                / "circular_beta35_line_scipy.log").read_text()
     settings = yaml.safe_load((root / "results" / "config.yaml").read_text(encoding="utf-8"))
     assert settings["simulation"]["duration_s"] == 0.05
+    assert settings["design"]["module_mm"] == 4.5
     assert settings["statistics"]["subgroup_size"] == 5
 
 
@@ -289,10 +296,10 @@ def test_after_the_run_there_is_nothing_to_do(study):
 def test_a_new_spiral_angle_runs_only_its_points_and_the_aggregates(study, tmp_path):
     extra = write_yaml(tmp_path / "more.yaml", {"sweep": {"spiral_angles_deg": [35, 40]}})
     jobs, output = dry_run(study, extra)
-    assert rules_of(jobs) == sorted(["geometry"] * 2 + ["ltca"] * 2 + ["simulate"] * 4
+    assert rules_of(jobs) == sorted(["sweep_points"] * 2
                                     + ["combine", "summary", "report_paper", "report_sweep",
                                        "all"]), output
-    new = {out for rule, out in jobs if rule in ("geometry", "ltca", "simulate")}
+    new = {f for rule, out in jobs if rule == "sweep_points" for f in out.split(", ")}
     assert new == {"results/geometry/logarithmic_beta40", "results/geometry/circular_beta40",
                    "results/mesh/logarithmic_beta40.nc", "results/mesh/circular_beta40.nc",
                    *(f"results/runs/{t}_beta40_{m}_compiled.nc" for t in ("logarithmic", "circular")
@@ -305,15 +312,19 @@ def test_a_changed_setting_reruns_only_the_runs_that_use_it(study, tmp_path):
     line-model setting the line-model runs and loaded TCAs only."""
     extra = write_yaml(tmp_path / "dt.yaml", {"simulation": {"time_step_s": 2e-6}})
     jobs, output = dry_run(study, extra)
-    assert rules_of(jobs) == sorted(["simulate"] * 4 + ["convergence"] * 4
-                                    + ["summary", "report_paper", "report_sweep",
+    # (the point model's convergence tables write its compiled runs too: combine follows)
+    assert rules_of(jobs) == sorted(["simulate"] * 2 + ["convergence"] * 2
+                                    + ["combine", "summary", "report_paper", "report_sweep",
                                        "report_verification", "all"]), output
     assert {out for rule, out in jobs if rule == "simulate"} == {
-        f"results/runs/{t}_beta35_{m}_pybullet.nc" for t in ("logarithmic", "circular")
-        for m in ("point", "line")}
+        f"results/runs/{t}_beta35_point_pybullet.nc" for t in ("logarithmic", "circular")}
+    assert {f for rule, out in jobs if rule == "convergence" for f in out.split(", ")} == {
+        f"results/{name}" for t in ("logarithmic", "circular")
+        for name in (f"verification/convergence_{t}_point.csv",
+                     f"runs/{t}_beta35_point_compiled.nc")}
     extra = write_yaml(tmp_path / "line.yaml", {"contact": {"mesh_damping_ratio": 0.07}})
     jobs, output = dry_run(study, extra)
-    assert rules_of(jobs) == sorted(["ltca"] * 2 + ["simulate"] * 6 + ["sensitivity"] * 2
+    assert rules_of(jobs) == sorted(["paper_ltca"] * 2 + ["simulate"] * 2 + ["sensitivity"] * 2
                                     + ["convergence"] * 2
                                     + ["combine", "summary", "report_paper", "report_sweep",
                                        "report_verification", "all"]), output
@@ -329,9 +340,13 @@ _AGGREGATES = ["combine", "summary", "report_paper", "report_sweep", "report_ver
 CODE_CHANGES = {
     "lsbg/verification.py": ["convergence"] * 4 + _AGGREGATES,
     "lsbg/stats.py": _AGGREGATES,
-    "lsbg/ltca.py": ["ltca"] * 2 + _AGGREGATES,
-    "lsbg/solids.py": ["geometry"] * 2 + ["ltca"] * 2 + ["simulate"] * 12 + ["sensitivity"] * 2
-                      + ["convergence"] * 4 + _AGGREGATES,
+    "lsbg/ltca.py": ["paper_ltca"] * 2 + _AGGREGATES,
+    # every run at the paper's point reads its geometry; the convergence tables reuse the
+    # reference runs and write the compiled ones
+    "lsbg/sensitivity.py": ["simulate"] * 4 + ["sensitivity"] * 2 + ["convergence"] * 4
+                           + _AGGREGATES,
+    "lsbg/solids.py": ["paper_geometry"] * 2 + ["paper_ltca"] * 2 + ["simulate"] * 4
+                      + ["sensitivity"] * 2 + ["convergence"] * 4 + _AGGREGATES,
     "workflow/notebooks/sweep.ipynb": ["report_sweep", "all"],
 }
 

@@ -8,17 +8,19 @@
 #     engine: pybullet                    # default: engines.sweep
 #     contact_model: line                 # default: point
 #
-# The paper's design point (its geometry comes from the study's `geometry`
+# The paper's design point (its geometry comes from the study's `paper_geometry`
 # rule) is simulated at every torque, each run by `lsbg simulate --load-torque`;
 # one `lsbg summary` per torque tabulates its runs (the summary has no
 # load-torque column, the file name carries it). Outputs:
 #   results/extensions/load_sweep/runs/{trace}_beta{spiral}_{model}_{engine}_T{torque}.nc
 #   results/extensions/load_sweep/summary_T{torque}.csv
 
+from lsbg.files import number_label
+
 LOAD_SWEEP = config["load_sweep"]
 LOAD_ENGINE = LOAD_SWEEP.get("engine", SWEEP_ENGINE)
 LOAD_MODEL = LOAD_SWEEP.get("contact_model", "point")
-LOAD_TORQUES = [angle_label(torque) for torque in LOAD_SWEEP["torques_N_m"]]
+LOAD_TORQUES = [number_label(torque) for torque in LOAD_SWEEP["torques_N_m"]]
 LOAD_RUN = "results/extensions/load_sweep/runs/{trace}_beta{spiral}_{model}_{engine}_T{torque}.nc"
 LOAD_SUMMARY = "results/extensions/load_sweep/summary_T{torque}.csv"
 
@@ -27,15 +29,15 @@ EXTENSION_TARGETS.extend(LOAD_SUMMARY.format(torque=torque) for torque in LOAD_T
 
 rule load_sweep_simulate:
     input:
-        geometry=GEOMETRY,
-        config=ancient(STUDY_CONFIG),
+        geometry=FILES["geometry"],
+        config=ancient(FILES["study_config"]),
         sources=sources("simulate"),
     output:
         LOAD_RUN,
     params:
         settings=lambda wildcards: simulation_params(wildcards.engine, wildcards.model),
     wildcard_constraints:
-        torque=WILDCARDS["spiral"],
+        torque=STUDY.wildcards["spiral"],
     log:
         "logs/load_sweep_simulate/{trace}_beta{spiral}_{model}_{engine}_T{torque}.log",
     threads: 1
@@ -57,14 +59,14 @@ rule load_sweep_summary:
                             engine=LOAD_ENGINE, torque=wildcards.torque)
             for trace in LOAD_SWEEP["traces"]
         ],
-        config=ancient(STUDY_CONFIG),
+        config=ancient(FILES["study_config"]),
         sources=sources("aggregate"),
     output:
         LOAD_SUMMARY,
     params:
-        statistics=canonical(config["statistics"]),
+        statistics=plan.canonical(config["statistics"]),
     wildcard_constraints:
-        torque=WILDCARDS["spiral"],
+        torque=STUDY.wildcards["spiral"],
     log:
         "logs/load_sweep_summary/T{torque}.log",
     threads: 1

@@ -3,11 +3,11 @@
 
 rule combine:
     input:
-        runs=SWEEP_RUNS,
-        meshes=MESHES,
+        runs=STUDY.sweep_runs,
+        meshes=STUDY.meshes,
         sources=sources("aggregate"),
     output:
-        SWEEP_FILE,
+        FILES["sweep"],
     log:
         "logs/combine/sweep.log",
     threads: 1
@@ -22,15 +22,15 @@ rule combine:
 
 rule summary:
     input:
-        runs=ALL_RUNS + SENSITIVITY_RUNS,
-        meshes=MESHES,
-        config=ancient(STUDY_CONFIG),
+        runs=STUDY.all_runs + STUDY.sensitivity_runs(),
+        meshes=STUDY.meshes,
+        config=ancient(FILES["study_config"]),
         sources=sources("aggregate"),
     output:
-        report(SUMMARY_FILE, caption="../report/summary.rst", category="Summary"),
+        report(FILES["summary"], caption="../report/summary.rst", category="Summary"),
     params:
         # Rerun trigger: the statistics settings the table depends on.
-        statistics=canonical(config["statistics"]),
+        statistics=plan.canonical(config["statistics"]),
     log:
         "logs/summary/summary.log",
     threads: 1

@@ -6,14 +6,14 @@
 rule report_paper:
     input:
         notebook=notebook("paper"),
-        runs=PAPER_RUNS,
-        sensitivity=SENSITIVITY_RUNS,
-        meshes=[mesh_file(t, PAPER_SPIRAL) for t in PAPER_TRACES],
-        geometry=PAPER_GEOMETRY,
-        summary=SUMMARY_FILE,
+        runs=STUDY.paper_runs,
+        sensitivity=STUDY.sensitivity_runs(),
+        meshes=STUDY.paper_meshes,
+        geometry=STUDY.paper_geometry,
+        summary=FILES["summary"],
         sources=sources("report"),
     output:
-        report(REPORTS["paper"], caption="../report/reports.rst", category="Reports",
+        report(STUDY.reports["paper"], caption="../report/reports.rst", category="Reports",
                labels={"report": "paper"}),
     params:
         notebook_dir=lambda wildcards, input: os.path.dirname(input.notebook),
@@ -21,8 +21,8 @@ rule report_paper:
         sensitivity=lambda wildcards, input: yaml_list(input.sensitivity),
         meshes=lambda wildcards, input: yaml_list(input.meshes),
         geometry=lambda wildcards, input: yaml_list(input.geometry),
-        paper_engine=PAPER_ENGINE,
-        sensitivity_engine=SWEEP_ENGINE,
+        paper_engine=STUDY.paper_engine,
+        line_engine=SWEEP_ENGINE,
         steady_state_after=config["statistics"]["steady_state_after_s"],
         window_start=config["statistics"]["control_chart_window_s"][0],
         window_stop=config["statistics"]["control_chart_window_s"][1],
@@ -41,7 +41,7 @@ rule report_paper:
         " --param 'mesh_files={params.meshes}' --param 'geometry_dirs={params.geometry}'"
         " --param summary_file={input.summary}"
         " --param paper_engine={params.paper_engine}"
-        " --param sensitivity_engine={params.sensitivity_engine}"
+        " --param line_engine={params.line_engine}"
         " --param steady_state_after_s={params.steady_state_after}"
         " --param chart_window_start_s={params.window_start}"
         " --param chart_window_stop_s={params.window_stop}"
@@ -51,11 +51,12 @@ rule report_paper:
 rule report_sweep:
     input:
         notebook=notebook("sweep"),
-        sweep=SWEEP_FILE,
-        summary=SUMMARY_FILE,
+        sweep=FILES["sweep"],
+        summary=FILES["summary"],
+        speed_curve=[FILES["speed_curve"]] if STUDY.speed_sweep else [],
         sources=sources("report"),
     output:
-        report(REPORTS["sweep"], caption="../report/reports.rst", category="Reports",
+        report(STUDY.reports["sweep"], caption="../report/reports.rst", category="Reports",
                labels={"report": "sweep"}),
     params:
         notebook_dir=lambda wildcards, input: os.path.dirname(input.notebook),
@@ -71,19 +72,20 @@ rule report_sweep:
     shell:
         "lsbg -v report sweep --notebook-dir {params.notebook_dir} --out {output}"
         " --param sweep_file={input.sweep} --param summary_file={input.summary}"
+        " --param 'speed_curve_file={input.speed_curve}'"
         " --param steady_state_after_s={params.steady_state_after} > {log} 2>&1"
 
 
 rule report_verification:
     input:
         notebook=notebook("verification"),
-        convergence=CONVERGENCE_FILES,
-        geometry=PAPER_GEOMETRY,
-        runs=PAPER_RUNS,
-        meshes=[mesh_file(t, PAPER_SPIRAL) for t in PAPER_TRACES],
+        convergence=STUDY.convergence_files,
+        geometry=STUDY.paper_geometry,
+        runs=STUDY.paper_runs,
+        meshes=STUDY.paper_meshes,
         sources=sources("report"),
     output:
-        report(REPORTS["verification"], caption="../report/reports.rst", category="Reports",
+        report(STUDY.reports["verification"], caption="../report/reports.rst", category="Reports",
                labels={"report": "verification"}),
     params:
         notebook_dir=lambda wildcards, input: os.path.dirname(input.notebook),

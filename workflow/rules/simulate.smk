@@ -1,17 +1,23 @@
-# Meshing simulations (one NetCDF per design point, contact model and engine),
-# the sensitivity runs and the convergence studies at the paper's design point.
+# At the paper's design point: the runs of the reference engines (one per trace,
+# model and engine), the model-form sensitivity runs (one job per trace) and
+# the convergence tables (one per trace and model). A convergence table reuses
+# the reference engines' default runs and writes its sweep-engine run at the
+# default tolerance as the design point's run of that engine (the same run
+# `lsbg simulate` would make: one job fewer per trace and model).
 
 
 rule simulate:
     input:
-        geometry=GEOMETRY,
-        config=ancient(STUDY_CONFIG),
+        geometry=FILES["geometry"],
+        config=ancient(FILES["study_config"]),
         sources=sources("simulate"),
     output:
-        RUN,
+        FILES["run"],
     params:
         # Rerun trigger: the settings this run depends on.
         settings=lambda wildcards: simulation_params(wildcards.engine, wildcards.model),
+    wildcard_constraints:
+        engine=STUDY.reference_engines,
     log:
         "logs/simulate/{trace}_beta{spiral}_{model}_{engine}.log",
     threads: 1
@@ -25,58 +31,66 @@ rule simulate:
         " --contact-model {wildcards.model} --config {input.config} --out {output} > {log} 2>&1"
 
 
-rule sensitivity:
-    input:
-        geometry=GEOMETRY,
-        config=ancient(STUDY_CONFIG),
-        sources=sources("simulate"),
-    output:
-        SENSITIVITY_RUN,
-    params:
-        engine=SWEEP_ENGINE,
-        option=lambda wildcards: sensitivity_option(wildcards.case),
-        settings=lambda wildcards: simulation_params(SWEEP_ENGINE, "line"),
-    log:
-        "logs/sensitivity/{trace}_beta{spiral}_{case}.log",
-    threads: 1
-    resources:
-        mem_mb=1000,
-        runtime=simulation_runtime(),
-    conda:
-        CONDA_ENV
-    shell:
-        "lsbg -v simulate --geometry {input.geometry} --engine {params.engine}"
-        " --contact-model line {params.option} --config {input.config} --out {output}"
-        " > {log} 2>&1"
+if STUDY.sensitivity:
+
+    rule sensitivity:
+        input:
+            geometry=template(FILES["geometry"], spiral=PAPER_SPIRAL),
+            config=ancient(FILES["study_config"]),
+            sources=sources("simulate"),
+        output:
+            [template(FILES["sensitivity_run"], spiral=PAPER_SPIRAL, case=case)
+             for case in STUDY.sensitivity],
+        params:
+            cases=" ".join(f"--case {key}={factor!r}"
+                           for key, factor in STUDY.sensitivity.values()),
+            out=lambda w: template(FILES["sensitivity_run"], trace=w.trace, spiral=PAPER_SPIRAL),
+            engine=SWEEP_ENGINE,
+            settings=simulation_params(SWEEP_ENGINE, "line"),
+        log:
+            "logs/sensitivity/{trace}.log",
+        threads: 1
+        resources:
+            mem_mb=1000,
+            runtime=simulation_runtime(runs=len(STUDY.sensitivity)),
+        conda:
+            CONDA_ENV
+        shell:
+            "lsbg -v sensitivity --geometry {input.geometry} --engine {params.engine}"
+            " --config {input.config} {params.cases} --out '{params.out}' > {log} 2>&1"
 
 
 rule convergence:
     input:
-        geometry=geometry_dir("{trace}", PAPER_SPIRAL),
-        config=ancient(STUDY_CONFIG),
+        geometry=template(FILES["geometry"], spiral=PAPER_SPIRAL),
+        known=lambda wildcards: STUDY.known_runs(wildcards.trace, wildcards.model),
+        config=ancient(FILES["study_config"]),
         sources=sources("convergence"),
     output:
-        report(
-            CONVERGENCE,
+        table=report(
+            FILES["convergence"],
             caption="../report/convergence.rst",
             category="Verification",
-            labels={"trace": "{trace}", "table": "convergence"},
+            labels={"trace": "{trace}", "table": "convergence {model}"},
         ),
+        run=template(FILES["run"], spiral=PAPER_SPIRAL, engine=SWEEP_ENGINE),
     params:
-        settings=lambda wildcards: canonical({
-            "simulation": config["simulation"],
-            "contact": simulation_params("compiled", wildcards.model)["contact"],
-        }),
+        engine=SWEEP_ENGINE,
+        engines=lambda wildcards: " ".join(STUDY.convergence_engines(wildcards.model)),
+        settings=lambda wildcards: plan.canonical({
+            engine: simulation_params(engine, wildcards.model)
+            for engine in STUDY.convergence_engines(wildcards.model)}),
         steady_state_after=config["statistics"]["steady_state_after_s"],
     log:
         "logs/convergence/{trace}_{model}.log",
     threads: 1
     resources:
         mem_mb=1000,
-        runtime=simulation_runtime(runs=9),
+        runtime=simulation_runtime(runs=6),
     conda:
         CONDA_ENV
     shell:
         "lsbg -v convergence --geometry {input.geometry} --config {input.config}"
-        " --contact-model {wildcards.model} --steady-state-after {params.steady_state_after}"
-        " --out {output} > {log} 2>&1"
+        " --contact-model {wildcards.model} --engines {params.engines} --known {input.known}"
+        " --default-run {params.engine}={output.run}"
+        " --steady-state-after {params.steady_state_after} --out {output.table} > {log} 2>&1"

@@ -1,0 +1,464 @@
+"""The Snakemake workflow's plan in plain Python: configuration checks, design
+points, file names and what each rule depends on.
+
+``workflow/rules/common.smk`` is only glue: it validates the configuration
+with the schema (``snakemake.utils.validate`` fills in its defaults), calls
+:func:`study_problems` and builds a :class:`Study`, whose attributes the rules
+read. Everything here is tested by pytest without Snakemake
+(tests/test_workflow_plan.py).
+
+File names are relative to the working directory (the repository root when
+run the documented way).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import yaml
+
+from lsbg.files import number_label
+
+__all__ = ["PAPER_TRACES", "CONTACT_MODELS", "REPORT_NAMES", "STUDY_SECTIONS", "FILES",
+           "schema_problems", "study_problems", "speed_labels", "canonical", "yaml_text",
+           "write_study_config", "simulation_params", "simulation_runtime", "Study"]
+
+#: Both traces run at the paper's design point (the paper compares them).
+PAPER_TRACES = ("logarithmic", "circular")
+CONTACT_MODELS = ("point", "line")
+REPORT_NAMES = ("paper", "sweep", "verification")
+#: Sections of the configuration that lsbg's commands read from results/config.yaml.
+STUDY_SECTIONS = ("design", "simulation", "contact", "statistics")
+
+#: File name patterns of every stage (Snakemake wildcards in braces).
+FILES = {
+    "study_config": "results/config.yaml",
+    "geometry": "results/geometry/{trace}_beta{spiral}",
+    "mesh": "results/mesh/{trace}_beta{spiral}.nc",
+    "run": "results/runs/{trace}_beta{spiral}_{model}_{engine}.nc",
+    "sensitivity_run": "results/sensitivity/{trace}_beta{spiral}_{case}.nc",
+    "convergence": "results/verification/convergence_{trace}_{model}.csv",
+    "sweep": "results/sweep.nc",
+    "summary": "results/summary.csv",
+    "speed_run": "results/speed/{trace}_beta{spiral}_w{speed}.nc",
+    "speed_curve": "results/speed_curve.nc",
+    "report": "reports/{name}.html",
+}
+
+#: Simulation keys that only some engines read.
+ENGINE_ONLY_KEYS = {"time_step_s": ("pybullet",), "method": ("scipy",),
+                    "compiled_method": ("compiled",), "rtol": ("scipy", "compiled")}
+#: Contact keys that only one model reads (``model`` itself: the rules name it).
+MODEL_ONLY_KEYS = {
+    "point": ("stiffness_N_per_mm1_5", "exponent", "damping_N_s_per_mm", "penetration_depth_mm"),
+    "line": ("line_stiffness_N_per_mm_um", "mesh_damping_ratio", "slices",
+             "line_approach_limit_mm"),
+}
+
+
+# ------------------------------------------------------------- configuration
+def _key_path(parts):
+    """``["sweep", "spiral_angles_deg", 2]`` -> ``"sweep.spiral_angles_deg[2]"``."""
+    text = ""
+    for part in parts:
+        text += f"[{part}]" if isinstance(part, int) else (f".{part}" if text else str(part))
+    return text or "(top level)"
+
+
+def schema_problems(config, schema):
+    """Every violation of the schema, one line each, starting with the key path.
+
+    Parameters
+    ----------
+    config : dict
+    schema : dict
+        workflow/schemas/config.schema.yaml, loaded.
+
+    Returns
+    -------
+    list of str
+    """
+    import jsonschema
+
+    problems = []
+    for error in jsonschema.Draft202012Validator(schema).iter_errors(config):
+        where = list(error.absolute_path)
+        if error.validator == "additionalProperties":
+            known = sorted(error.schema.get("properties", {}))
+            problems += [f"{_key_path(where + [key])}: unknown key (known: {', '.join(known)})"
+                         for key in sorted(set(error.instance) - set(known))]
+        else:
+            problems.append(f"{_key_path(where)}: {error.message}")
+    return sorted(problems)
+
+
+def study_problems(config):
+    """What the schema cannot check: each design point and the settings, by lsbg itself.
+
+    Parameters
+    ----------
+    config : dict
+        Validated by the schema, its defaults filled in.
+
+    Returns
+    -------
+    list of str
+        One line per problem, naming the key and the value.
+    """
+    from lsbg.contact import ContactParameters
+    from lsbg.design import DesignError, GearPairDesign
+    from lsbg.dynamics import SimulationSettings
+    from lsbg.sensitivity import scaled_contact
+
+    problems = []
+    points = {(t, number_label(s)) for t in config["sweep"]["traces"]
+              for s in config["sweep"]["spiral_angles_deg"]}
+    points |= {(t, number_label(config["paper_spiral_angle_deg"])) for t in PAPER_TRACES}
+    speed = config.get("speed_sweep")
+    if speed:
+        angle = speed.get("spiral_angle_deg", config["paper_spiral_angle_deg"])
+        points |= {(t, number_label(angle)) for t in speed.get("traces", PAPER_TRACES)}
+    failing = {}  # message -> design points
+    for trace, spiral in sorted(points, key=lambda point: (point[0], float(point[1]))):
+        try:
+            GearPairDesign.from_config({**config["design"], "trace": trace,
+                                        "spiral_angle_deg": float(spiral)})
+        except DesignError as error:
+            failing.setdefault(str(error), []).append(f"{trace} {spiral} deg")
+    problems += [f"design at {', '.join(where)}: {message}" for message, where in failing.items()]
+    engines = config["engines"]
+    sweep_engine, reference = engines["sweep"], engines["reference"]
+    run = {sweep_engine, *(e for model in CONTACT_MODELS for e in reference.get(model, []))}
+    if engines["paper"] not in {sweep_engine, *reference.get("point", [])}:
+        problems.append(f"engines.paper = {engines['paper']!r}: must be engines.sweep or one of "
+                        f"engines.reference.point {reference.get('point', [])!r} (the paper "
+                        f"report reproduces the paper with the point model)")
+    for engine in sorted(run):
+        try:
+            SimulationSettings.from_config(config["simulation"], engine=engine)
+        except ValueError as error:
+            problems.append(str(error))
+    try:
+        ContactParameters.from_config(config["contact"])
+    except ValueError as error:
+        problems.append(str(error))
+    for key, factors in config["sensitivity"].items():
+        for k, factor in enumerate(factors):
+            try:
+                ContactParameters.from_config({**config["contact"], "model": "line",
+                                               **scaled_contact(config["contact"], key, factor)})
+            except ValueError as error:
+                problems.append(f"sensitivity.{key}[{k}] = {factor!r}: {error}")
+    duration = config["simulation"]["duration_s"]
+    steady = config["statistics"]["steady_state_after_s"]
+    if steady >= duration:
+        problems.append(f"statistics.steady_state_after_s = {steady!r}: "
+                        f"must be below simulation.duration_s = {duration!r}")
+    start, stop = config["statistics"]["control_chart_window_s"]
+    if not start < stop <= duration * (1 + 1e-9):
+        problems.append(f"statistics.control_chart_window_s = {[start, stop]!r}: needs "
+                        f"start < stop <= simulation.duration_s = {duration!r}")
+    if speed:
+        problems += _speed_sweep_problems(config)
+    return list(dict.fromkeys(problems))
+
+
+def _speed_sweep_problems(config):
+    """The speed sweep's settings, checked as ``lsbg speed-run`` will use them."""
+    from lsbg.dynamics import SimulationSettings
+    from lsbg.speed import speed_settings
+
+    speed = config["speed_sweep"]
+    grid = speed["pinion_speeds_deg_s"]
+    problems = []
+    angle = speed.get("spiral_angle_deg", config["paper_spiral_angle_deg"])
+    if number_label(angle) != number_label(config["paper_spiral_angle_deg"]):
+        swept = {number_label(a) for a in config["sweep"]["spiral_angles_deg"]}
+        missing = [t for t in speed["traces"]
+                   if t not in config["sweep"]["traces"] or number_label(angle) not in swept]
+        if missing:
+            problems.append(f"speed_sweep.spiral_angle_deg = {angle!r}: no design point of "
+                            f"{', '.join(missing)} there (use paper_spiral_angle_deg or an "
+                            f"angle of sweep.spiral_angles_deg)")
+    try:
+        speeds, labels = speed_labels(grid)
+    except ValueError as error:
+        return [f"speed_sweep.pinion_speeds_deg_s = {grid!r}: {error}"]
+    if len(set(labels)) < len(labels):
+        problems.append(f"speed_sweep.pinion_speeds_deg_s = {grid!r}: speeds too close to "
+                        f"tell apart in file names")
+    try:
+        base = SimulationSettings.from_config(config["simulation"], engine=speed["engine"])
+        for value in (speeds[0], speeds[-1]):
+            speed_settings(base, value, config["design"].get("pinion_teeth", 9),
+                           **_speed_options(speed))
+    except ValueError as error:
+        problems.append(f"speed_sweep: {error}")
+    return problems
+
+
+def speed_labels(grid):
+    """The speed sweep's pinion speeds [rad/s] and their file-name labels [deg/s, to 1e-3].
+
+    Parameters
+    ----------
+    grid : dict
+        ``speed_sweep.pinion_speeds_deg_s``: ``start``, ``stop`` [deg/s], ``count``.
+    """
+    from lsbg.speed import speed_grid
+
+    speeds = speed_grid(math.radians(grid["start"]), math.radians(grid["stop"]), grid["count"])
+    return speeds, [number_label(round(math.degrees(v), 3)) for v in speeds]
+
+
+def _speed_options(speed):
+    """Keywords of :func:`lsbg.speed.speed_settings` from the ``speed_sweep`` section."""
+    return {"mesh_cycles": speed["mesh_cycles"], "min_window": speed["min_window_s"],
+            "settle_time": speed["settle_time_s"], "ramp_time": speed["ramp_time_s"],
+            "samples_per_mesh": speed["samples_per_mesh"]}
+
+
+def canonical(value):
+    """``value`` with every mapping's keys sorted: stable ``params`` for the rerun trigger."""
+    if isinstance(value, dict):
+        return {key: canonical(value[key]) for key in sorted(value)}
+    if isinstance(value, list):
+        return [canonical(item) for item in value]
+    return value
+
+
+def yaml_text(data, comment):
+    """``data`` as YAML (keys sorted) under the comment line ``comment``."""
+    body = yaml.safe_dump(canonical(dict(data)), sort_keys=False)
+    return f"# {comment}\n{body}"
+
+
+def write_study_config(path, config, only_if_missing=False):
+    """Write the validated settings lsbg reads to ``path`` if they changed.
+
+    The rules take the file as ancient() input and rerun on a change of their
+    own settings (params), not on the file's time stamp. The workflow writes it
+    when parsed only if it is missing (a dry run, or a second invocation
+    refused by the lock, must not change it under a running workflow), and in
+    its ``onstart`` handler (real runs, under Snakemake's lock) if it changed.
+    Not by a rule: when a job upstream of an ancient() input runs, Snakemake
+    9.27 skips the params check of the jobs below it, so they would not rerun.
+    """
+    path = Path(path)
+    if only_if_missing and path.exists():
+        return
+    text = yaml_text({s: config[s] for s in STUDY_SECTIONS},
+                     "the lsbg study settings as validated (written by the workflow; do not edit)")
+    if path.exists() and path.read_text(encoding="utf-8") == text:
+        return
+    path.parent.mkdir(parents=True, exist_ok=True)
+    part = path.with_name(f"{path.name}.part")
+    part.write_text(text, encoding="utf-8")
+    part.replace(path)
+
+
+def simulation_params(config, engine, model):
+    """The simulation and contact settings a run of ``engine`` and ``model`` depends on
+    (the rules' rerun trigger)."""
+    simulation = {k: v for k, v in config["simulation"].items()
+                  if engine in ENGINE_ONLY_KEYS.get(k, (engine,))}
+    others = {key for name, keys in MODEL_ONLY_KEYS.items() if name != model for key in keys}
+    contact = {k: v for k, v in config["contact"].items() if k not in others and k != "model"}
+    return canonical({"simulation": simulation, "contact": contact})
+
+
+#: Budgeted wall time per simulated second and run [s] (measured: PyBullet
+#: about 8, scipy 3-14, compiled about 1; tests/benchmarks/bench_dynamics.py).
+BUDGET_PER_SECOND = 100.0
+
+
+def simulation_runtime(config, runs=1):
+    """Cluster time limit [min] of ``runs`` simulations (generous, at least 10 min)."""
+    return max(10, math.ceil(runs * config["simulation"]["duration_s"] * BUDGET_PER_SECOND / 60))
+
+
+# ---------------------------------------------------------------- the study
+def _format(pattern, **fields):
+    return pattern.format(**fields)
+
+
+@dataclass
+class Study:
+    """Design points, runs and files of a validated configuration.
+
+    Parameters
+    ----------
+    config : dict
+        Validated by the schema (defaults filled in) and :func:`study_problems`.
+    """
+
+    config: dict
+    traces: list = field(init=False)
+    spirals: list = field(init=False)
+    paper_spiral: str = field(init=False)
+
+    def __post_init__(self):
+        c = self.config
+        self.traces = list(c["sweep"]["traces"])
+        self.spirals = [number_label(a) for a in c["sweep"]["spiral_angles_deg"]]
+        self.sweep_models = list(c["sweep"]["contact_models"])
+        self.paper_spiral = number_label(c["paper_spiral_angle_deg"])
+        self.sweep_engine = c["engines"]["sweep"]
+        self.reference = {m: [e for e in c["engines"]["reference"].get(m, [])
+                              if e != self.sweep_engine] for m in CONTACT_MODELS}
+        self.paper_engine = c["engines"]["paper"]
+        from lsbg.sensitivity import case_name
+
+        #: sensitivity case -> (contact key, factor)
+        self.sensitivity = {case_name(key, factor): (key, factor)
+                            for key, factors in c["sensitivity"].items() for factor in factors}
+
+    # -------------------------------------------------------- design points
+    def batch_spirals(self, trace):
+        """The sweep's spiral angles of ``trace`` run in one job (all but the paper's
+        angle of a paper trace, which is a job of its own)."""
+        if trace not in self.traces:
+            return []
+        return [s for s in self.spirals if not (s == self.paper_spiral and trace in PAPER_TRACES)]
+
+    def geometry(self, trace, spiral):
+        return _format(FILES["geometry"], trace=trace, spiral=spiral)
+
+    def mesh(self, trace, spiral):
+        return _format(FILES["mesh"], trace=trace, spiral=spiral)
+
+    def run(self, trace, spiral, model, engine):
+        return _format(FILES["run"], trace=trace, spiral=spiral, model=model, engine=engine)
+
+    def batch_outputs(self, trace):
+        """Geometry dirs, loaded TCAs and sweep-engine runs of a trace's batch job."""
+        spirals = self.batch_spirals(trace)
+        return ([self.geometry(trace, s) for s in spirals] + [self.mesh(trace, s) for s in spirals]
+                + [self.run(trace, s, m, self.sweep_engine) for s in spirals
+                   for m in self.sweep_models])
+
+    # ---------------------------------------------------------------- runs
+    @property
+    def sweep_runs(self):
+        """Every trace at every spiral angle, every sweep model, the sweep engine."""
+        return [self.run(t, s, m, self.sweep_engine) for m in self.sweep_models
+                for t in self.traces for s in self.spirals]
+
+    def reference_runs(self, model=None):
+        """Runs of the reference engines at the paper's design point."""
+        models = CONTACT_MODELS if model is None else (model,)
+        return [self.run(t, self.paper_spiral, m, e) for m in models for e in self.reference[m]
+                for t in PAPER_TRACES]
+
+    @property
+    def paper_runs(self):
+        """Both traces, both models at the paper's point: sweep and reference engines."""
+        return ([self.run(t, self.paper_spiral, m, self.sweep_engine) for m in CONTACT_MODELS
+                 for t in PAPER_TRACES] + self.reference_runs())
+
+    @property
+    def all_runs(self):
+        return list(dict.fromkeys(self.sweep_runs + self.paper_runs))
+
+    @property
+    def meshes(self):
+        """Loaded TCAs: every design point of the sweep and the paper's."""
+        return list(dict.fromkeys([self.mesh(t, s) for t in self.traces for s in self.spirals]
+                                  + self.paper_meshes))
+
+    @property
+    def paper_meshes(self):
+        return [self.mesh(t, self.paper_spiral) for t in PAPER_TRACES]
+
+    @property
+    def paper_geometry(self):
+        return [self.geometry(t, self.paper_spiral) for t in PAPER_TRACES]
+
+    def sensitivity_runs(self, trace=None):
+        traces = PAPER_TRACES if trace is None else (trace,)
+        return [_format(FILES["sensitivity_run"], trace=t, spiral=self.paper_spiral, case=case)
+                for case in self.sensitivity for t in traces]
+
+    # --------------------------------------------------------- verification
+    def convergence_engines(self, model):
+        """Engines of a model's convergence table: the sweep engine and the model's
+        reference engines, each over its time steps or tolerances."""
+        return [self.sweep_engine, *self.reference[model]]
+
+    def known_runs(self, trace, model):
+        """The default runs a convergence table reuses: its reference engines' (it writes
+        the sweep engine's itself)."""
+        return [self.run(trace, self.paper_spiral, model, e) for e in self.reference[model]]
+
+    @property
+    def convergence_files(self):
+        return [_format(FILES["convergence"], trace=t, model=m) for m in CONTACT_MODELS
+                for t in PAPER_TRACES]
+
+    # ---------------------------------------------------------- speed sweep
+    @property
+    def speed_sweep(self):
+        """The ``speed_sweep`` section, or None."""
+        return self.config.get("speed_sweep") or None
+
+    @property
+    def speed_spiral(self):
+        return number_label(self.speed_sweep.get("spiral_angle_deg",
+                                                 self.config["paper_spiral_angle_deg"]))
+
+    @property
+    def speed_traces(self):
+        return list(self.speed_sweep.get("traces", PAPER_TRACES))
+
+    @property
+    def speeds(self):
+        """Pinion speeds of the speed sweep as file-name labels [deg/s]."""
+        return speed_labels(self.speed_sweep["pinion_speeds_deg_s"])[1]
+
+    @property
+    def speed_options(self):
+        """``lsbg speed-run`` options of the speed sweep."""
+        speed = self.speed_sweep
+        return (f"--mesh-cycles {speed['mesh_cycles']} --min-window {speed['min_window_s']} "
+                f"--settle-time {speed['settle_time_s']} --ramp-time {speed['ramp_time_s']} "
+                f"--samples-per-mesh {speed['samples_per_mesh']}")
+
+    @property
+    def speed_runs(self):
+        if not self.speed_sweep:
+            return []
+        return [_format(FILES["speed_run"], trace=t, spiral=self.speed_spiral, speed=v)
+                for t in self.speed_traces for v in self.speeds]
+
+    # -------------------------------------------------------------- targets
+    @property
+    def reports(self):
+        return {name: _format(FILES["report"], name=name) for name in REPORT_NAMES}
+
+    @property
+    def targets(self):
+        """What ``rule all`` asks for."""
+        extra = [FILES["speed_curve"]] if self.speed_sweep else []
+        return [*self.reports.values(), FILES["sweep"], FILES["summary"], *extra]
+
+    # ------------------------------------------------------------ wildcards
+    @property
+    def wildcards(self):
+        """Constraints of the wildcards (regular expressions)."""
+        return {
+            "trace": "|".join(PAPER_TRACES),
+            "spiral": r"\d+(\.\d+)?",
+            "engine": "pybullet|scipy|compiled",
+            "model": "|".join(CONTACT_MODELS),
+            "case": "|".join(map(re.escape, self.sensitivity)) or "none",
+            "speed": r"\d+(\.\d+)?",
+        }
+
+    @property
+    def reference_engines(self):
+        """Regular expression of the engines the ``simulate`` rule runs."""
+        engines = sorted({e for m in CONTACT_MODELS for e in self.reference[m]})
+        return "|".join(engines) or "none"

@@ -1,0 +1,157 @@
+"""lsbg.workflow, the workflow's plan without Snakemake: configuration checks, the
+design points, runs and files of a study, the rerun triggers and the study config."""
+
+import copy
+import os
+from pathlib import Path
+
+import pytest
+import yaml
+from snakemake.utils import validate
+
+from lsbg import workflow as plan
+
+REPO = Path(__file__).resolve().parents[1]
+SCHEMA = REPO / "workflow" / "schemas" / "config.schema.yaml"
+
+
+def load(*names, **overrides):
+    """workflow/config.yaml with other config files merged over it, validated by the schema
+    (which fills in its defaults), then ``overrides`` ({section: {key: value}})."""
+    config = {}
+    for name in ("config.yaml", *names):
+        data = yaml.safe_load((REPO / "workflow" / name).read_text(encoding="utf-8"))
+        for key, value in data.items():
+            config[key] = value
+    for section, values in overrides.items():
+        if isinstance(values, dict) and isinstance(config.get(section), dict):
+            config[section] = {**config[section], **values}
+        else:
+            config[section] = values
+    validate(config, str(SCHEMA))
+    return config
+
+
+@pytest.fixture(scope="module")
+def default():
+    return load()
+
+
+@pytest.mark.parametrize("names", [(), ("config-test.yaml",), ("config-speed.yaml",)])
+def test_shipped_configs_have_no_problems(names):
+    assert plan.study_problems(load(*names)) == []
+
+
+def test_every_run_and_file_of_the_default_study_is_planned_once(default):
+    study = plan.Study(default)
+    traces, spirals = default["sweep"]["traces"], default["sweep"]["spiral_angles_deg"]
+    models = default["sweep"]["contact_models"]
+    assert len(study.sweep_runs) == len(set(study.sweep_runs)) == (
+        len(traces) * len(spirals) * len(models))
+    # the batch job of each trace, the paper's geometry and loaded TCA of each paper trace,
+    # and the sweep engine's run of each paper trace and model (by its convergence table)
+    produced = []
+    for trace in traces:
+        produced += study.batch_outputs(trace)
+    produced += study.paper_geometry + study.paper_meshes
+    produced += [study.run(t, study.paper_spiral, m, study.sweep_engine)
+                 for t in plan.PAPER_TRACES for m in plan.CONTACT_MODELS]
+    assert len(produced) == len(set(produced))
+    sweep_engine = {run for run in study.all_runs if run.endswith(f"_{study.sweep_engine}.nc")}
+    assert sweep_engine == {f for f in produced if f.startswith("results/runs/")}
+    assert set(study.meshes) == {f for f in produced if f.startswith("results/mesh/")}
+    # reference engines only at the paper's point; a convergence table reuses their runs
+    # (not its own engine's run, which it writes)
+    for run in study.reference_runs():
+        assert f"_beta{study.paper_spiral}_" in run and run not in produced
+    for trace in plan.PAPER_TRACES:
+        for model in plan.CONTACT_MODELS:
+            assert set(study.known_runs(trace, model)) == set(study.reference_runs(model)) & {
+                study.run(trace, study.paper_spiral, model, e) for e in ("pybullet", "scipy")}
+    assert study.targets == [*study.reports.values(), plan.FILES["sweep"],
+                             plan.FILES["summary"]]
+
+
+def test_the_paper_point_is_not_in_a_batch(default):
+    study = plan.Study(default)
+    for trace in plan.PAPER_TRACES:
+        assert study.paper_spiral not in study.batch_spirals(trace)
+        assert study.batch_spirals(trace)
+
+
+def test_sensitivity_and_speed_sweep_runs_are_named_by_case_and_speed():
+    config = load("config-speed.yaml")
+    study = plan.Study(config)
+    grid = config["speed_sweep"]["pinion_speeds_deg_s"]
+    assert len(study.speeds) == len(set(study.speeds)) == grid["count"]
+    assert float(study.speeds[0]) == pytest.approx(grid["start"])
+    assert float(study.speeds[-1]) == pytest.approx(grid["stop"])
+    assert len(study.speed_runs) == 2 * grid["count"]
+    assert plan.FILES["speed_curve"] in study.targets
+    cases = study.sensitivity_runs()
+    assert len(cases) == len(set(cases)) == 2 * sum(len(f) for f in config["sensitivity"].values())
+
+
+@pytest.mark.parametrize("overrides, message", [
+    ({"engines": {"sweep": "compiled", "reference": {"point": ["scipy"]}, "paper": "pybullet"}},
+     "engines.paper = 'pybullet'"),
+    ({"simulation": {"duration_s": 0.1}}, "statistics.steady_state_after_s = 0.2"),
+    ({"statistics": {"control_chart_window_s": [0.5, 0.4]}},
+     "statistics.control_chart_window_s = [0.5, 0.4]"),
+    ({"design": {"face_width_mm": 80}}, "design at circular"),
+    ({"sensitivity": {"mesh_damping_ratio": [100]}}, "sensitivity.mesh_damping_ratio[0] = 100"),
+    ({"speed_sweep": {"pinion_speeds_deg_s": {"start": 10, "stop": 10.0001, "count": 5}}},
+     "speeds too close"),
+    ({"speed_sweep": {"spiral_angle_deg": 33, "pinion_speeds_deg_s":
+                      {"start": 3000, "stop": 9000, "count": 3}}},
+     "speed_sweep.spiral_angle_deg = 33"),
+])
+def test_study_problems_name_the_key_and_the_value(default, overrides, message):
+    config = copy.deepcopy(default)
+    for section, values in overrides.items():
+        config[section] = ({**config[section], **values} if section in config else values)
+    if "speed_sweep" in overrides:
+        validate(config, str(SCHEMA))
+    problems = plan.study_problems(config)
+    assert any(message in p for p in problems), problems
+
+
+def test_schema_problems_name_every_bad_key(default):
+    config = copy.deepcopy(default)
+    config["simulation"]["samples"] = "many"
+    config["contact"]["stifness"] = 1.0
+    schema = yaml.safe_load(SCHEMA.read_text(encoding="utf-8"))
+    problems = plan.schema_problems(config, schema)
+    assert any(p.startswith("simulation.samples: 'many'") for p in problems), problems
+    assert any(p.startswith("contact.stifness: unknown key") for p in problems), problems
+
+
+def test_simulation_params_hold_only_what_the_run_reads(default):
+    pybullet = plan.simulation_params(default, "pybullet", "point")
+    assert "time_step_s" in pybullet["simulation"] and "rtol" not in pybullet["simulation"]
+    assert "stiffness_N_per_mm1_5" in pybullet["contact"]
+    assert "slices" not in pybullet["contact"]
+    line = plan.simulation_params(default, "compiled", "line")
+    assert "time_step_s" not in line["simulation"] and "slices" in line["contact"]
+    changed = copy.deepcopy(default)
+    changed["contact"]["slices"] = 40
+    assert plan.simulation_params(changed, "pybullet", "point") == pybullet
+    assert plan.simulation_params(changed, "compiled", "line") != line
+
+
+def test_study_config_is_written_only_when_it_changes(default, tmp_path):
+    path = tmp_path / "results" / "config.yaml"
+    plan.write_study_config(path, default)
+    written = yaml.safe_load(path.read_text(encoding="utf-8"))
+    assert set(written) == set(plan.STUDY_SECTIONS)
+    assert written["design"]["module_mm"] == default["design"]["module_mm"]
+    os.utime(path, (1, 1))
+    plan.write_study_config(path, default)
+    assert path.stat().st_mtime == 1                      # same text: not touched
+    changed = copy.deepcopy(default)
+    changed["simulation"]["samples"] = 1000
+    plan.write_study_config(path, changed, only_if_missing=True)
+    assert path.stat().st_mtime == 1                      # exists: a dry run leaves it
+    plan.write_study_config(path, changed)
+    assert yaml.safe_load(path.read_text(encoding="utf-8"))["simulation"]["samples"] == 1000
+    assert not list(path.parent.glob("*.part"))
