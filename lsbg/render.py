@@ -142,12 +142,14 @@ def render_pair(path, pair, meshes, size=(900, 700), supersample=2):
                       - scale * (plane[..., 1] - 0.5 * (lo[1] + hi[1])))
     # the view vector points towards the viewer: nearer is larger along it
     depth = -(triangles @ view)
-    image = np.ones((height, width, 3))
-    zbuffer = np.full((height, width), np.inf)
+    # single precision: the supersampled buffers are large (1800 x 1400 here)
+    image = np.ones((height, width, 3), dtype=np.float32)
+    zbuffer = np.full((height, width), np.inf, dtype=np.float32)
     rasterize(np.ascontiguousarray(screen), np.ascontiguousarray(depth),
               np.ascontiguousarray(colours), image, zbuffer)
-    image = image.reshape(size[1], supersample, size[0], supersample, 3).mean(axis=(1, 3))
-    picture = Image.fromarray(np.round(255 * image).astype(np.uint8), "RGB")
+    image = image.reshape(size[1], supersample, size[0], supersample, 3).sum(axis=(1, 3))
+    image *= 255.0 / supersample**2
+    picture = Image.fromarray(np.round(image).astype(np.uint8), "RGB")
     trace = "LSBG (logarithmic spiral)" if d.trace == "logarithmic" else "SBG (circular arc)"
     text = (f"{trace}, spiral angle {math.degrees(d.spiral_angle):g}°, "
             f"{d.pinion_teeth}:{d.gear_teeth}, m = {1e3 * d.module:g} mm")

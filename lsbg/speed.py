@@ -174,12 +174,18 @@ def speed_point(ds):
 
 
 def _binned_peak(frequency, amplitude, edges):
-    """Largest amplitude of the spectrum within each frequency bin (NaN where none)."""
+    """Largest amplitude of the spectrum within each frequency bin.
+
+    A bin narrower than the spectrum's resolution may hold no line: it takes
+    the spectrum interpolated at its centre; beyond the spectrum's top, NaN.
+    """
     index = np.searchsorted(edges, frequency, side="right") - 1
     inside = (index >= 0) & (index < edges.size - 1)
     out = np.full(edges.size - 1, -np.inf)
     np.maximum.at(out, index[inside], amplitude[inside])
-    out[~np.isfinite(out)] = np.nan
+    centre = 0.5 * (edges[1:] + edges[:-1])
+    empty = ~np.isfinite(out)
+    out[empty] = np.interp(centre[empty], frequency, amplitude, right=np.nan)
     return out
 
 

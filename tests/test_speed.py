@@ -180,3 +180,15 @@ def test_figures_mark_the_resonances(curve_file):
     assert any(mark == pytest.approx(resonance) for mark in marks)
     campbell = speed_figures.plot_campbell(curve)
     assert campbell.axes
+
+
+def test_spectrum_map_has_no_holes_where_the_bins_are_finer_than_the_spectrum():
+    from lsbg.speed import _binned_peak
+
+    frequency = np.arange(0.0, 1000.0, 20.0)          # 20 Hz resolution
+    amplitude = np.exp(-((frequency - 400.0) / 100.0) ** 2)
+    edges = np.linspace(0.0, 1200.0, 121)              # 10 Hz bins
+    binned = _binned_peak(frequency, amplitude, edges)
+    below = edges[:-1] <= frequency[-1]
+    assert np.all(np.isfinite(binned[below])) and np.all(np.isnan(binned[~below]))
+    assert np.nanmax(binned) == pytest.approx(1.0)
