@@ -111,7 +111,15 @@ def verdict(value, target, smaller=True):
     return "ok" if ok else "OVER TARGET"
 
 
+def figure(name, value, unit, target=None, smaller=True):
+    """One benchmark figure: a row of the summary that bench_all.py prints."""
+    return {"figure": name, "value": value, "unit": unit, "target": target,
+            "verdict": verdict(value, target, smaller),
+            "target_text": "" if target is None else f"{'<=' if smaller else '>='} {target:g}"}
+
+
 def main(argv=None):
+    """Run the benchmark; return its figures (see :func:`figure`)."""
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--duration", type=float, default=1.0, help="simulated time [s]")
     parser.add_argument("--convergence", action="store_true",
@@ -121,10 +129,12 @@ def main(argv=None):
     settings = SimulationSettings(duration=args.duration, samples=round(500 * args.duration),
                                   ramp_time=min(0.2, args.duration / 5))
     print(f"lsbg dynamics benchmark, {os.cpu_count()} cores, {args.duration:g} s simulated")
+    figures = []
     times = compile_times()
     print("\n== numba kernels: import and first call, each in a new interpreter [s] ==")
     for label, (imported, first) in times.items():
         print(f"  {label:22s}: import {imported:.2f}, first call {first:.2f}")
+        figures.append(figure(f"kernels first call, {label}", first, "s"))
     with tempfile.TemporaryDirectory() as tmp:
         geometry = Path(tmp) / "lsbg35"
         write_geometry(GearPairDesign(), geometry)
@@ -132,6 +142,7 @@ def main(argv=None):
         print("\n== contact kernel, one evaluation [us] ==")
         for name, model in models.items():
             compiled, python = kernel_costs(model)
+            figures.append(figure(f"{name} contact kernel, compiled loop", compiled, "us"))
             print(f"  {name:5s} model: {compiled:.3f} in a compiled loop, {python:.3f} called "
                   f"from Python")
         print("\n== wall time per simulated second, LSBG at 35 deg [s] ==")
@@ -141,6 +152,8 @@ def main(argv=None):
                 record = model.run(settings.replace(engine=engine))
                 wall[(engine, name)] = per_second = record.wall_time / settings.duration
                 target = TARGETS[(engine, name)]
+                figures.append(figure(f"{engine} engine, {name} model, per simulated second",
+                                      per_second, "s", target))
                 shown = f"(target <= {target:g})" if target is not None else ""
                 print(f"  {engine:8s} {name:5s}: {per_second:7.2f} {shown:18s} "
                       f"{verdict(per_second, target)}")
@@ -155,6 +168,11 @@ def main(argv=None):
             print(f"  {key:16s}: {costs[key]:6.2f}")
         print(f"  (floor: the PyBullet calls alone, the motor's target write on the "
               f"{costs['ramp_share']:.0%} ramp steps)")
+        figures.append(figure("PyBullet step", costs["engine_step"], "us"))
+        figures.append(figure("PyBullet floor (step + joint read + torque write)",
+                              costs["floor"], "us"))
+        figures.append(figure("PyBullet step / floor", costs["engine_over_floor"], "",
+                              ENGINE_OVER_FLOOR))
         print(f"  engine / floor  : {costs['engine_over_floor']:6.2f} "
               f"(target <= {ENGINE_OVER_FLOOR}) {verdict(costs['engine_over_floor'], ENGINE_OVER_FLOOR)}")
         if args.convergence:
@@ -175,6 +193,7 @@ def main(argv=None):
             if args.out:
                 args.out.mkdir(parents=True, exist_ok=True)
                 pd.concat(tables).to_csv(args.out / "convergence.csv", index=False)
+    return figures
 
 
 if __name__ == "__main__":

@@ -1,18 +1,24 @@
-"""Benchmark of the whole study: ``snakemake -j2`` with the default configuration.
+"""Benchmark of the whole study: ``snakemake -j2`` and ``-j1`` from scratch, the
+speed sweep, and the start-up costs every job pays.
 
 Run as a script (pytest does not collect it: no ``test_`` prefix)::
 
-    python tests/benchmarks/bench_study.py [--jobs 2] [--configfile FILE] [--keep DIR]
+    python tests/benchmarks/bench_study.py [--no-j1] [--no-speed] [--keep DIR]
 
-Copies the repository's files (``git ls-files``) into a temporary directory,
+Copies the repository's files (``git ls-files``) into a temporary directory and
 runs the workflow there (``PYTHONPATH`` pointing at the copy, so the jobs run
-the copied lsbg), and prints the wall time of the whole study, the time of one
-simulation (the runs' ``wall_time_s`` attribute: the integration alone, and
-the Snakemake job, which adds start-up and writing), and the time per rule
-from Snakemake's job records (``.snakemake/metadata``), so that the rule that
-dominates is visible.
+the copied lsbg):
 
-Target: the full study in at most 20 min on two cores.
+1. the default study with ``-j2`` from scratch (target <= 90 s), with the job
+   time per rule from Snakemake's job records (``.snakemake/metadata``);
+2. the same with ``-j1`` from scratch; -j1 over -j2 is the parallel
+   efficiency (target >= 1.8);
+3. the speed sweep on top of the finished study (``--configfile
+   workflow/config-speed.yaml``: its runs, the curve and the sweep report
+   again; target <= 5 min);
+4. start-up costs: a new interpreter importing what each stage imports, the
+   ``lsbg`` command doing nothing, and a notebook kernel executing an empty
+   notebook, each the median of three.
 """
 
 import argparse
@@ -28,7 +34,9 @@ from collections import defaultdict
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[2]
-TARGET_S = 20 * 60
+STUDY_TARGET_S = 90.0
+SPEED_TARGET_S = 300.0
+PARALLEL_TARGET = 1.8
 
 
 def copy_repository(target):
@@ -54,10 +62,84 @@ def job_records(root):
     return records
 
 
+#: What each start-up probe imports (a new interpreter each).
+STARTUP_PROBES = {
+    "python alone": "pass",
+    "lsbg command line (parser)": "import lsbg.cli; lsbg.cli.build_parser()",
+    "simulation stage (lsbg.dynamics)": "import lsbg.dynamics, lsbg.results",
+    "design point stage (geometry, solids, ltca)": "import lsbg.export, lsbg.ltca",
+    "aggregate stage (lsbg.study)": "import lsbg.study",
+    "report stage (figures, tables)": "import lsbg.study, lsbg.tables, lsbg.figures.speed",
+}
+
+
+def median_seconds(command, repeat=3, **kwargs):
+    times = []
+    for _ in range(repeat):
+        start = time.perf_counter()
+        subprocess.run(command, check=True, capture_output=True, **kwargs)
+        times.append(time.perf_counter() - start)
+    return sorted(times)[len(times) // 2]
+
+
+def startup_costs():
+    """{probe: seconds} for the imports, the ``lsbg`` command and a notebook kernel."""
+    out = {name: median_seconds([sys.executable, "-c", code])
+           for name, code in STARTUP_PROBES.items()}
+    out["lsbg --help"] = median_seconds([shutil.which("lsbg") or "lsbg", "--help"])
+    import nbformat
+
+    with tempfile.TemporaryDirectory() as tmp:
+        notebook = Path(tmp) / "empty.ipynb"
+        nbformat.write(nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell("1")]),
+                       notebook)
+        out["notebook kernel (papermill, one cell)"] = median_seconds(
+            [sys.executable, "-m", "papermill", "--log-level", "ERROR", "-k", "python3",
+             str(notebook),
+             str(Path(tmp) / "out.ipynb")])
+    return out
+
+
+def run_workflow(root, env, jobs, *configfiles):
+    """Run snakemake in ``root``; return the wall time [s] (raise with its output on failure)."""
+    command = [sys.executable, "-m", "snakemake", f"-j{jobs}"]
+    for name in configfiles:
+        command += ["--configfile", name]
+    print("running:", " ".join(command[2:]), "in", root, flush=True)
+    start = time.perf_counter()
+    proc = subprocess.run(command, cwd=root, env=env, capture_output=True, text=True)
+    wall = time.perf_counter() - start
+    if proc.returncode != 0:
+        raise RuntimeError(f"snakemake failed (exit {proc.returncode}) after {wall:.0f} s:\n"
+                           f"{proc.stdout[-3000:]}\n{proc.stderr[-3000:]}")
+    return wall
+
+
+def clean(root):
+    for name in ("results", "logs", "reports", ".snakemake"):
+        shutil.rmtree(root / name, ignore_errors=True)
+
+
+def print_rules(root, label):
+    records = job_records(root)
+    per_rule = defaultdict(list)
+    for rule, _, seconds in records:
+        per_rule[rule].append(seconds)
+    total = sum(sum(v) for v in per_rule.values())
+    print(f"\njob time per rule, {label} ({len(records)} jobs, {total:.0f} job-s):")
+    for rule, times in sorted(per_rule.items(), key=lambda item: -sum(item[1])):
+        print(f"  {rule:<22} {len(times):3d} jobs  sum {sum(times):7.1f} s  "
+              f"max {max(times):7.1f} s  ({100 * sum(times) / total:4.1f} %)")
+    return records
+
+
 def main(argv=None):
+    """Run the benchmark; return its figures (rows as in bench_dynamics.figure)."""
+    from bench_dynamics import figure
+
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--jobs", "-j", type=int, default=2, help="parallel jobs (default 2)")
-    parser.add_argument("--configfile", help="extra configuration (default: the study's)")
+    parser.add_argument("--no-j1", action="store_true", help="skip the -j1 run")
+    parser.add_argument("--no-speed", action="store_true", help="skip the speed sweep")
     parser.add_argument("--keep", metavar="DIR", help="run in DIR (kept) instead of a temp dir")
     args = parser.parse_args(argv)
 
@@ -68,52 +150,55 @@ def main(argv=None):
     else:
         context = tempfile.TemporaryDirectory(prefix="bench_study_")
         root = Path(context.name)
+    figures = []
     try:
         copy_repository(root)
         env = dict(os.environ, PYTHONPATH=os.pathsep.join(
             [str(root), *filter(None, [os.environ.get("PYTHONPATH")])]))
-        command = [sys.executable, "-m", "snakemake", f"-j{args.jobs}"]
-        if args.configfile:
-            command += ["--configfile", str(Path(args.configfile).resolve())]
-        print("running:", " ".join(command[2:]), "in", root, flush=True)
-        start = time.perf_counter()
-        proc = subprocess.run(command, cwd=root, env=env, capture_output=True, text=True)
-        wall = time.perf_counter() - start
-        if proc.returncode != 0:
-            print(proc.stdout[-4000:], proc.stderr[-4000:], sep="\n")
-            print(f"snakemake failed (exit {proc.returncode}) after {wall:.0f} s")
-            return 1
-
+        print("\n== start-up costs, median of 3 new processes [s] ==")
+        for name, seconds in startup_costs().items():
+            print(f"  {name:45s} {seconds:6.2f}")
+            figures.append(figure(f"start-up: {name}", seconds, "s"))
+        walls = {}
+        for jobs in ((1, 2) if not args.no_j1 else (2,)):
+            clean(root)
+            walls[jobs] = run_workflow(root, env, jobs)
+            print(f"full study -j{jobs}: {walls[jobs]:.1f} s")
+            records = print_rules(root, f"-j{jobs}")
+        figures.append(figure("full study, snakemake -j2 from scratch", walls[2], "s",
+                              STUDY_TARGET_S))
+        if 1 in walls:
+            figures.append(figure("full study, snakemake -j1 from scratch", walls[1], "s"))
+            figures.append(figure("parallel efficiency, -j1 / -j2", walls[1] / walls[2], "",
+                                  PARALLEL_TARGET, smaller=False))
         import xarray as xr
 
-        runs = {}
+        print("\none simulation (integration = the run's wall_time_s; job = Snakemake job):")
+        jobs = {Path(out).name: seconds for rule, out, seconds in records if rule == "simulate"}
         for path in sorted((root / "results" / "runs").glob("*.nc")):
             with xr.open_dataset(path) as ds:
-                runs[path.name] = float(ds.attrs["wall_time_s"])
-        records = job_records(root)
-        per_rule = defaultdict(list)
-        for rule, _, seconds in records:
-            per_rule[rule].append(seconds)
-        jobs = {Path(out).name: seconds for rule, out, seconds in records if rule == "simulate"}
-
-        print(f"\nfull study: {wall:.0f} s wall ({wall / 60:.1f} min) with -j{args.jobs}, "
-              f"{len(records)} jobs")
-        print("\none simulation (integration = the run's wall_time_s; job = Snakemake job):")
-        for name, seconds in runs.items():
-            job = jobs.get(name, float("nan"))
-            print(f"  {name:<36} integration {seconds:7.1f} s   job {job:7.1f} s")
-        print("\njob time per rule (sum over its jobs; with -j2 two run at once):")
-        total = sum(sum(v) for v in per_rule.values())
-        for rule, times in sorted(per_rule.items(), key=lambda item: -sum(item[1])):
-            print(f"  {rule:<22} {len(times):3d} jobs  sum {sum(times):7.1f} s  "
-                  f"max {max(times):7.1f} s  ({100 * sum(times) / total:4.1f} %)")
-        verdict = "OK" if wall <= TARGET_S else "TOO SLOW"
-        print(f"\nfull study {wall / 60:.1f} min (target <= {TARGET_S / 60:.0f} min): {verdict}")
-        return 0 if wall <= TARGET_S else 1
+                seconds = float(ds.attrs["wall_time_s"])
+            print(f"  {path.name:<36} integration {seconds:7.1f} s   "
+                  f"job {jobs.get(path.name, float('nan')):7.1f} s")
+        if not args.no_speed:
+            before = {(rule, out) for rule, out, _ in job_records(root)}
+            wall = run_workflow(root, env, 2, "workflow/config-speed.yaml")
+            speed = [(rule, out, s) for rule, out, s in job_records(root)
+                     if (rule, out) not in before or rule in ("speed_run", "speed_curve")]
+            print(f"speed sweep on top of the study, -j2: {wall:.1f} s "
+                  f"({sum(rule == 'speed_run' for rule, _, _ in speed)} runs)")
+            print_rules(root, "with the speed sweep")
+            figures.append(figure("speed sweep (runs, curve, sweep report), -j2", wall, "s",
+                                  SPEED_TARGET_S))
     finally:
         if context is not None:
             context.cleanup()
+    return figures
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    rows = main()
+    print()
+    for row in rows:
+        print(f"{row['figure']:58s} {row['value']:9.3g} {row['unit']:3s} "
+              f"{row['target_text']:>9s} {row['verdict']}")

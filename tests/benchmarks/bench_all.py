@@ -1,0 +1,35 @@
+"""Every performance figure of lsbg against its target, in one run on this machine.
+
+Run as a script (pytest does not collect it: no ``test_`` prefix)::
+
+    python tests/benchmarks/bench_all.py [--no-j1] [--no-speed]
+
+Runs bench_dynamics.py (kernels, engines per simulated second, the PyBullet
+step against its floor, compile and cache-load times) and bench_study.py (the
+start-up costs, the full study with -j2 and -j1, the speed sweep), then prints
+one table: figure, value, target, verdict. About 10 minutes on two cores.
+"""
+
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+import bench_dynamics  # noqa: E402
+import bench_study  # noqa: E402
+
+
+def main(argv=None):
+    argv = list(sys.argv[1:] if argv is None else argv)
+    rows = bench_dynamics.main([]) + bench_study.main(argv)
+    print("\n== lsbg benchmark: every figure against its target ==")
+    for row in rows:
+        print(f"  {row['figure']:62s} {row['value']:9.3g} {row['unit']:3s} "
+              f"{row['target_text']:>9s}  {row['verdict']}")
+    over = [row["figure"] for row in rows if row["verdict"] == "OVER TARGET"]
+    print(f"\n{len(rows)} figures, {len(over)} over target" + (f": {over}" if over else ""))
+    return 1 if over else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
