@@ -50,16 +50,18 @@ def copy_repository(target):
 
 
 def job_records(root):
-    """(rule, output, seconds) of every job, from Snakemake's metadata."""
-    records = []
+    """(rule, first output, seconds) of every job, from Snakemake's metadata (one record
+    per output file there: a job with several outputs is counted once)."""
+    jobs = {}
     folder = root / ".snakemake" / "metadata"
-    for entry in folder.iterdir():
+    for entry in sorted(folder.iterdir()):
         meta = json.loads(entry.read_text())
         if meta.get("starttime") and meta.get("endtime"):
             output = base64.urlsafe_b64decode(entry.name.encode()).decode(errors="replace")
             seconds = max(0.0, meta["endtime"] - meta["starttime"])
-            records.append((meta["rule"], output, seconds))
-    return records
+            jobs.setdefault((meta["rule"], meta["starttime"], meta["endtime"]),
+                            (meta["rule"], output, seconds))
+    return list(jobs.values())
 
 
 #: What each start-up probe imports (a new interpreter each).
