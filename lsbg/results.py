@@ -242,19 +242,45 @@ def open_run(path) -> xr.Dataset:
     ValueError
         If the file is not a run dataset (missing variables or attributes).
     """
+    return open_dataset(path, "run", ("time", "time_full", *VARIABLES, *FULL_RATE_VARIABLES),
+                        REQUIRED_ATTRIBUTES, "a run dataset of lsbg.results")
+
+
+def open_dataset(path, kind, variables, attributes, what) -> xr.Dataset:
+    """Read a NetCDF file of lsbg into memory, checking what it must hold.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+    kind : str
+        Named in the message for a missing file ("run", "mesh").
+    variables, attributes : sequence of str
+        Names the dataset must have.
+    what : str
+        Named in the message for a file that lacks them.
+
+    Returns
+    -------
+    xarray.Dataset
+        Loaded (the file is closed); ``encoding['source']`` is the path.
+
+    Raises
+    ------
+    FileNotFoundError, ValueError
+        Naming the file.
+    """
     path = Path(path)
     if not path.is_file():
-        raise FileNotFoundError(f"{path}: no such run file")
+        raise FileNotFoundError(f"{path}: no such {kind} file")
     try:
         with xr.open_dataset(path) as ds:
             ds = ds.load()
     except (OSError, ValueError) as err:
         raise ValueError(f"{path}: not a readable NetCDF file ({err})") from None
-    missing = [name for name in ("time", "time_full", *VARIABLES, *FULL_RATE_VARIABLES)
-               if name not in ds.variables]
-    missing += [name for name in REQUIRED_ATTRIBUTES if name not in ds.attrs]
+    missing = [name for name in variables if name not in ds.variables]
+    missing += [name for name in attributes if name not in ds.attrs]
     if missing:
-        raise ValueError(f"{path}: not a run dataset of lsbg.results (missing {missing})")
+        raise ValueError(f"{path}: not {what} (missing {missing})")
     ds.encoding["source"] = str(path)
     return ds
 

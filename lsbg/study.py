@@ -41,7 +41,8 @@ from lsbg.contact.law import CONTACT_MODELS
 from lsbg.design import TRACE_LABELS, TRACES
 from lsbg.files import read_record
 from lsbg.figures.base import TYPE_COLORS, new_figure, type_color
-from lsbg.results import FULL_RATE_VARIABLES, VARIABLES, as_path_list, open_run, open_runs
+from lsbg.results import (FULL_RATE_VARIABLES, VARIABLES, as_path_list, open_dataset, open_run,
+                          open_runs)
 
 __all__ = [
     "TRACE_LABELS", "QUANTITIES", "QUANTITY_LABELS", "THEORY_ATTRIBUTES", "SUMMARY_QUANTITIES",
@@ -648,21 +649,9 @@ def open_mesh(path):
     FileNotFoundError, ValueError
         Naming the file if it is missing or not a loaded-TCA dataset.
     """
-    path = Path(path)
-    if not path.is_file():
-        raise FileNotFoundError(f"{path}: no such mesh file")
-    try:
-        with xr.open_dataset(path) as ds:
-            ds = ds.load()
-    except (OSError, ValueError) as err:
-        raise ValueError(f"{path}: not a readable NetCDF file ({err})") from None
-    missing = [name for name in ("transmission_error", "mesh_stiffness") if name not in ds]
-    missing += [name for name in ("design_trace", "transmission_error_harmonic_1_urad")
-                if name not in ds.attrs]
-    if missing:
-        raise ValueError(f"{path}: not a loaded-TCA dataset of lsbg.ltca (missing {missing})")
-    ds.encoding["source"] = str(path)
-    return ds
+    return open_dataset(path, "mesh", ("transmission_error", "mesh_stiffness"),
+                        ("design_trace", "transmission_error_harmonic_1_urad"),
+                        "a loaded-TCA dataset of lsbg.ltca")
 
 
 def summary_table(paths, steady_state_after=0.2, window=(0.8, 1.0),
