@@ -151,9 +151,7 @@ class GearPairDesign:
         if self.trace == "circular":
             # The arc must not turn radial inside the face (the angle to the
             # ray reaches 90 deg where sin(beta_p) = 1).
-            from lsbg import geometry  # local: geometry builds on this module
-
-            s_max = np.max(np.abs(geometry.circular_arc_sin_angle(
+            s_max = np.max(np.abs(circular_arc_sin_angle(
                 self, np.array([self.inner_cone_distance, self.outer_cone_distance]))))
             if s_max >= 0.98:
                 fail("cutter_radius", self.cutter_radius,
@@ -396,3 +394,26 @@ def _config_key(key: str):
         if key.endswith(suffix):
             return key[: -len(suffix)], scale
     return key, None
+
+
+def circular_arc_sin_angle(design: "GearPairDesign", rho):
+    """sin of the angle between the cutter arc and the ray, at distance rho.
+
+    Law of cosines in the triangle apex - point - arc centre, with the centre
+    placed on the apex side so that the angle equals beta_p at R_m:
+    sin(beta_p(rho)) = (rho^2 - R_m^2 + 2 R_m r_c sin(beta_p,m)) / (2 rho r_c).
+
+    Parameters
+    ----------
+    design : GearPairDesign
+    rho : array_like
+        Distance from the apex in the plane of action [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        sin(|beta_p|) [-]; it increases from toe to heel.
+    """
+    rho = np.asarray(rho, dtype=float)
+    rm, rc = design.mean_cone_distance, design.cutter_radius
+    return (rho**2 - rm**2 + 2 * rm * rc * math.sin(design.plane_spiral_angle)) / (2 * rho * rc)

@@ -20,7 +20,7 @@ leaves nothing half-written. The files:
     STL: the URDF's visual meshes too; an OBJ copy cost 0.3 s per design
     point and 3 MB).
 ``pair.urdf``
-    The assembled pair for PyBullet (:func:`lsbg.solids.write_urdf`).
+    The assembled pair for PyBullet (:func:`lsbg.urdf.write_urdf`).
 ``pair.png``
     A picture of the assembled pair (:func:`lsbg.render.render_pair`).
 """
@@ -41,7 +41,7 @@ from pathlib import Path
 import numpy as np
 
 import lsbg
-from lsbg import render, solids
+from lsbg import mass, render, solids, urdf
 from lsbg.design import GearPairDesign
 from lsbg.files import FILE_NAMES, read_design
 from lsbg.geometry import MEMBER_NAMES, MEMBERS, SIDES, GearPair
@@ -96,9 +96,9 @@ def design_record(pair: GearPair, props=None, quadrature=None, meshes=None) -> d
     ----------
     pair : lsbg.geometry.GearPair
     props : dict, optional
-        ``{member: lsbg.solids.MassProperties}`` from the meshes.
+        ``{member: lsbg.mass.MassProperties}`` from the meshes.
     quadrature : dict, optional
-        ``{member: lsbg.solids.QuadratureMassProperties}``, the mesh-free check.
+        ``{member: lsbg.mass.QuadratureMassProperties}``, the mesh-free check.
     meshes : dict, optional
         ``{member: lsbg.polyhedra.TriangleMesh}``, for the triangle counts.
 
@@ -285,13 +285,13 @@ def write_geometry(design: GearPairDesign, out_dir, resolution=solids.DEFAULT_RE
             name = MEMBER_NAMES[member]
             meshes[member].export(paths[f"{name}_stl"])
         lap("meshes")
-        props = {m: solids.mass_properties(meshes[m], pair, m) for m in MEMBERS}
-        quadrature = {m: solids.quadrature_mass_properties(pair, m) for m in MEMBERS}
+        props = {m: mass.mass_properties(meshes[m], pair, m) for m in MEMBERS}
+        quadrature = {m: mass.quadrature_mass_properties(pair, m) for m in MEMBERS}
         with open(paths["design"], "w", encoding="utf-8") as handle:
             json.dump(design_record(pair, props, quadrature, meshes), handle, indent=1)
             handle.write("\n")
         lap("mass_properties")
-        solids.write_urdf(paths["urdf"], pair, props,
+        urdf.write_urdf(paths["urdf"], pair, props,
                           {m: paths[f"{MEMBER_NAMES[m]}_stl"] for m in MEMBERS})
         lap("urdf")
         render.render_pair(paths["picture"], pair, meshes)

@@ -74,29 +74,6 @@ def _unit(v):
     return v / np.linalg.norm(v, axis=-1, keepdims=True)
 
 
-def circular_arc_sin_angle(design: GearPairDesign, rho):
-    """sin of the angle between the cutter arc and the ray, at distance rho.
-
-    Law of cosines in the triangle apex - point - arc centre, with the centre
-    placed on the apex side so that the angle equals beta_p at R_m:
-    sin(beta_p(rho)) = (rho^2 - R_m^2 + 2 R_m r_c sin(beta_p,m)) / (2 rho r_c).
-
-    Parameters
-    ----------
-    design : GearPairDesign
-    rho : array_like
-        Distance from the apex in the plane of action [m].
-
-    Returns
-    -------
-    numpy.ndarray
-        sin(|beta_p|) [-]; it increases from toe to heel.
-    """
-    rho = np.asarray(rho, dtype=float)
-    rm, rc = design.mean_cone_distance, design.cutter_radius
-    return (rho**2 - rm**2 + 2 * rm * rc * math.sin(design.plane_spiral_angle)) / (2 * rho * rc)
-
-
 # ------------------------------------------------------------- generating curve
 @dataclass(frozen=True)
 class GeneratingCurve:

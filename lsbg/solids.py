@@ -1,4 +1,4 @@
-"""Solid gears from the exact flanks: section outlines, meshes, mass properties, URDF.
+"""Solid gears from the exact flanks: section outlines and closed triangle meshes.
 
 Each gear is the solid between two spheres about the apex (the toe at the
 inner cone distance R_i and the heel at the outer cone distance R_e), the
@@ -6,8 +6,9 @@ toothed surface and a coaxial bore cylinder. On every sphere |r| = R the
 toothed surface cuts a closed *section outline*: root arc, one flank from root
 to tip, top land, the other flank from tip to root, next tooth. The flanks are
 the exact surfaces of :class:`lsbg.geometry.GearPair`; the meshes loft the
-outlines between spheres (DESIGN.md §1: solids feed the mass properties and
-the URDF; contact comes from the exact geometry, never from these meshes).
+outlines between spheres (DESIGN.md §1: solids feed the mass properties,
+:mod:`lsbg.mass`, and the URDF, :mod:`lsbg.urdf`; contact comes from the
+exact geometry, never from these meshes).
 
 Coordinates on a member's spheres are the polar angle theta from the axis
 ``pair.axis[m]`` and the azimuth phi about the forward rotation axis
@@ -23,30 +24,22 @@ a generated pinion would be undercut there instead (``GearPair.undercut``:
 the gear's tip passes the pinion's base cone by 0.5 deg in the plane of
 action), which these solids ignore.
 
-Mass properties come twice: from the triangle mesh (divergence-theorem
-integrals, :mod:`lsbg.polyhedra`) and from an independent quadrature over the sections in spherical
-coordinates (:func:`quadrature_mass_properties`), which the tests compare.
-
-All lengths in metres, angles in radians, masses in kilograms.
+All lengths in metres, angles in radians.
 """
 
 from __future__ import annotations
 
 import math
-import os
 from dataclasses import dataclass
-from xml.etree import ElementTree
 
 import numpy as np
 
-from lsbg.geometry import MEMBER_NAMES, MEMBERS
-from lsbg.polyhedra import TriangleMesh, mesh_mass_properties
+from lsbg.geometry import MEMBERS, MEMBER_NAMES
+from lsbg.polyhedra import TriangleMesh
 
 __all__ = [
-    "MeshResolution", "SectionOutline", "MassProperties", "QuadratureMassProperties",
-    "side_order", "section_outline", "section_cone_distances", "gear_mesh", "gear_meshes",
-    "mass_properties", "section_integrals", "quadrature_mass_properties",
-    "principal_frame", "write_urdf",
+    "MeshResolution", "side_order", "SectionOutline", "section_outline",
+    "section_cone_distances", "gear_mesh", "gear_meshes"
 ]
 
 
@@ -96,7 +89,7 @@ DEFAULT_RESOLUTION = MeshResolution()
 
 
 # ------------------------------------------------------------------ helpers
-def _wrap(angle):
+def wrap_angle(angle):
     """Angles wrapped into (-pi, pi] [rad]."""
     return np.pi - np.mod(np.pi - np.asarray(angle, dtype=float), 2 * np.pi)
 
@@ -141,7 +134,7 @@ def side_order(pair, member):
     d = pair.design
     points = [pair.flank(member, side, d.mean_cone_distance, d.pitch_angle(member))[0]
               for side in ("drive", "coast")]
-    width = _wrap(pair.azimuth(member, points[0]) - pair.azimuth(member, points[1]))
+    width = wrap_angle(pair.azimuth(member, points[0]) - pair.azimuth(member, points[1]))
     return ("coast", "drive") if width > 0 else ("drive", "coast")
 
 
@@ -158,7 +151,7 @@ def _flank_parameter(pair, member, n):
     return start + (tip - start) * t**_FLANK_EXPONENT
 
 
-def _flank_azimuth(pair, member, side, cone_distance, polar):
+def flank_azimuth(pair, member, side, cone_distance, polar):
     """Azimuth of the flank points at (R, theta) [rad], shape (R, theta)."""
     points, _ = pair.flank(member, side, np.asarray(cone_distance)[:, None], polar[None, :])
     return pair.azimuth(member, points)
@@ -191,10 +184,10 @@ def _outline_counts(pair, member, resolution):
     root, tip = d.root_angle(member), d.tip_angle(member)
     start = pair.flank_polar_range(member)[0]
     low, high = side_order(pair, member)
-    phi = {side: _flank_azimuth(pair, member, side, [rm], np.array([start, tip]))[0]
+    phi = {side: flank_azimuth(pair, member, side, [rm], np.array([start, tip]))[0]
            for side in (low, high)}
-    top_width = _wrap(phi[high][1] - phi[low][1])
-    root_width = 2 * np.pi / z - _wrap(phi[high][0] - phi[low][0])
+    top_width = wrap_angle(phi[high][1] - phi[low][1])
+    root_width = 2 * np.pi / z - wrap_angle(phi[high][0] - phi[low][0])
     n_top = _arc_count(top_width * math.sin(tip), math.sin(tip), tol) - 1
     n_root = _arc_count(root_width * math.sin(root), math.sin(root), tol) - 1
     return n_flank, max(n_top, 1), max(n_root, 1)
@@ -264,11 +257,11 @@ def section_outline(pair, member, cone_distance, resolution=DEFAULT_RESOLUTION):
                  if start > root + 1e-12 else np.empty(0))
     polar_side = np.concatenate([extension, involute])
     low, high = side_order(pair, member)
-    phi_low = _flank_azimuth(pair, member, low, radius, involute)
-    phi_high = _flank_azimuth(pair, member, high, radius, involute)
+    phi_low = flank_azimuth(pair, member, low, radius, involute)
+    phi_high = flank_azimuth(pair, member, high, radius, involute)
     # Unwrap each flank and place the high side just after the low side's tip.
-    phi_low = phi_low[:, :1] + _wrap(phi_low - phi_low[:, :1])
-    phi_high = phi_low[:, -1:] + _wrap(phi_high - phi_low[:, -1:])
+    phi_low = phi_low[:, :1] + wrap_angle(phi_low - phi_low[:, :1])
+    phi_high = phi_low[:, -1:] + wrap_angle(phi_high - phi_low[:, -1:])
     n_ext = extension.size
     phi_low = np.concatenate([np.repeat(phi_low[:, :1], n_ext, axis=1), phi_low], axis=1)
     phi_high = np.concatenate([np.repeat(phi_high[:, :1], n_ext, axis=1), phi_high], axis=1)
@@ -319,7 +312,7 @@ def section_cone_distances(pair, member, resolution=DEFAULT_RESOLUTION):
     r_in, r_out = d.inner_cone_distance, d.outer_cone_distance
     probe = np.geomspace(r_in, r_out, 65)
     polar = np.array([d.pitch_angle(member)])
-    phi = np.unwrap(_flank_azimuth(pair, member, "drive", probe, polar)[:, 0])
+    phi = np.unwrap(flank_azimuth(pair, member, "drive", probe, polar)[:, 0])
     steps = np.abs(np.diff(phi))
     n = max(resolution.min_sections, int(math.ceil(np.sum(steps) / resolution.twist_step)) + 1)
     return np.geomspace(r_in, r_out, n)
@@ -602,319 +595,3 @@ def gear_mesh(pair, member, resolution=DEFAULT_RESOLUTION):
 def gear_meshes(pair, resolution=DEFAULT_RESOLUTION):
     """Meshes of both members, ``{1: pinion, 2: gear}`` (see :func:`gear_mesh`)."""
     return {member: gear_mesh(pair, member, resolution) for member in MEMBERS}
-
-
-# --------------------------------------------------------- mass properties
-@dataclass(frozen=True)
-class MassProperties:
-    """Mass properties of one gear.
-
-    Attributes
-    ----------
-    member : int
-    volume : float
-        [m^3]
-    mass : float
-        [kg]
-    centre_of_mass : numpy.ndarray, shape (3,)
-        In the mesh frame [m].
-    inertia : numpy.ndarray, shape (3, 3)
-        Inertia tensor about the centre of mass, mesh-frame axes [kg m^2].
-    axial_inertia : float
-        Moment of inertia about the rotation axis (through the apex) [kg m^2].
-    principal_axes : numpy.ndarray, shape (3, 3)
-        Columns x, y, z of the principal frame (:func:`principal_frame`); z is
-        the rotation axis u [-].
-    principal_moments : numpy.ndarray, shape (3,)
-        Diagonal of the inertia tensor in that frame [kg m^2]; the last is
-        the axial moment about the centre of mass.
-    """
-
-    member: int
-    volume: float
-    mass: float
-    centre_of_mass: np.ndarray
-    inertia: np.ndarray
-    axial_inertia: float
-    principal_axes: np.ndarray
-    principal_moments: np.ndarray
-
-
-def principal_frame(pair, member):
-    """Principal axes of a gear: columns x, y, z with z = rotation axis [-].
-
-    The gear has z-fold symmetry (z >= 3) about its axis, so its inertia
-    ellipsoid is one of revolution and any pair of axes normal to the rotation
-    axis is principal. y is the mesh frame's z axis (normal to both gear
-    axes) and x = y x z lies in the axial plane, which keeps the URDF's
-    roll-pitch-yaw away from gimbal lock (pitch = 0).
-
-    Returns
-    -------
-    numpy.ndarray, shape (3, 3)
-    """
-    z_axis = pair.rotation_axis[member]
-    y_axis = np.array([0.0, 0.0, 1.0])
-    return np.column_stack([np.cross(y_axis, z_axis), y_axis, z_axis])
-
-
-def mass_properties(mesh, pair, member, density=None):
-    """Mass properties of a gear mesh.
-
-    Parameters
-    ----------
-    mesh : lsbg.polyhedra.TriangleMesh
-        Watertight gear mesh from :func:`gear_mesh` [m].
-    pair : lsbg.geometry.GearPair
-    member : {1, 2}
-    density : float, optional
-        [kg/m^3]; default ``pair.design.density``.
-
-    Returns
-    -------
-    MassProperties
-    """
-    rho = pair.design.density if density is None else float(density)
-    props = mesh_mass_properties(mesh.triangles, density=rho)
-    com = np.asarray(props.center_mass, dtype=float)
-    inertia = np.asarray(props.inertia, dtype=float)
-    u = pair.rotation_axis[member]
-    # Parallel-axis term for the tiny offset of the mesh's centre from the axis.
-    offset = com - (com @ u) * u
-    axial = float(u @ inertia @ u + props.mass * (offset @ offset))
-    axes = principal_frame(pair, member)
-    return MassProperties(member, float(props.volume), float(props.mass), com, inertia, axial,
-                          axes, np.diag(axes.T @ inertia @ axes).copy())
-
-
-# The section integrals: F(theta) with dF/dtheta = f(theta) and the power of R
-# in the volume element R^2 sin(theta) dtheta dphi dR times the integrand.
-_INTEGRANDS = {
-    # volume: f = sin
-    "volume": (lambda t: -np.cos(t), lambda t: np.sin(t), 2),
-    # axial moment, r_perp^2 = R^2 sin^2: f = sin^3
-    "axial": (lambda t: -np.cos(t) + np.cos(t) ** 3 / 3, lambda t: np.sin(t) ** 3, 4),
-    # first moment along the axis, R cos: f = cos sin
-    "first": (lambda t: -np.cos(t) ** 2 / 2, lambda t: np.cos(t) * np.sin(t), 3),
-    # moment about a line normal to the axis through the apex: z^2 + r_perp^2 / 2
-    "transverse": (lambda t: -np.cos(t) / 2 - np.cos(t) ** 3 / 6,
-                   lambda t: (0.5 + np.cos(t) ** 2 / 2) * np.sin(t), 4),
-}
-
-
-def section_integrals(pair, member, cone_distance, n_profile=48):
-    """Integrals over the gear's section on the unit sphere, without a mesh.
-
-    The section at cone distance R is the region between the bore circle
-    (theta_b = asin(r_bore / R)) and the tooth outline theta_out(phi). By Green's
-    theorem, for any f = F', int int f(theta) dtheta dphi = oint F(theta_out) dphi
-    - 2 pi F(theta_b), the loop taken in increasing azimuth. Root arcs and top
-    lands (constant theta) contribute F times their angular width; a flank
-    contributes F(tip) dphi - int (phi - phi_start) f dtheta (by parts),
-    evaluated by Gauss-Legendre in t with theta = start + (tip - start) t^2, in
-    which the involute's azimuth is smooth; the radial continuation below the
-    base cone adds nothing (dphi = 0).
-
-    Parameters
-    ----------
-    pair : lsbg.geometry.GearPair
-    member : {1, 2}
-    cone_distance : array_like
-        Sphere radii R [m], 1-D.
-    n_profile : int
-        Gauss points per flank [-].
-
-    Returns
-    -------
-    dict of numpy.ndarray, shape (n,)
-        ``volume``: int int sin(theta); ``axial``: sin^3; ``first``:
-        cos sin; ``transverse``: (cos^2 + sin^2 / 2) sin [sr].
-    """
-    d = pair.design
-    radius = np.atleast_1d(np.asarray(cone_distance, dtype=float))
-    z = d.teeth[member - 1]
-    root, tip = d.root_angle(member), d.tip_angle(member)
-    start = pair.flank_polar_range(member)[0]
-    bore = (d.pinion_bore if member == 1 else d.gear_bore) / 2
-    theta_bore = np.arcsin(bore / radius)
-    nodes, weights = np.polynomial.legendre.leggauss(n_profile)
-    t = (nodes + 1) / 2
-    polar = start + (tip - start) * t**2
-    dpolar = 2 * (tip - start) * t * weights / 2   # dtheta/dt times the weights on [0, 1]
-    ends = np.array([start, tip])
-    low, high = side_order(pair, member)
-    phi = {}
-    for side in (low, high):
-        at_ends = _flank_azimuth(pair, member, side, radius, ends)
-        inside = _flank_azimuth(pair, member, side, radius, polar)
-        phi[side] = (at_ends[:, 0], _wrap(at_ends[:, 1] - at_ends[:, 0]),
-                     _wrap(inside - at_ends[:, :1]))
-    # Angular widths at the root (tooth) and of the top land, from the flank ends.
-    base_width = _wrap(phi[high][0] - phi[low][0])
-    top_width = base_width + phi[high][1] - phi[low][1]
-    root_width = 2 * np.pi / z - base_width
-    out = {}
-    for name, (big_f, small_f, _) in _INTEGRANDS.items():
-        def flank(side):
-            _, rise, inner = phi[side]
-            return big_f(tip) * rise - inner @ (small_f(polar) * dpolar)
-        tooth = flank(low) + big_f(tip) * top_width - flank(high) + big_f(root) * root_width
-        out[name] = z * tooth - 2 * np.pi * big_f(theta_bore)
-    return out
-
-
-@dataclass(frozen=True)
-class QuadratureMassProperties:
-    """Mass properties of a gear by quadrature over its sections (no mesh).
-
-    Attributes
-    ----------
-    volume : float
-        [m^3]
-    mass : float
-        [kg]
-    axial_inertia : float
-        About the gear axis [kg m^2].
-    centre_of_mass_distance : float
-        Distance of the centre of mass from the apex, along the axis [m].
-    transverse_inertia : float
-        About a line through the centre of mass normal to the axis [kg m^2].
-    """
-
-    volume: float
-    mass: float
-    axial_inertia: float
-    centre_of_mass_distance: float
-    transverse_inertia: float
-
-
-def quadrature_mass_properties(pair, member, density=None, n_radial=16, n_profile=48):
-    """Mass properties from :func:`section_integrals`, Gauss-Legendre over R.
-
-    V = int R^2 S_vol(R) dR and I = rho int R^4 S_axial(R) dR, where S are the
-    section integrals on the unit sphere; independent of the triangle mesh.
-
-    Parameters
-    ----------
-    pair : lsbg.geometry.GearPair
-    member : {1, 2}
-    density : float, optional
-        [kg/m^3]; default ``pair.design.density``.
-    n_radial, n_profile : int
-        Gauss points across the face width and per flank [-].
-
-    Returns
-    -------
-    QuadratureMassProperties
-    """
-    d = pair.design
-    rho = d.density if density is None else float(density)
-    nodes, weights = np.polynomial.legendre.leggauss(n_radial)
-    r_in, r_out = d.inner_cone_distance, d.outer_cone_distance
-    radius = r_in + (r_out - r_in) * (nodes + 1) / 2
-    weights = weights * (r_out - r_in) / 2
-    sections = section_integrals(pair, member, radius, n_profile)
-    total = {name: float(np.sum(weights * radius**_INTEGRANDS[name][2] * sections[name]))
-             for name in _INTEGRANDS}
-    volume = total["volume"]
-    com = total["first"] / volume
-    return QuadratureMassProperties(
-        volume=volume, mass=rho * volume, axial_inertia=rho * total["axial"],
-        centre_of_mass_distance=com,
-        transverse_inertia=rho * (total["transverse"] - volume * com**2))
-
-
-# --------------------------------------------------------------------- URDF
-def _rpy(rotation):
-    """URDF roll, pitch, yaw of a rotation matrix R = Rz(yaw) Ry(pitch) Rx(roll) [rad]."""
-    pitch = math.asin(-max(-1.0, min(1.0, rotation[2, 0])))
-    roll = math.atan2(rotation[2, 1], rotation[2, 2])
-    yaw = math.atan2(rotation[1, 0], rotation[0, 0])
-    return roll, pitch, yaw
-
-
-def _fmt(values):
-    return " ".join(repr(float(v)) for v in np.atleast_1d(values))
-
-
-def write_urdf(path, pair, props, mesh_files):
-    """URDF of the assembled pair for PyBullet.
-
-    A fixed base link ``frame`` (1 g, 1e-9 kg m^2) carries the links
-    ``pinion`` and ``gear`` on revolute joints ``pinion_joint`` and
-    ``gear_joint``. Both joints sit at the apex with ``axis`` = the forward
-    rotation axis u_m; link frames equal the mesh frame at rotation 0, so a
-    joint angle is the member's forward rotation. Each ``<inertial>`` is
-    placed at the centre of mass and turned onto the principal axes (z along
-    the gear axis) with ixy = ixz = iyz = 0, because PyBullet keeps only the
-    diagonal of the URDF inertia in the inertial frame; izz is the axial
-    moment. Limits: effort 1e9 N m, velocity 1e4 rad/s (PyBullet's own
-    ``maxJointVelocity`` of 100 rad/s is separate; see DESIGN.md §3), no
-    damping or friction. There is no ``<collision>`` element: contact forces
-    come from :mod:`lsbg.geometry`, never from Bullet (DESIGN.md §3).
-
-    Parameters
-    ----------
-    path : str or os.PathLike
-        URDF file to write.
-    pair : lsbg.geometry.GearPair
-    props : dict
-        ``{member: MassProperties}`` for members 1 and 2.
-    mesh_files : dict
-        ``{member: path}`` of the visual meshes (OBJ or STL, in metres),
-        written relative to the URDF's directory.
-
-    Returns
-    -------
-    str
-        The path written.
-    """
-    path = os.fspath(path)
-    base = os.path.dirname(os.path.abspath(path))
-    robot = ElementTree.Element("robot", name=f"lsbg_{pair.design.trace}_pair")
-    frame = ElementTree.SubElement(robot, "link", name="frame")
-    inertial = ElementTree.SubElement(frame, "inertial")
-    ElementTree.SubElement(inertial, "origin", xyz="0 0 0", rpy="0 0 0")
-    ElementTree.SubElement(inertial, "mass", value="0.001")
-    ElementTree.SubElement(inertial, "inertia", ixx="1e-09", ixy="0", ixz="0",
-                           iyy="1e-09", iyz="0", izz="1e-09")
-    colours = {1: "0.80 0.45 0.20 1", 2: "0.55 0.60 0.70 1"}
-    for member in MEMBERS:
-        name, p = MEMBER_NAMES[member], props[member]
-        link = ElementTree.SubElement(robot, "link", name=name)
-        inertial = ElementTree.SubElement(link, "inertial")
-        ElementTree.SubElement(inertial, "origin", xyz=_fmt(p.centre_of_mass),
-                               rpy=_fmt(_rpy(p.principal_axes)))
-        ElementTree.SubElement(inertial, "mass", value=repr(p.mass))
-        ixx, iyy, izz = p.principal_moments
-        ElementTree.SubElement(inertial, "inertia", ixx=repr(float(ixx)), ixy="0", ixz="0",
-                               iyy=repr(float(iyy)), iyz="0", izz=repr(float(izz)))
-        visual = ElementTree.SubElement(link, "visual")
-        ElementTree.SubElement(visual, "origin", xyz="0 0 0", rpy="0 0 0")
-        geometry = ElementTree.SubElement(visual, "geometry")
-        relative = os.path.relpath(os.path.abspath(os.fspath(mesh_files[member])), base)
-        ElementTree.SubElement(geometry, "mesh", filename=relative.replace(os.sep, "/"),
-                               scale="1 1 1")
-        material = ElementTree.SubElement(visual, "material", name=f"{name}_colour")
-        ElementTree.SubElement(material, "color", rgba=colours[member])
-        joint = ElementTree.SubElement(robot, "joint", name=f"{name}_joint", type="revolute")
-        ElementTree.SubElement(joint, "parent", link="frame")
-        ElementTree.SubElement(joint, "child", link=name)
-        ElementTree.SubElement(joint, "origin", xyz="0 0 0", rpy="0 0 0")
-        ElementTree.SubElement(joint, "axis", xyz=_fmt(pair.rotation_axis[member]))
-        # Revolute joints need limits; these never bind.
-        ElementTree.SubElement(joint, "limit", lower="-1e9", upper="1e9",
-                               effort="1e9", velocity="1e4")
-        ElementTree.SubElement(joint, "dynamics", damping="0", friction="0")
-    ElementTree.indent(robot)
-    with open(path, "w", encoding="utf-8") as handle:
-        handle.write('<?xml version="1.0"?>\n')
-        handle.write(f"<!-- lsbg: {pair.design.trace} trace, spiral angle "
-                     f"{math.degrees(pair.design.spiral_angle):g} deg; SI units; "
-                     "mesh frame = world frame, apex at the origin -->\n")
-        handle.write(ElementTree.tostring(robot, encoding="unicode"))
-        handle.write("\n")
-    return path
-
-
-# ------------------------------------------------------------------ picture

@@ -19,24 +19,24 @@ PACKAGE = Path(__file__).resolve().parent
 #: Stage -> the lsbg modules (or packages) its command imports, directly or not.
 STAGE_MODULES = {
     # (contact ... theory: lsbg.cli.options reads contact and simulation options too)
-    "geometry": ("cli", "design", "files", "geometry", "polyhedra", "solids", "render", "export",
-                 "contact", "dynamics", "results", "theory"),
+    "geometry": ("cli", "design", "files", "geometry", "polyhedra", "solids", "mass", "urdf",
+                 "render", "export", "contact", "dynamics", "results", "theory"),
     "ltca": ("cli", "design", "files", "geometry", "contact", "dynamics", "ltca", "results",
              "theory"),
-    "points": ("cli", "design", "files", "geometry", "polyhedra", "solids", "render", "export",
-               "contact", "dynamics", "ltca", "results", "theory"),
+    "points": ("cli", "design", "files", "geometry", "polyhedra", "solids", "mass", "urdf",
+               "render", "export", "contact", "dynamics", "ltca", "results", "theory"),
     "simulate": ("cli", "design", "files", "geometry", "contact", "dynamics", "results",
                  "theory", "sensitivity"),
     "convergence": ("cli", "design", "files", "geometry", "contact", "dynamics", "results",
                     "theory", "verification"),
     "speed": ("cli", "design", "files", "geometry", "contact", "dynamics", "results", "theory",
               "spectra", "speed"),
-    # study reaches the engines through functions only the reports call
     "aggregate": ("cli", "design", "files", "geometry", "contact", "dynamics", "results",
-                  "theory", "stats", "spectra", "study", "verification", "figures"),
+                  "theory", "stats", "spectra", "runs", "combine", "summary"),
     # the notebooks' imports too (tests/test_stages.py reads them)
     "report": ("cli", "design", "files", "geometry", "contact", "dynamics", "results", "theory",
-               "stats", "spectra", "study", "ltca", "reports", "verification", "tables",
+               "stats", "spectra", "runs", "combine", "summary", "ltca", "reports",
+               "verification", "tables",
                "figures", "sensitivity", "speed"),
 }
 

@@ -5,8 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from lsbg.design import DesignError, GearPairDesign
-from lsbg.geometry import GearPair, circular_arc_sin_angle, rotate
+from lsbg.design import DesignError, GearPairDesign, circular_arc_sin_angle
+from lsbg.geometry import GearPair, rotate
 
 
 @pytest.fixture(scope="module", params=["logarithmic", "circular"])

@@ -6,7 +6,10 @@ import re
 import pytest
 import xarray as xr
 
-from lsbg import cli, reports, speed, study
+from lsbg import cli, reports, speed
+from lsbg.combine import combine_runs
+from lsbg.runs import open_pair, steady
+from lsbg.summary import summary_table
 from lsbg.contact import ContactParameters
 from lsbg.design import GearPairDesign
 from lsbg.dynamics import SimulationSettings, load_model, simulate
@@ -46,10 +49,10 @@ def study_files(tmp_path_factory):
     compiled = [files["runs"][(t, m, "compiled")] for t in ("logarithmic", "circular")
                 for m in ("point", "line")]
     files["sweep"] = root / "results" / "sweep.nc"
-    write_dataset(study.combine_runs(compiled, meshes=list(files["meshes"].values())),
+    write_dataset(combine_runs(compiled, meshes=list(files["meshes"].values())),
                   files["sweep"])
     files["summary"] = root / "results" / "summary.csv"
-    study.summary_table([*files["runs"].values(), *files["sensitivity"]], steady_state_after=0.01,
+    summary_table([*files["runs"].values(), *files["sensitivity"]], steady_state_after=0.01,
                         window=(0.01, 0.05), subgroup_size=5,
                         meshes=list(files["meshes"].values())).to_csv(files["summary"], index=False)
     speed_runs = []
@@ -114,12 +117,12 @@ def test_paper_report(study_files, tmp_path):
         # pair picture, Fig. 8, 9-10, 11, 12, 13, 14, 15 (2), 16, 17 (2), 18 (2); sampling
         # luck, spectrum, full-rate stretch; TE and stiffness, load sharing, contact
         # pattern; two spectra, full-rate stretch; sensitivity
-        images=24, code_snippets=["study.select_runs", "import numpy", "rep = Report()"])
+        images=24, code_snippets=["select_runs(all_runs", "import numpy", "rep = Report()"])
     assert html.count("<b>Figure ") + html.count("<strong>Figure ") == 22
     # numbers are computed from the runs
-    runs = study.open_pair(study_files["runs"][("circular", "point", "pybullet")],
+    runs = open_pair(study_files["runs"][("circular", "point", "pybullet")],
                            study_files["runs"][("logarithmic", "point", "pybullet")])
-    sbg_std = study.steady(runs["SBG"], "gear_speed", 0.01).std(ddof=1)
+    sbg_std = steady(runs["SBG"], "gear_speed", 0.01).std(ddof=1)
     assert f"{sbg_std:.4g} deg/s (SBG)" in html
     assert "1283.8 rpm" in html and "24799.9" in html
     assert "the engines agree within 3 %" in html or "do NOT all agree" in html
@@ -170,7 +173,7 @@ def test_verification_report_via_cli_with_relative_paths(study_files, monkeypatc
                        "5. Summary of the checks"],
                       # convergence (two models), engine agreement, spiral angle, pressure
                       # angle, conjugacy
-                      images=6, code_snippets=["study.conjugacy_errors(read_design"])
+                      images=6, code_snippets=["verification_tables.conjugacy_errors(read_design"])
     assert "PASS: LSBG spiral angle constant along the face" in html
     assert "PASS: flanks conjugate" in html
     assert "PASS: no transmission error without load" in html

@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 from scipy import integrate
 
-from lsbg import solids
+from lsbg import mass, solids
+from lsbg.urdf import write_urdf
 from lsbg.design import GearPairDesign
 from lsbg.geometry import GearPair, rotate
 
@@ -21,8 +22,8 @@ def built(request):
     meshes = solids.gear_meshes(pair)
     return SimpleNamespace(
         pair=pair, meshes=meshes,
-        props={m: solids.mass_properties(meshes[m], pair, m) for m in MEMBERS},
-        quad={m: solids.quadrature_mass_properties(pair, m) for m in MEMBERS})
+        props={m: mass.mass_properties(meshes[m], pair, m) for m in MEMBERS},
+        quad={m: mass.quadrature_mass_properties(pair, m) for m in MEMBERS})
 
 
 @pytest.fixture(scope="module")
@@ -157,8 +158,8 @@ def test_mesh_mass_and_axial_inertia_match_the_quadrature(built, member):
 
 @pytest.mark.parametrize("member", MEMBERS)
 def test_quadrature_is_converged(lsbg_pair, member):
-    coarse = solids.quadrature_mass_properties(lsbg_pair, member)
-    fine = solids.quadrature_mass_properties(lsbg_pair, member, n_radial=32, n_profile=96)
+    coarse = mass.quadrature_mass_properties(lsbg_pair, member)
+    fine = mass.quadrature_mass_properties(lsbg_pair, member, n_radial=32, n_profile=96)
     assert coarse.mass == pytest.approx(fine.mass, rel=1e-10)
     assert coarse.axial_inertia == pytest.approx(fine.axial_inertia, rel=1e-10)
 
@@ -194,7 +195,7 @@ def test_section_integral_lies_between_root_and_tip_caps(lsbg_pair):
     for member in MEMBERS:
         bore = (d.pinion_bore if member == 1 else d.gear_bore) / 2
         radius = d.mean_cone_distance
-        area = solids.section_integrals(lsbg_pair, member, [radius])["volume"][0]
+        area = mass.section_integrals(lsbg_pair, member, [radius])["volume"][0]
         t_b = math.asin(bore / radius)
         root = 2 * math.pi * (math.cos(t_b) - math.cos(d.root_angle(member)))
         tip = 2 * math.pi * (math.cos(t_b) - math.cos(d.tip_angle(member)))
@@ -224,7 +225,7 @@ def urdf(built, tmp_path_factory):
     for member in MEMBERS:
         files[member] = out / f"{member}.obj"
         built.meshes[member].export(files[member])
-    return solids.write_urdf(out / "pair.urdf", built.pair, built.props, files)
+    return write_urdf(out / "pair.urdf", built.pair, built.props, files)
 
 
 def test_urdf_loads_in_pybullet_with_the_mesh_inertia(built, urdf):

@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from lsbg import cli, ltca, speed, tables
+from lsbg import cli, ltca, speed
+from lsbg.tables import line_model
 from lsbg.contact import ContactParameters
 from lsbg.design import GearPairDesign
 from lsbg.dynamics import SimulationSettings, load_model, simulate
@@ -126,11 +127,11 @@ def test_cli_writes_the_curve_with_units_and_the_natural_frequency(curve_file, g
         natural = model.contact.natural_frequency(model.gear_inertia)
         assert float(curve["natural_frequency"].sel(trace="logarithmic")) == pytest.approx(
             natural, rel=1e-9)
-        rows = tables.speed_curve_table(curve)
+        rows = line_model.speed_curve_table(curve)
         assert list(rows["gear_type"]) == ["SBG", "LSBG"]
         assert rows["resonance_speed_deg_s"].iloc[1] == pytest.approx(
             math.degrees(2 * math.pi * natural / 9), rel=1e-9)
-        ratios = tables.speed_ratio_table(curve)
+        ratios = line_model.speed_ratio_table(curve)
         np.testing.assert_allclose(
             ratios["dte_rms_ratio"],
             curve["dte_rms"].sel(trace="circular") / curve["dte_rms"].sel(trace="logarithmic"))

@@ -9,6 +9,7 @@ from scipy.signal import lfilter
 from statsmodels.stats.diagnostic import normal_ad
 
 from lsbg import stats
+from lsbg.figures import statistics as statistics_figures
 
 
 def _within_printed(value, printed):
@@ -426,7 +427,7 @@ def test_boxplot_stats_hand_example():
 
 
 def test_plot_boxplot_draws_boxplot_stats():
-    fig = stats.plot_boxplot({"SBG": BOX_DATA, "LSBG": [2.0, 3.0, 4.0]},
+    fig = statistics_figures.plot_boxplot({"SBG": BOX_DATA, "LSBG": [2.0, 3.0, 4.0]},
                              label="force", units="N", ylim=(0, 35))
     assert isinstance(fig, Figure) and len(fig.axes) == 1
     ax = fig.axes[0]
@@ -441,7 +442,7 @@ def test_plot_boxplot_draws_boxplot_stats():
 
 def test_plot_normal_probability_annotates_ad():
     x = np.random.default_rng(1).normal(10.0, 2.0, 400)
-    fig = stats.plot_normal_probability(x, label="gear speed", units="deg/s")
+    fig = statistics_figures.plot_normal_probability(x, label="gear speed", units="deg/s")
     assert isinstance(fig, Figure) and len(fig.axes) == 1
     ax = fig.axes[0]
     assert ax.get_xlabel() == "gear speed [deg/s]"
@@ -456,7 +457,7 @@ def test_plot_normal_probability_annotates_ad():
 def test_plot_histogram_axes(overlay, n_axes):
     rng = np.random.default_rng(2)
     series = {"SBG": rng.normal(0, 2, 400), "LSBG": rng.normal(0, 1, 400)}
-    fig = stats.plot_histogram(series, label="force", units="N",
+    fig = statistics_figures.plot_histogram(series, label="force", units="N",
                                overlay=overlay)
     assert isinstance(fig, Figure) and len(fig.axes) == n_axes
     for ax in fig.axes:
@@ -464,7 +465,7 @@ def test_plot_histogram_axes(overlay, n_axes):
         assert ax.get_ylabel() == "density [1/N]"
     # one fitted-normal line per series
     assert sum(len(ax.lines) for ax in fig.axes) == 2
-    speed = stats.plot_histogram(series, units="deg/s", overlay=overlay)
+    speed = statistics_figures.plot_histogram(series, units="deg/s", overlay=overlay)
     assert speed.axes[0].get_ylabel() == "density [1/(deg/s)]"
 
 
@@ -476,7 +477,7 @@ def test_plot_xbar_r_marks_out_of_control_and_shares_scales():
     chart = stats.xbar_r_chart(groups)
     calm = stats.xbar_r_chart(0.5 * rng.normal(size=(25, 4)))
     xbar_ylim, r_ylim = stats.xbar_r_ylims(chart, calm)
-    fig = stats.plot_xbar_r(chart, label="gear speed", units="deg/s",
+    fig = statistics_figures.plot_xbar_r(chart, label="gear speed", units="deg/s",
                             title="SBG", xbar_ylim=xbar_ylim, r_ylim=r_ylim)
     assert isinstance(fig, Figure) and len(fig.axes) == 2
     ax_x, ax_r = fig.axes
@@ -493,5 +494,5 @@ def test_plot_xbar_r_marks_out_of_control_and_shares_scales():
 
     assert alarms(ax_x) == ([9], "red")   # 1-based subgroup numbers
     assert alarms(ax_r) == ([21], "red")
-    calm_fig = stats.plot_xbar_r(calm, xbar_ylim=xbar_ylim, r_ylim=r_ylim)
+    calm_fig = statistics_figures.plot_xbar_r(calm, xbar_ylim=xbar_ylim, r_ylim=r_ylim)
     assert alarms(calm_fig.axes[0])[0] == []

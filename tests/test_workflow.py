@@ -246,7 +246,7 @@ def test_study_writes_the_sweep_dataset_with_units(study):
 def test_study_writes_the_summary_table(study):
     root, _ = study
     table = pd.read_csv(root / "results" / "summary.csv")
-    from lsbg.study import SUMMARY_COLUMNS
+    from lsbg.summary import SUMMARY_COLUMNS
 
     assert list(table.columns) == list(SUMMARY_COLUMNS)
     runs = table[table.engine != "ltca"].groupby("run").size()
@@ -339,7 +339,7 @@ _AGGREGATES = ["combine", "summary", "report_paper", "report_sweep", "report_ver
                "all"]
 CODE_CHANGES = {
     "lsbg/verification.py": ["convergence"] * 4 + _AGGREGATES,
-    "lsbg/stats.py": _AGGREGATES,
+    "lsbg/stats/samples.py": _AGGREGATES,
     "lsbg/ltca.py": ["paper_ltca"] * 2 + _AGGREGATES,
     # every run at the paper's point reads its geometry; the convergence tables reuse the
     # reference runs and write the compiled ones

@@ -79,7 +79,7 @@ def add_combine_parser(subparsers):
 def run_combine(args):
     """Handler of ``lsbg combine`` [exit code]."""
     from lsbg.results import write_dataset
-    from lsbg.study import combine_runs
+    from lsbg.combine import combine_runs
 
     try:
         ds = combine_runs(args.runs, meshes=args.meshes)
@@ -126,7 +126,7 @@ def add_summary_parser(subparsers):
 def run_summary(args):
     """Handler of ``lsbg summary`` [exit code]."""
     from lsbg.results import write_atomically
-    from lsbg.study import statistics_options, summary_table
+    from lsbg.summary import statistics_options, summary_table
 
     (section,) = read_study_sections(args.config, "statistics")
     try:

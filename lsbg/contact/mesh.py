@@ -1,7 +1,7 @@
 """The contact of a gear pair: its kernel data built from the exact geometry.
 
 :class:`MeshContact` turns a :class:`lsbg.geometry.GearPair` and
-:class:`lsbg.contact.law.ContactParameters` into the arrays the compiled
+:class:`lsbg.contact.parameters.ContactParameters` into the arrays the compiled
 kernels of :mod:`lsbg.contact.kernels` read, and gives them a Python face:
 :meth:`MeshContact.forces` (all outputs at one state),
 :meth:`MeshContact.pair_contacts` (per tooth pair), the static equilibrium
@@ -22,7 +22,7 @@ from typing import NamedTuple
 import numpy as np
 
 from lsbg.contact import kernels as k
-from lsbg.contact.law import ContactParameters
+from lsbg.contact.parameters import ContactParameters
 from lsbg.geometry import MEMBERS, SIDES
 
 #: Samples of the point model's phase table per base pitch. At the paper's

@@ -6,7 +6,7 @@ import numpy as np
 
 from lsbg import spectra
 from lsbg.figures.base import envelope, new_figure, type_color
-from lsbg.study import QUANTITY_LABELS, full_rate_series
+from lsbg.runs import QUANTITY_LABELS, full_rate_series
 
 
 def plot_spectra(runs, quantity, start=0.2, harmonics=6, title=""):
@@ -17,7 +17,7 @@ def plot_spectra(runs, quantity, start=0.2, harmonics=6, title=""):
     runs : dict
         ``{label: run}``; each run's pinion speed and teeth set its mesh frequency.
     quantity : str
-        A key of :data:`lsbg.study.FULL_RATE_OF`.
+        A key of :data:`lsbg.runs.FULL_RATE_OF`.
     start : float
         Start of the steady state [s].
     harmonics : int
@@ -70,7 +70,7 @@ def plot_sampling_luck(table):
     Parameters
     ----------
     table : pandas.DataFrame
-        From :func:`lsbg.tables.sampling_luck_table`.
+        From :func:`lsbg.tables.line_model.sampling_luck_table`.
 
     Returns
     -------
@@ -107,7 +107,7 @@ def plot_full_rate(runs, quantity, start=0.2, span=0.02):
     runs : dict
         ``{label: run}``.
     quantity : str
-        A key of :data:`lsbg.study.FULL_RATE_OF` that is also an output variable.
+        A key of :data:`lsbg.runs.FULL_RATE_OF` that is also an output variable.
     start : float
         Start of the stretch [s].
     span : float

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from lsbg.figures.base import new_figure, type_color
-from lsbg.study import QUANTITY_LABELS
+from lsbg.runs import QUANTITY_LABELS
 
 
 def _angles(ax, values):
@@ -20,7 +20,7 @@ def plot_mesh_trends(table):
     Parameters
     ----------
     table : pandas.DataFrame
-        From :func:`lsbg.tables.sweep_fluctuation_table` (one contact model's
+        From :func:`lsbg.tables.line_model.sweep_fluctuation_table` (one contact model's
         rows suffice; the loaded TCA does not depend on it).
 
     Returns
@@ -62,7 +62,7 @@ def plot_fluctuation_trends(table, quantities=("gear_speed", "tangential_force")
     Parameters
     ----------
     table : pandas.DataFrame
-        From :func:`lsbg.tables.sweep_fluctuation_table`.
+        From :func:`lsbg.tables.line_model.sweep_fluctuation_table`.
     quantities : sequence of str
 
     Returns
@@ -106,7 +106,7 @@ def plot_ratio_trends(ratios):
     Parameters
     ----------
     ratios : pandas.DataFrame
-        From :func:`lsbg.tables.sweep_ratio_table`.
+        From :func:`lsbg.tables.line_model.sweep_ratio_table`.
 
     Returns
     -------
@@ -137,7 +137,7 @@ def plot_sensitivity(table):
     Parameters
     ----------
     table : pandas.DataFrame
-        From :func:`lsbg.tables.sensitivity_table`.
+        From :func:`lsbg.tables.line_model.sensitivity_table`.
 
     Returns
     -------

@@ -70,8 +70,9 @@ STARTUP_PROBES = {
     "lsbg command line (parser)": "import lsbg.cli; lsbg.cli.build_parser()",
     "simulation stage (lsbg.dynamics)": "import lsbg.dynamics, lsbg.results",
     "design point stage (geometry, solids, ltca)": "import lsbg.export, lsbg.ltca",
-    "aggregate stage (lsbg.study)": "import lsbg.study",
-    "report stage (figures, tables)": "import lsbg.study, lsbg.tables, lsbg.figures.speed",
+    "aggregate stage (combine, summary)": "import lsbg.combine, lsbg.summary",
+    "report stage (figures, tables)": "import lsbg.tables.paper, lsbg.tables.line_model, "
+                                      "lsbg.figures.statistics, lsbg.figures.speed",
 }
 
 

@@ -1,8 +1,8 @@
 """Tables of the line model's verdict: LSBG against SBG, with the model form varied.
 
 Built from run datasets (:mod:`lsbg.results`, opened with
-:func:`lsbg.study.open_run`), loaded TCAs (:mod:`lsbg.ltca`) and the sweep
-dataset (:func:`lsbg.study.combine_runs`); every statistic comes from
+:func:`lsbg.results.open_run`), loaded TCAs (:mod:`lsbg.ltca`) and the sweep
+dataset (:func:`lsbg.combine.combine_runs`); every statistic comes from
 :mod:`lsbg.stats` and :mod:`lsbg.spectra`. Units are the datasets' (deg/s, N,
 µrad, N/µm).
 
@@ -28,7 +28,7 @@ from scipy import stats as sps
 
 from lsbg import spectra, stats
 from lsbg.design import TRACE_LABELS
-from lsbg.study import QUANTITY_LABELS, full_rate_series, steady
+from lsbg.runs import QUANTITY_LABELS, full_rate_series, steady
 
 #: Gear types in the order of every table: the paper's (a) SBG, (b) LSBG.
 TYPES = ("SBG", "LSBG")
@@ -96,7 +96,7 @@ def compare_fluctuation(runs, quantity, start=0.2, full_rate=True, confidence=0.
     runs : dict
         ``{'SBG': run, 'LSBG': run}``.
     quantity : str
-        A key of :data:`lsbg.study.FULL_RATE_OF`.
+        A key of :data:`lsbg.runs.FULL_RATE_OF`.
     start : float
         Start of the steady state [s].
     full_rate : bool
@@ -286,7 +286,7 @@ def sweep_fluctuation_table(sweep, start=0.2, quantities=VERDICT_QUANTITIES, con
     Parameters
     ----------
     sweep : xarray.Dataset
-        From :func:`lsbg.study.combine_runs` (with full-rate variables).
+        From :func:`lsbg.combine.combine_runs` (with full-rate variables).
     start : float
         Start of the steady state [s].
     quantities : sequence of str
@@ -339,7 +339,7 @@ def sweep_ratio_table(sweep, contact_model="line", quantities=VERDICT_QUANTITIES
     Parameters
     ----------
     sweep : xarray.Dataset
-        From :func:`lsbg.study.combine_runs`.
+        From :func:`lsbg.combine.combine_runs`.
     contact_model : str
     quantities : sequence of str
     start : float

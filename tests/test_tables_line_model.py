@@ -5,7 +5,7 @@ import pandas as pd
 import pytest
 import xarray as xr
 
-from lsbg import tables
+from lsbg.tables import line_model
 
 RATE, SAMPLES, FULL = 500.0, 500, 50000.0
 
@@ -43,18 +43,18 @@ def alike():
 
 
 def test_compare_fluctuation_finds_the_calmer_type(calm_sbg, alike):
-    result = tables.compare_fluctuation(calm_sbg, "gear_speed", n_boot=300)
+    result = line_model.compare_fluctuation(calm_sbg, "gear_speed", n_boot=300)
     assert result["ratio"] == pytest.approx(0.5, rel=0.03)
     assert result["ratio_low"] < result["ratio"] < result["ratio_high"] < 1.0
     assert result["calmer"] == "SBG"
     assert result["std_LSBG_low"] < 2.0 < result["std_LSBG_high"]
-    same = tables.compare_fluctuation(alike, "gear_speed", n_boot=300)
+    same = line_model.compare_fluctuation(alike, "gear_speed", n_boot=300)
     assert same["ratio_low"] < 1.0 < same["ratio_high"] and same["calmer"] == "neither"
 
 
 def test_fluctuation_table_rows(calm_sbg):
-    table = tables.fluctuation_table(calm_sbg, n_boot=200)
-    assert list(table.quantity) == [q for q in tables.VERDICT_QUANTITIES for _ in range(2)]
+    table = line_model.fluctuation_table(calm_sbg, n_boot=200)
+    assert list(table.quantity) == [q for q in line_model.VERDICT_QUANTITIES for _ in range(2)]
     assert list(table.sampling[:2]) == ["full rate", "output samples"]
     assert (table.calmer == "SBG").all()
     assert table.dynamic_factor_SBG.iloc[0] > 1.0
@@ -63,21 +63,21 @@ def test_fluctuation_table_rows(calm_sbg):
 def test_sensitivity_and_verdict_state_a_ranking_only_where_every_cell_agrees(calm_sbg, alike):
     flipped = {"SBG": calm_sbg["LSBG"].assign_attrs(design_trace="circular"),
                "LSBG": calm_sbg["SBG"].assign_attrs(design_trace="logarithmic")}
-    agree = tables.sensitivity_table([("baseline", calm_sbg, True), ("again", calm_sbg, False)],
+    agree = line_model.sensitivity_table([("baseline", calm_sbg, True), ("again", calm_sbg, False)],
                                      quantities=("gear_speed",), n_boot=200)
     assert agree.holds.all()
-    text = tables.verdict(agree)
+    text = line_model.verdict(agree)
     assert "the SBG fluctuates less in every one of the 2 cells" in text
     assert "survives the model form" in text
-    mixed = tables.sensitivity_table([("baseline", calm_sbg, True), ("flipped", flipped, True),
+    mixed = line_model.sensitivity_table([("baseline", calm_sbg, True), ("flipped", flipped, True),
                                       ("alike", alike, True)],
                                      quantities=("gear_speed",), n_boot=200)
     assert list(mixed.holds) == [True, False, False]
-    text = tables.verdict(mixed)
+    text = line_model.verdict(mixed)
     assert "does not survive the model form" in text and "flipped" in text and "alike" in text
-    unclear = tables.sensitivity_table([("baseline", alike, True), ("flipped", flipped, True)],
+    unclear = line_model.sensitivity_table([("baseline", alike, True), ("flipped", flipped, True)],
                                        quantities=("gear_speed",), n_boot=200)
-    text = tables.verdict(unclear)
+    text = line_model.verdict(unclear)
     assert "no ranking is stated" in text and "flipped (LSBG calmer" in text
 
 
@@ -86,8 +86,8 @@ def test_trend_table_tells_a_trend_from_a_zigzag():
     table = pd.DataFrame({
         "gear_type": "LSBG", "spiral_angle_deg": angles,
         "trend": 10 + 0.3 * angles, "zigzag": 10 + np.where(np.arange(angles.size) % 2, 3.0, -3.0)})
-    result = tables.trend_table(table, ["trend", "zigzag"]).set_index("column")
+    result = line_model.trend_table(table, ["trend", "zigzag"]).set_index("column")
     assert result.loc["trend", "reversals"] == 0 and result.loc["trend", "spearman_rho"] == 1.0
     assert result.loc["zigzag", "reversals"] == result.loc["zigzag", "possible"] == 9
     # fewer than three angles: no judgement
-    assert tables.trend_table(table.iloc[:2], ["trend"]).empty
+    assert line_model.trend_table(table.iloc[:2], ["trend"]).empty

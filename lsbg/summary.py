@@ -1,0 +1,256 @@
+"""The summary table: the paper's §4 statistics of every run and quantity (``lsbg summary``).
+
+One row per run and quantity (:data:`SUMMARY_COLUMNS`): mean, std,
+Anderson–Darling A² and p, the theoretical value of Eq. 12–13 and the error
+rate of Table 3, Xbar-R alarms, and from the full-rate record the std, its
+spread over the sampling phases and the dynamic factor. Loaded TCAs add one
+row each (static transmission error and mesh stiffness). All statistics come
+from :mod:`lsbg.stats` and :mod:`lsbg.spectra`.
+
+References
+----------
+.. [1] The reproduced paper, ``paper/lsbg-paper.txt``, §4 and Table 3.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from lsbg import stats
+from lsbg.results import as_path_list, open_run
+from lsbg.runs import QUANTITIES, THEORY_ATTRIBUTES, full_rate_series, open_mesh, run_spiral_angle
+
+__all__ = [
+    "SUMMARY_QUANTITIES", "SUMMARY_COLUMNS", "STATISTICS_KEYS", "statistics_options",
+    "quantity_summary", "mesh_summary", "summary_table"
+]
+
+
+#: Quantities of the summary table: the paper's, the transmission error and
+#: the contact torque.
+SUMMARY_QUANTITIES = QUANTITIES + ("transmission_error", "contact_torque")
+
+
+#: Columns of :func:`summary_table`. Runs: the paper's §4 statistics of the
+#: output samples, then the full-rate ones (std, the spread of the sample
+#: std over sampling phases, the dynamic factor on the contact-torque row).
+#: Loaded TCA (engine "ltca"): the static transmission error's peak to peak
+#: and mesh harmonics, and the mesh stiffness.
+SUMMARY_COLUMNS = ("trace", "spiral_angle_deg", "contact_model", "engine", "run", "quantity",
+                   "mean", "std", "ad_statistic", "ad_pvalue", "theory", "error_rate_percent",
+                   "out_of_control", "full_rate_std", "sampling_std_min", "sampling_std_max",
+                   "dynamic_factor", "peak_to_peak", "harmonic_1", "harmonic_2", "harmonic_3")
+
+
+#: Keys of the study configuration's ``statistics`` section -> keyword of
+#: :func:`summary_table`.
+STATISTICS_KEYS = {"steady_state_after_s": "steady_state_after",
+                   "control_chart_window_s": "window", "subgroup_size": "subgroup_size"}
+
+
+# ----------------------------------------------------------------- summary
+def statistics_options(config) -> dict:
+    """Keywords of :func:`summary_table` from the study's ``statistics`` section.
+
+    Parameters
+    ----------
+    config : dict or None
+        Keys of :data:`STATISTICS_KEYS`: ``steady_state_after_s`` [s],
+        ``control_chart_window_s`` ([start, stop], s) and ``subgroup_size``.
+
+    Returns
+    -------
+    dict
+        ``steady_state_after``, ``window``, ``subgroup_size`` for the keys given.
+
+    Raises
+    ------
+    ValueError
+        Naming ``statistics.<key>`` for an unknown key or a bad value.
+    """
+    if config is None:
+        return {}
+    if not isinstance(config, dict):
+        raise ValueError(f"statistics = {config!r}: must be a mapping of keys")
+    out = {}
+    for key, value in config.items():
+        if key not in STATISTICS_KEYS:
+            raise ValueError(f"statistics.{key} = {value!r}: unknown key "
+                             f"(known: {sorted(STATISTICS_KEYS)})")
+
+        def bad(why, key=key, value=value):
+            return ValueError(f"statistics.{key} = {value!r}: {why}")
+
+        if key == "steady_state_after_s":
+            if not _is_number(value) or value < 0:
+                raise bad("must be a non-negative number [s]")
+            out["steady_state_after"] = float(value)
+        elif key == "control_chart_window_s":
+            if (not isinstance(value, (list, tuple)) or len(value) != 2
+                    or not all(_is_number(v) for v in value) or not 0 <= value[0] < value[1]):
+                raise bad("must be [start, stop] with 0 <= start < stop [s]")
+            out["window"] = (float(value[0]), float(value[1]))
+        else:
+            if isinstance(value, bool) or not isinstance(value, int) or value < 2:
+                raise bad("must be a whole number >= 2")
+            out["subgroup_size"] = int(value)
+    return out
+
+
+def _is_number(value):
+    return (isinstance(value, (int, float)) and not isinstance(value, bool)
+            and math.isfinite(value))
+
+
+def quantity_summary(ds, quantity, steady_state_after=0.2, window=(0.8, 1.0),
+                     subgroup_size=4) -> dict:
+    """The statistics of one quantity of one run: one row of :func:`summary_table`.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Run dataset.
+    quantity : str
+        One of :data:`SUMMARY_QUANTITIES`.
+    steady_state_after : float, default 0.2
+        End of the transient [s]; the statistics use the samples after it.
+    window : (float, float), default (0.8, 1.0)
+        Window of the Xbar-R chart, start excluded, stop included [s].
+    subgroup_size : int, default 4
+        Subgroup size of the Xbar-R chart [-].
+
+    Returns
+    -------
+    dict
+        Keys :data:`SUMMARY_COLUMNS`: mean and std (ddof = 1) [unit of the
+        quantity], A² and p, the theoretical value (from the run attributes;
+        NaN for the transmission error), ``error_rate_percent`` =
+        100 |mean − theory| / theory, ``out_of_control``, the number of
+        subgroups beyond the Xbar or R limits; from the full-rate record its
+        std, the least and largest std of the output sampling over all
+        sampling phases, and (contact torque) the dynamic factor.
+
+    Raises
+    ------
+    ValueError
+        If the windows do not fit the run (e.g. no subgroups of that size).
+    """
+    from lsbg import spectra
+
+    if quantity not in SUMMARY_QUANTITIES:
+        raise ValueError(f"quantity = {quantity!r}: must be one of {SUMMARY_QUANTITIES}")
+    values, time = ds[quantity].values, ds["time"].values
+    x = stats.steady_state(values, time, steady_state_after)
+    description = stats.describe(x)
+    ad = stats.anderson_darling(x)
+    theory_value = (float(ds.attrs[THEORY_ATTRIBUTES[quantity]])
+                    if quantity in THEORY_ATTRIBUTES else np.nan)
+    chart = stats.xbar_r_chart(stats.subgroups_from_window(values, time, window[0], window[1],
+                                                           subgroup_size))
+    full = full_rate_series(ds, quantity, steady_state_after)
+    sample_rate = float(ds.attrs["solver_samples"]) / float(ds.attrs["solver_duration_s"])
+    spread = spectra.sampling_phase_spread(full, float(ds.attrs["solver_full_rate_hz"]),
+                                           sample_rate)
+    return {
+        "trace": ds.attrs["design_trace"],
+        "spiral_angle_deg": run_spiral_angle(ds),
+        "contact_model": ds.attrs["contact_model"],
+        "engine": ds.attrs["solver_engine"],
+        "run": _run_name(ds),
+        "quantity": quantity,
+        "mean": description.mean,
+        "std": description.std,
+        "ad_statistic": ad.statistic,
+        "ad_pvalue": ad.pvalue,
+        "theory": theory_value,
+        "error_rate_percent": (stats.compare_to_theory(description.mean,
+                                                       theory_value).error_rate_percent
+                               if np.isfinite(theory_value) else np.nan),
+        "out_of_control": int(chart.out_of_control.size),
+        "full_rate_std": spectra.rms_fluctuation(full),
+        "sampling_std_min": float(spread.min()),
+        "sampling_std_max": float(spread.max()),
+        "dynamic_factor": (spectra.dynamic_factor(full, float(ds.attrs["solver_load_torque_N_m"]))
+                           if quantity == "contact_torque" else np.nan),
+    }
+
+
+def _run_name(ds):
+    """The run's file name without its extension ("" for a dataset not from a file)."""
+    source = ds.encoding.get("source")
+    return Path(source).stem if source else ""
+
+
+def mesh_summary(ds) -> list:
+    """Summary rows of a loaded TCA (:func:`lsbg.ltca.loaded_tca`).
+
+    Returns
+    -------
+    list of dict
+        Two rows, keys :data:`SUMMARY_COLUMNS` (engine "ltca"): the static
+        transmission error [urad] (mean, std over the mesh cycle, peak to
+        peak, first three mesh harmonics) and the mesh stiffness [N/um]
+        (mean, std, peak to peak).
+    """
+    base = {column: np.nan for column in SUMMARY_COLUMNS}
+    base.update(trace=ds.attrs["design_trace"],
+                spiral_angle_deg=round(float(ds.attrs["design_spiral_angle_deg"]), 9),
+                contact_model="line", engine="ltca", run=_run_name(ds), out_of_control=None)
+    te, stiffness = ds["transmission_error"].values, ds["mesh_stiffness"].values
+    harmonics = {f"harmonic_{h}": float(ds.attrs[f"transmission_error_harmonic_{h}_urad"])
+                 for h in (1, 2, 3)}
+    return [
+        {**base, "quantity": "static_transmission_error", "mean": float(te.mean()),
+         "std": float(te.std(ddof=1)), "peak_to_peak": float(np.ptp(te)), **harmonics},
+        {**base, "quantity": "mesh_stiffness", "mean": float(stiffness.mean()),
+         "std": float(stiffness.std(ddof=1)), "peak_to_peak": float(np.ptp(stiffness))},
+    ]
+
+
+def summary_table(paths, steady_state_after=0.2, window=(0.8, 1.0),
+                  subgroup_size=4, meshes=()) -> pd.DataFrame:
+    """The statistics of every run and quantity, and of every loaded TCA.
+
+    Parameters
+    ----------
+    paths : sequence of str or os.PathLike
+        Run files.
+    steady_state_after : float, default 0.2
+        End of the transient [s] (paper: 0.2 s, 400 samples).
+    window : (float, float), default (0.8, 1.0)
+        Xbar-R window [s] (paper: 0.8–1.0 s).
+    subgroup_size : int, default 4
+        Xbar-R subgroup size (paper: 4, 25 subgroups).
+    meshes : sequence of str or os.PathLike
+        Loaded-TCA files (``lsbg ltca``).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per run and quantity of :data:`SUMMARY_QUANTITIES` (see
+        :func:`quantity_summary`), then two per loaded TCA (see
+        :func:`mesh_summary`); columns :data:`SUMMARY_COLUMNS`.
+
+    Raises
+    ------
+    ValueError
+        Naming the file and quantity when a statistic cannot be computed.
+    """
+    rows = []
+    for path in as_path_list(paths):
+        ds = open_run(path)
+        for quantity in SUMMARY_QUANTITIES:
+            try:
+                rows.append(quantity_summary(ds, quantity, steady_state_after, window,
+                                             subgroup_size))
+            except ValueError as err:
+                raise ValueError(f"{path}: {quantity}: {err}") from None
+    for path in as_path_list(meshes):
+        rows.extend(mesh_summary(open_mesh(path)))
+    table = pd.DataFrame(rows, columns=list(SUMMARY_COLUMNS))
+    table["out_of_control"] = table["out_of_control"].astype("Int64")
+    return table

@@ -1,0 +1,15 @@
+"""Tables of the reports, built from runs, loaded TCAs and the sweep dataset.
+
+One module per report topic; none imports matplotlib (the figures are in
+:mod:`lsbg.figures`):
+
+* :mod:`lsbg.tables.paper`: the paper's reproduction (Tables 1 and 3, the
+  fluctuation verdict under the point model, control charts);
+* :mod:`lsbg.tables.line_model`: the line model's verdict (loaded TCA,
+  full-rate fluctuations, model-form sensitivity, trends over spiral angle,
+  the dynamic-factor curve);
+* :mod:`lsbg.tables.verification`: engine agreement, convergence, contact
+  resonance, pressure angles and conjugacy.
+
+Use them as ``from lsbg.tables import paper as paper_tables``.
+"""

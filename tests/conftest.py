@@ -1,0 +1,57 @@
+"""Shared fixtures: short real runs of three design points, both contact models, two engines."""
+
+import pytest
+
+from lsbg.combine import combine_runs
+from lsbg.contact import ContactParameters
+from lsbg.design import GearPairDesign
+from lsbg.dynamics import SimulationSettings, simulate
+from lsbg.export import write_geometry
+from lsbg.ltca import ltca_for_geometry
+from lsbg.results import write_dataset
+
+SHORT = SimulationSettings(duration=0.05, samples=25, ramp_time=0.01)
+# 26 instants 0, 0.002, ..., 0.05 s: 20 samples after 0.01 s, 4 subgroups of 5.
+WINDOWS = dict(steady_state_after=0.01, window=(0.01, 0.05), subgroup_size=5)
+
+
+@pytest.fixture(scope="session")
+def windows():
+    """Statistics windows that fit :data:`SHORT` runs (keywords of summary_table)."""
+    return dict(WINDOWS)
+
+
+@pytest.fixture(scope="session")
+def runs(tmp_path_factory):
+    """Point model: LSBG at 35 and 30 deg, SBG at 35 deg (pybullet) and LSBG at 35 deg
+    (scipy); line model: LSBG and SBG at 35 deg (pybullet); their loaded TCAs."""
+    root = tmp_path_factory.mktemp("study")
+    points = {"lsbg35": ("logarithmic", 35), "sbg35": ("circular", 35),
+              "lsbg30": ("logarithmic", 30)}
+    paths = {}
+    line = ContactParameters(model="line")
+    for name, (trace, spiral) in points.items():
+        geometry = root / "geometry" / name
+        write_geometry(GearPairDesign.from_config({"trace": trace, "spiral_angle_deg": spiral}),
+                       geometry)
+        paths[name] = root / "runs" / f"{name}_pybullet.nc"
+        write_dataset(simulate(geometry, SHORT), paths[name])
+        if spiral == 35:
+            paths[f"{name}_line"] = root / "runs" / f"{name}_line_pybullet.nc"
+            write_dataset(simulate(geometry, SHORT, line), paths[f"{name}_line"])
+            paths[f"{name}_mesh"] = root / "mesh" / f"{name}.nc"
+            write_dataset(ltca_for_geometry(geometry, 1964.99, phases=64), paths[f"{name}_mesh"])
+    paths["lsbg35_scipy"] = root / "runs" / "lsbg35_scipy.nc"
+    write_dataset(simulate(root / "geometry" / "lsbg35", SHORT.replace(engine="scipy")),
+                  paths["lsbg35_scipy"])
+    return paths
+
+
+@pytest.fixture(scope="session")
+def pybullet_runs(runs):
+    return [runs["lsbg35"], runs["sbg35"], runs["lsbg30"]]
+
+
+@pytest.fixture(scope="session")
+def sweep(pybullet_runs):
+    return combine_runs(pybullet_runs)

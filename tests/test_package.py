@@ -1,0 +1,137 @@
+"""The package's shape: stages in data-flow order, no import cycle, no plotting in computation."""
+
+import ast
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from lsbg import stages
+
+PACKAGE = stages.PACKAGE
+#: Modules that draw (matplotlib) or render reports: everything else computes.
+PLOTTING = ("figures", "reports", "cli")
+#: Top-level modules in the order the data flows: a module may import only
+#: modules of its own layer or of layers before it.
+LAYERS = (
+    ("design",),
+    ("geometry", "polyhedra", "theory"),
+    ("solids", "render", "files", "mass", "urdf"),
+    ("export",),
+    ("contact",),
+    ("results", "dynamics"),
+    ("ltca", "sensitivity", "verification", "spectra", "speed", "stats"),
+    ("runs",),
+    ("combine",),
+    ("summary",),
+    ("tables",),
+    ("figures",),
+    ("reports", "workflow", "stages"),
+    ("cli",),
+)
+MAX_LINES = 620
+
+
+def module_name(path):
+    """Dotted name below lsbg of a source file ('contact.law', 'stats')."""
+    parts = list(path.relative_to(PACKAGE).with_suffix("").parts)
+    if parts[-1] == "__init__":
+        parts.pop()
+    return ".".join(parts)
+
+
+def import_graph():
+    """{module: lsbg modules it imports anywhere (module level or inside functions)}."""
+    graph = {}
+    for path in sorted(PACKAGE.rglob("*.py")):
+        name = module_name(path)
+        if not name:
+            continue
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        # A package's own submodules are its parts, not edges of the graph.
+        graph[name] = {m for m in stages._imports(tree, PACKAGE)
+                       if m != name and not m.startswith(name + ".")}
+    return graph
+
+
+def find_cycle(graph):
+    """One import cycle as a list of modules, or None (depth-first search)."""
+    state, stack = {}, []
+
+    def visit(node):
+        state[node] = "open"
+        stack.append(node)
+        for nxt in sorted(graph.get(node, ())):
+            # importing a submodule executes its package first
+            targets = [nxt] + [".".join(nxt.split(".")[:k]) for k in range(1, nxt.count(".") + 1)]
+            for target in targets:
+                if target == node or node.startswith(target + "."):
+                    continue
+                if state.get(target) == "open":
+                    return stack[stack.index(target):] + [target]
+                if target not in state and target in graph:
+                    found = visit(target)
+                    if found:
+                        return found
+        stack.pop()
+        state[node] = "done"
+        return None
+
+    for node in sorted(graph):
+        if node not in state:
+            found = visit(node)
+            if found:
+                return found
+    return None
+
+
+def test_cycle_finder_finds_a_cycle():
+    assert find_cycle({"a": {"b"}, "b": {"c"}, "c": {"a"}}) == ["a", "b", "c", "a"]
+    assert find_cycle({"a": {"b"}, "b": {"c"}, "c": set()}) is None
+    # a submodule importing its own package's sibling through the package
+    assert find_cycle({"p": {"p.x"}, "p.x": {"q"}, "q": {"p"}}) is not None
+
+
+def test_no_import_cycle():
+    cycle = find_cycle(import_graph())
+    assert cycle is None, " -> ".join(cycle)
+
+
+def test_imports_follow_the_data_flow():
+    layer = {name: k for k, names in enumerate(LAYERS) for name in names}
+    graph = import_graph()
+    tops = {name.split(".")[0] for name in graph}
+    assert tops <= set(layer), f"add {sorted(tops - set(layer))} to LAYERS"
+    upward = sorted(f"lsbg.{a} imports lsbg.{b}" for a, targets in graph.items() for b in targets
+                    if layer[b.split(".")[0]] > layer[a.split(".")[0]])
+    assert not upward, upward
+
+
+def computation_modules():
+    return sorted("lsbg." + name for name in import_graph()
+                  if name.split(".")[0] not in PLOTTING)
+
+
+def test_computation_modules_do_not_import_plotting():
+    modules = computation_modules()
+    assert "lsbg.stats" in modules and "lsbg.tables.paper" in modules
+    code = (f"import importlib, sys\n"
+            f"for name in {modules!r}:\n"
+            f"    importlib.import_module(name)\n"
+            f"    bad = sorted(m for m in ('matplotlib', 'seaborn') if m in sys.modules)\n"
+            f"    assert not bad, f'{{name}} imports {{bad}}'\n")
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+
+
+def test_plotting_check_detects_matplotlib():
+    proc = subprocess.run([sys.executable, "-c", "import sys, lsbg.figures.base; "
+                           "assert 'matplotlib' in sys.modules"], capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stderr
+
+
+@pytest.mark.parametrize("path", sorted(PACKAGE.rglob("*.py")), ids=module_name)
+def test_module_is_one_topic(path):
+    lines = len(path.read_text(encoding="utf-8").splitlines())
+    assert lines <= MAX_LINES, f"{path.relative_to(PACKAGE.parent)}: {lines} lines"

@@ -1,0 +1,42 @@
+"""Run datasets read back (lsbg.runs): the full-rate record, the pair of gear types."""
+
+import numpy as np
+import pytest
+
+from lsbg import spectra
+from lsbg.results import open_run
+from lsbg.runs import FULL_RATE_OF, full_rate_series, open_pair, steady
+
+
+def test_full_rate_record_holds_the_output_samples(runs):
+    """The output instants inside the full-rate record are full-rate instants: the
+    values agree, and the sampling phase of the paper's statistic that starts
+    with the output sampling gives its standard deviation."""
+    for name in ("lsbg35", "sbg35_line"):
+        run = open_run(runs[name])
+        assert run.attrs["solver_full_rate_hz"] == 50000.0
+        t_full = run.time_full.values
+        assert t_full[0] == pytest.approx(0.01) and t_full[-1] == pytest.approx(0.05)
+        assert np.diff(t_full) == pytest.approx(2e-5)
+        on_grid = np.isin(np.round(run.time.values, 9), np.round(t_full, 9))
+        assert on_grid.sum() == 21
+        for quantity, (variable, _) in FULL_RATE_OF.items():
+            if quantity == "tangential_force_outer":
+                continue
+            full = run[variable].values
+            np.testing.assert_allclose(full[::100], run[quantity].values[on_grid], rtol=1e-12)
+            spread = spectra.sampling_phase_spread(full_rate_series(run, quantity, 0.01),
+                                                   50000.0, 500.0)
+            assert spread.size == 100
+            assert spread[0] == pytest.approx(steady(run, quantity, 0.01).std(ddof=1),
+                                              rel=1e-12)
+
+
+def test_open_pair_checks_the_gear_types(runs):
+    pair = open_pair(runs["sbg35"], runs["lsbg35"])
+    assert list(pair) == ["SBG", "LSBG"]
+    assert open_pair("", None) is None
+    with pytest.raises(ValueError, match="a LSBG run .* given as the SBG run"):
+        open_pair(runs["lsbg35"], runs["sbg35"])
+    with pytest.raises(ValueError, match="both"):
+        open_pair(runs["sbg35"], "")

@@ -1,0 +1,137 @@
+"""The summary table of short real runs (lsbg.summary), through the API and the CLI."""
+
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+import xarray as xr
+import yaml
+
+from lsbg import cli, stats, theory
+from lsbg.summary import SUMMARY_COLUMNS, SUMMARY_QUANTITIES, statistics_options, summary_table
+
+
+def test_summary_table_columns_and_values(runs, pybullet_runs, windows):
+    table = summary_table(pybullet_runs, **windows)
+    assert list(table.columns) == list(SUMMARY_COLUMNS) == [
+        "trace", "spiral_angle_deg", "contact_model", "engine", "run", "quantity", "mean", "std",
+        "ad_statistic", "ad_pvalue", "theory", "error_rate_percent", "out_of_control",
+        "full_rate_std", "sampling_std_min", "sampling_std_max", "dynamic_factor",
+        "peak_to_peak", "harmonic_1", "harmonic_2", "harmonic_3"]
+    assert len(table) == 3 * len(SUMMARY_QUANTITIES)
+    with_theory = table[table.theory.notna()]
+    assert set(table.quantity) - set(with_theory.quantity) == {"transmission_error"}
+    np.testing.assert_allclose(
+        with_theory.error_rate_percent,
+        100 * (with_theory["mean"] - with_theory.theory).abs() / with_theory.theory)
+    # the sampled std lies inside its spread over sampling phases
+    assert (table.sampling_std_min <= table["std"] * (1 + 1e-12)).all()
+    assert (table["std"] <= table.sampling_std_max * (1 + 1e-12)).all()
+    torque = table[table.quantity == "contact_torque"]
+    assert (torque.dynamic_factor > 1.0).all() and table.dynamic_factor.notna().sum() == 3
+    assert set(table.run) == {"lsbg35_pybullet", "sbg35_pybullet", "lsbg30_pybullet"}
+    with xr.open_dataset(runs["lsbg30"]) as run:
+        rows = table[(table.trace == "logarithmic") & (table.spiral_angle_deg == 30.0)]
+        assert list(rows.quantity) == list(SUMMARY_QUANTITIES)
+        for row in rows.itertuples():
+            x = stats.steady_state(run[row.quantity].values, run.time.values, 0.01)
+            assert x.size == 20
+            ad = stats.anderson_darling(x)
+            assert (row.ad_statistic, row.ad_pvalue) == (ad.statistic, ad.pvalue)
+            assert row.mean == pytest.approx(x.mean()) and row.std == pytest.approx(x.std(ddof=1))
+            groups = stats.subgroups_from_window(run[row.quantity].values, run.time.values,
+                                                 0.01, 0.05, 5)
+            assert groups.shape == (4, 5)
+            assert row.out_of_control == stats.xbar_r_chart(groups).out_of_control.size <= 4
+        theories = dict(zip(rows.quantity, rows.theory))
+    assert theories["gear_speed"] == pytest.approx(float(theory.gear_speed(7703.0, 9, 37)))
+    assert theories["tangential_force"] == theories["tangential_force_outer"] == pytest.approx(
+        23603.48, abs=0.01)
+    assert theories["contact_torque"] == 1964.99
+    assert set(table.engine) == {"pybullet"}
+
+
+def test_summary_table_loaded_tca_rows(runs, windows):
+    table = summary_table([runs["sbg35_line"]], meshes=[runs["sbg35_mesh"]], **windows)
+    mesh_rows = table[table.engine == "ltca"]
+    assert list(mesh_rows.quantity) == ["static_transmission_error", "mesh_stiffness"]
+    with xr.open_dataset(runs["sbg35_mesh"]) as mesh:
+        te = mesh_rows.iloc[0]
+        assert te.peak_to_peak == pytest.approx(np.ptp(mesh.transmission_error.values))
+        assert te.harmonic_1 == mesh.attrs["transmission_error_harmonic_1_urad"]
+        assert te.contact_model == "line" and te.run == "sbg35"
+        assert mesh_rows.iloc[1]["mean"] == pytest.approx(mesh.mesh_stiffness.values.mean())
+    assert mesh_rows.out_of_control.isna().all()
+    assert table[table.engine != "ltca"].contact_model.unique().tolist() == ["line"]
+
+
+def test_summary_table_default_windows_need_a_long_run(runs):
+    # the paper's windows (after 0.2 s, 0.8-1.0 s) do not fit a 0.05 s run: the
+    # error names the file and the quantity
+    with pytest.raises(ValueError, match="sbg35_pybullet.nc: gear_speed: no sample after"):
+        summary_table([runs["sbg35"]])
+    with pytest.raises(ValueError, match="sbg35_pybullet.nc: gear_speed: .*window"):
+        summary_table([runs["sbg35"]], steady_state_after=0.01)
+
+
+def test_statistics_options_validates_keys():
+    assert statistics_options(None) == {}
+    assert statistics_options({"steady_state_after_s": 0.2,
+                                     "control_chart_window_s": [0.8, 1.0],
+                                     "subgroup_size": 4}) == {
+        "steady_state_after": 0.2, "window": (0.8, 1.0), "subgroup_size": 4}
+    for bad, key in (({"window": [0, 1]}, "statistics.window"),
+                     ({"control_chart_window_s": [1.0, 0.8]}, "statistics.control_chart_window_s"),
+                     ({"subgroup_size": 1}, "statistics.subgroup_size"),
+                     ({"subgroup_size": True}, "statistics.subgroup_size"),
+                     ({"steady_state_after_s": "soon"}, "statistics.steady_state_after_s")):
+        with pytest.raises(ValueError, match=key):
+            statistics_options(bad)
+
+
+def test_cli_summary_reads_the_statistics_section(pybullet_runs, tmp_path, windows):
+    config = tmp_path / "study.yaml"
+    config.write_text(yaml.safe_dump({
+        "design": {"module_mm": 4.5}, "simulation": {"duration_s": 0.05},
+        "statistics": {"steady_state_after_s": 0.01, "control_chart_window_s": [0.01, 0.05],
+                       "subgroup_size": 5}}))
+    out = tmp_path / "results" / "summary.csv"
+    assert cli.main(["summary", "--runs", *map(str, pybullet_runs), "--config", str(config),
+                     "--out", str(out)]) == 0
+    written = pd.read_csv(out)
+    assert list(written.columns) == list(SUMMARY_COLUMNS)
+    expected = summary_table(pybullet_runs, **windows)
+    pd.testing.assert_frame_equal(written, expected, check_exact=False, rtol=1e-12,
+                                  check_dtype=False)
+    assert [p.name for p in out.parent.iterdir()] == ["summary.csv"]
+    # options override the configuration
+    out2 = tmp_path / "summary2.csv"
+    assert cli.main(["summary", "--runs", str(pybullet_runs[0]), "--config", str(config),
+                     "--subgroup-size", "4", "--window", "0.018", "0.05",
+                     "--out", str(out2)]) == 0
+    assert len(pd.read_csv(out2)) == len(SUMMARY_QUANTITIES)
+
+
+def test_cli_summary_bad_statistics_key_exit_2(pybullet_runs, tmp_path, capsys):
+    config = tmp_path / "study.yaml"
+    config.write_text(yaml.safe_dump({"statistics": {"steady_state_after": 0.2}}))
+    out = tmp_path / "summary.csv"
+    code = cli.main(["summary", "--runs", str(pybullet_runs[0]), "--config", str(config),
+                     "--out", str(out)])
+    assert code == 2
+    err = capsys.readouterr().err
+    assert "statistics.steady_state_after" in err and "unknown key" in err
+    assert not out.exists()
+    # a window that does not fit the runs: exit 2, naming the file
+    code = cli.main(["summary", "--runs", str(pybullet_runs[0]), "--out", str(out)])
+    assert code == 2 and "lsbg35_pybullet.nc" in capsys.readouterr().err
+    assert not out.exists()
+
+
+def test_spiral_angle_is_rounded_in_tables(runs, windows):
+    # 30 deg round-trips through radians as 29.999999999999996
+    with xr.open_dataset(runs["lsbg30"]) as run:
+        assert math.isclose(run.attrs["design_spiral_angle_deg"], 30.0)
+    table = summary_table([runs["lsbg30"]], **windows)
+    assert set(table.spiral_angle_deg) == {30.0}
