@@ -129,7 +129,11 @@ def _is_path_parameter(name):
 
 
 def resolve_parameters(parameters, cwd=None) -> dict:
-    """Make relative paths in path parameters absolute.
+    """Path parameters as the kernel sees them: relative to ``cwd`` where inside it.
+
+    The notebook runs in ``cwd``, so a path inside it stays relative (and so
+    does everything the report prints: the same study run in two directories
+    gives the same report); a path outside it becomes absolute.
 
     Parameters
     ----------
@@ -142,20 +146,24 @@ def resolve_parameters(parameters, cwd=None) -> dict:
     Returns
     -------
     dict
-        A copy with absolute paths (as strings).
+        A copy with normalised paths (as strings, POSIX separators).
     """
-    base = Path(cwd) if cwd is not None else Path.cwd()
+    base = Path(os.path.abspath(cwd if cwd is not None else os.getcwd()))
 
-    def absolute(value):
+    def normalised(value):
         if isinstance(value, os.PathLike):
             value = os.fspath(value)
         if isinstance(value, str):
-            return str((base / value).absolute()) if value.strip() else value
+            if not value.strip():
+                return value
+            path = Path(os.path.normpath(base / value))
+            return (path.relative_to(base).as_posix() if path.is_relative_to(base)
+                    else path.as_posix())
         if isinstance(value, (list, tuple)):
-            return [absolute(v) for v in value]
+            return [normalised(v) for v in value]
         return value
 
-    return {key: absolute(value) if _is_path_parameter(key) else value
+    return {key: normalised(value) if _is_path_parameter(key) else value
             for key, value in (parameters or {}).items()}
 
 
@@ -212,9 +220,9 @@ def render_report(name, out_html, parameters=None, notebook_dir=None, cwd=None,
         HTML file to write (atomically: a temporary file renamed at the end);
         its folder is created if needed.
     parameters : dict, optional
-        Values for the notebook's ``parameters`` cell; relative paths in path
-        parameters (:data:`PATH_PARAMETER_SUFFIXES`) are resolved against
-        ``cwd``.
+        Values for the notebook's ``parameters`` cell; path parameters
+        (:data:`PATH_PARAMETER_SUFFIXES`) are given to the notebook relative to
+        ``cwd`` where inside it (:func:`resolve_parameters`).
     notebook_dir : str or os.PathLike, optional
         Folder of the notebooks (default :data:`NOTEBOOK_DIR`).
     cwd : str or os.PathLike, optional
@@ -269,6 +277,10 @@ def render_report(name, out_html, parameters=None, notebook_dir=None, cwd=None,
             raise ReportError(f"report {name!r}: notebook {notebook.name} could not be "
                               f"executed: {type(err).__name__}: {err}") from err
         nb = nbformat.read(executed, as_version=4)
+        for cell in nb.cells:
+            # papermill gives its parameters cell a random id; keep the HTML reproducible
+            if "injected-parameters" in cell.get("metadata", {}).get("tags", []):
+                cell["id"] = "injected-parameters"
         for message in _strip_stderr(nb):
             log.warning("report %s: %s", name, message.strip())
         html = notebook_to_html(nb)

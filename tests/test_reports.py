@@ -2,6 +2,8 @@
 
 import math
 import re
+import shutil
+from pathlib import Path
 
 import pytest
 import xarray as xr
@@ -178,7 +180,8 @@ def test_verification_report_via_cli_with_relative_paths(study_files, monkeypatc
     assert "PASS: flanks conjugate" in html
     assert "PASS: no transmission error without load" in html
     assert "PASS: loaded TCA linear in load" in html
-    assert str(root / "results" / "runs") in html  # paths were made absolute
+    # paths stay relative to the study's directory: the report does not name it
+    assert "results/runs/" in html and str(root) not in html
 
 
 def test_failing_notebook_raises_and_writes_nothing(study_files, tmp_path):
@@ -229,9 +232,31 @@ def test_parse_and_resolve_parameters(tmp_path):
         with pytest.raises(ValueError, match="--param"):
             reports.parse_parameter(bad)
     resolved = reports.resolve_parameters(
-        {"runs": ["a.nc", "/abs/b.nc"], "sbg_run": "", "lsbg_geometry": "g",
-         "summary_file": "s.csv", "subgroup_size": 4, "title": "keep/me"}, cwd=tmp_path)
-    assert resolved == {"runs": [str(tmp_path / "a.nc"), "/abs/b.nc"], "sbg_run": "",
-                        "lsbg_geometry": str(tmp_path / "g"),
-                        "summary_file": str(tmp_path / "s.csv"), "subgroup_size": 4,
-                        "title": "keep/me"}
+        {"runs": ["a.nc", "/abs/b.nc", str(tmp_path / "results" / "c.nc")], "sbg_run": "",
+         "lsbg_geometry": "results/../g", "summary_file": "../s.csv", "subgroup_size": 4,
+         "title": "keep/me"}, cwd=tmp_path)
+    # inside the working directory: relative (reports do not depend on where the study ran)
+    assert resolved == {"runs": ["a.nc", "/abs/b.nc", "results/c.nc"], "sbg_run": "",
+                        "lsbg_geometry": "g", "summary_file": (tmp_path.parent / "s.csv").as_posix(),
+                        "subgroup_size": 4, "title": "keep/me"}
+
+
+def test_report_is_the_same_in_another_directory(study_files, tmp_path):
+    """The same inputs in two directories give the same HTML, apart from the time stamp."""
+    pages = []
+    for name in ("one", "two"):
+        root = tmp_path / name
+        (root / "results").mkdir(parents=True)
+        for key in ("sweep", "summary", "speed_curve"):
+            shutil.copy2(study_files[key], root / "results" / Path(study_files[key]).name)
+        out = root / "reports" / "sweep.html"
+        reports.render_report("sweep", out, {
+            "sweep_file": f"results/{Path(study_files['sweep']).name}",
+            "summary_file": root / "results" / Path(study_files["summary"]).name,
+            "speed_curve_file": f"results/{Path(study_files['speed_curve']).name}",
+            "steady_state_after_s": 0.01}, cwd=root)
+        html = out.read_text(encoding="utf-8")
+        assert str(root) not in html and str(tmp_path) not in html
+        assert "results/" in html          # the inputs are named, relative
+        pages.append(re.sub(r"computed with lsbg \S+ on [0-9-]+ [0-9:]+ UTC", "", html))
+    assert pages[0] == pages[1]

@@ -243,6 +243,25 @@ def test_study_writes_the_sweep_dataset_with_units(study):
 
 
 @pytest.mark.slow
+def test_outputs_do_not_name_the_study_directory(study):
+    """Reports, tables, provenance and the summary's log name files relative to the study."""
+    root, _ = study
+    checked = 0
+    for folder in ("results", "reports", "logs/summary", "logs/combine"):
+        for path in sorted((root / folder).rglob("*")):
+            if path.suffix == ".nc":
+                with xr.open_dataset(path) as ds:
+                    text = repr(ds.attrs) + "".join(repr(v.attrs) for v in ds.variables.values())
+            elif path.suffix in (".html", ".csv", ".json", ".yaml", ".urdf", ".log", ".txt"):
+                text = path.read_text(encoding="utf-8")
+            else:
+                continue
+            checked += 1
+            assert str(root) not in text, path.relative_to(root)
+    assert checked > 20
+
+
+@pytest.mark.slow
 def test_study_writes_the_summary_table(study):
     root, _ = study
     table = pd.read_csv(root / "results" / "summary.csv")
