@@ -1,6 +1,7 @@
 """The package's shape: stages in data-flow order, no import cycle, no plotting in computation."""
 
 import ast
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -27,7 +28,7 @@ LAYERS = (
     ("summary",),
     ("tables",),
     ("figures",),
-    ("reports", "workflow", "stages"),
+    ("reports", "workflow", "config_check", "stages"),
     ("cli",),
 )
 MAX_LINES = 620
@@ -135,3 +136,16 @@ def test_plotting_check_detects_matplotlib():
 def test_module_is_one_topic(path):
     lines = len(path.read_text(encoding="utf-8").splitlines())
     assert lines <= MAX_LINES, f"{path.relative_to(PACKAGE.parent)}: {lines} lines"
+
+
+def test_architecture_page_names_every_module_and_only_real_paths():
+    page = (PACKAGE.parent / "docs" / "architecture.md").read_text(encoding="utf-8")
+    named = set(re.findall(r"\b((?:lsbg|workflow|tests|docs)/[\w./-]*\w/?)", page))
+    missing = sorted(p for p in named if not (PACKAGE.parent / p.rstrip("/")).exists())
+    assert not missing, f"docs/architecture.md names paths that do not exist: {missing}"
+    modules = {path.relative_to(PACKAGE.parent).as_posix() for path in PACKAGE.glob("*.py")
+               if path.name != "__init__.py"}
+    packages = {f"lsbg/{path.parent.name}/" for path in PACKAGE.glob("*/__init__.py")}
+    unnamed = sorted(m for m in modules | packages
+                     if m not in page and not any(m.startswith(p) for p in packages & named))
+    assert not unnamed, f"add {unnamed} to docs/architecture.md"
