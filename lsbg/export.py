@@ -3,7 +3,8 @@
 :func:`write_geometry` is the ``lsbg geometry`` stage of the workflow
 (DESIGN.md §1). It builds everything in a temporary directory beside the
 output directory and renames it into place at the end, so that a failure
-leaves nothing half-written. The files:
+leaves nothing half-written; the next write of the same directory removes
+the temporaries of a writer that was killed. The files:
 
 ``design.json``
     Every input parameter (:meth:`GearPairDesign.to_config`, paper units),
@@ -23,6 +24,9 @@ leaves nothing half-written. The files:
     The assembled pair for PyBullet (:func:`lsbg.urdf.write_urdf`).
 ``pair.png``
     A picture of the assembled pair (:func:`lsbg.render.render_pair`).
+``manifest.json``
+    Written last: size and SHA-256 of every other file and the design point
+    they belong to (:func:`lsbg.files.write_manifest`); every reader checks it.
 """
 
 from __future__ import annotations
@@ -32,7 +36,6 @@ import logging
 import math
 import os
 import shutil
-import tempfile
 import time
 from dataclasses import dataclass, field
 from datetime import datetime, timezone
@@ -43,7 +46,8 @@ import numpy as np
 import lsbg
 from lsbg import mass, render, solids, urdf
 from lsbg.design import GearPairDesign
-from lsbg.files import FILE_NAMES, read_design
+from lsbg.files import (FILE_NAMES, MANIFEST, read_design, remove_stale_temporaries,
+                        temporary_beside, write_manifest)
 from lsbg.geometry import MEMBER_NAMES, MEMBERS, SIDES, GearPair
 
 __all__ = ["GeometryFiles", "write_geometry", "read_design", "design_record",
@@ -66,7 +70,7 @@ class GeometryFiles:
     ----------
     directory : pathlib.Path
     paths : dict
-        Key of :data:`FILE_NAMES` -> path.
+        Key of :data:`FILE_NAMES` or ``manifest`` -> path.
     timings : dict
         Stage of :data:`STAGES` -> wall time [s], plus ``total``.
     """
@@ -246,7 +250,8 @@ def write_geometry(design: GearPairDesign, out_dir, resolution=solids.DEFAULT_RE
     The design is checked (:class:`lsbg.geometry.GearPair` raises
     :class:`lsbg.design.DesignError`) before anything is written. Files go to
     a temporary directory beside ``out_dir``, which replaces ``out_dir`` only
-    when all of them are written.
+    when all of them and the manifest are written. Temporaries of ``out_dir``
+    left by a killed writer are removed first.
 
     Parameters
     ----------
@@ -258,7 +263,8 @@ def write_geometry(design: GearPairDesign, out_dir, resolution=solids.DEFAULT_RE
     Returns
     -------
     GeometryFiles
-        Paths of :data:`FILE_NAMES` and the time per stage of :data:`STAGES` [s].
+        Paths of :data:`FILE_NAMES` and ``manifest`` and the time per stage of
+        :data:`STAGES` [s].
     """
     timings = {}
     clock = time.perf_counter()
@@ -274,8 +280,8 @@ def write_geometry(design: GearPairDesign, out_dir, resolution=solids.DEFAULT_RE
     pair = GearPair(design)            # raises DesignError before any file exists
     out_dir = Path(out_dir).absolute()
     out_dir.parent.mkdir(parents=True, exist_ok=True)
-    work = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", suffix=".tmp", dir=out_dir.parent))
-    work.chmod(0o755)                  # mkdtemp makes it private; the result is not
+    remove_stale_temporaries(out_dir)
+    work = temporary_beside(out_dir, "tmp", directory=True)
     paths = {key: work / name for key, name in FILE_NAMES.items()}
     try:
         flank_dataset(pair).to_netcdf(paths["flanks"])
@@ -296,14 +302,15 @@ def write_geometry(design: GearPairDesign, out_dir, resolution=solids.DEFAULT_RE
         lap("urdf")
         render.render_pair(paths["picture"], pair, meshes)
         lap("picture")
+        write_manifest(work)           # last: it vouches for the files above
         _replace_dir(work, out_dir)
     except BaseException:
         shutil.rmtree(work, ignore_errors=True)
         raise
     timings["total"] = time.perf_counter() - start
     log.info("geometry total: %.2f s -> %s", timings["total"], out_dir)
-    return GeometryFiles(out_dir, {key: out_dir / name for key, name in FILE_NAMES.items()},
-                         timings)
+    names = {**FILE_NAMES, "manifest": MANIFEST}
+    return GeometryFiles(out_dir, {key: out_dir / name for key, name in names.items()}, timings)
 
 
 def _replace_dir(new, target):
@@ -311,7 +318,7 @@ def _replace_dir(new, target):
     if not target.exists():
         os.rename(new, target)
         return
-    old = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".old", dir=target.parent))
+    old = temporary_beside(target, "old", directory=True)
     os.rename(target, old / target.name)
     os.rename(new, target)
     shutil.rmtree(old, ignore_errors=True)

@@ -1,27 +1,233 @@
-"""The files of a design point's geometry directory: names and reading them back.
+"""The files of a design point's geometry directory: names, manifest, reading them back.
 
 ``lsbg geometry`` (:mod:`lsbg.export`) writes a directory per design point;
 the later stages (dynamics, loaded TCA, reports) read it back through this
 module, which needs neither the meshes nor the solids' code.
+
+A geometry directory proves what it is: its last file, ``manifest.json``
+(:func:`write_manifest`), holds the size and SHA-256 of every other file and
+the design point they belong to. Every reader (:func:`read_record`,
+:func:`read_design`, :func:`geometry_directory`) checks it first and raises
+:class:`InputError`, naming the file that is missing or changed and how to
+regenerate it. Hashing all files of a directory costs about 5 ms (4.6 MB, the
+STL meshes are most of it), so every read checks every file.
+
+Writers of lsbg put their output beside the target under a temporary name
+made from the target's (:func:`temporary_beside`) and rename it at the end;
+:func:`remove_stale_temporaries` removes what an interrupted writer left.
 """
 
 from __future__ import annotations
 
+import hashlib
 import json
+import os
+import re
+import shutil
+import tempfile
 from pathlib import Path
 
-from lsbg.design import CONFIG_KEYS, GearPairDesign
+from lsbg.design import CONFIG_KEYS, TRACES, DesignError, GearPairDesign
 
-#: File names inside a geometry directory.
+__all__ = ["FILE_NAMES", "MANIFEST", "InputError", "InputFileNotFoundError", "read_record",
+           "read_design", "geometry_directory", "write_manifest", "design_digest",
+           "file_digest", "number_label", "fill_template", "temporary_beside",
+           "remove_stale_temporaries"]
+
+#: File names inside a geometry directory (all listed in its manifest).
 FILE_NAMES = {
     "design": "design.json", "flanks": "flanks.nc",
     "pinion_stl": "pinion.stl", "gear_stl": "gear.stl",
     "urdf": "pair.urdf", "picture": "pair.png",
 }
+#: The manifest of a geometry directory, written last (:func:`write_manifest`).
+MANIFEST = "manifest.json"
+#: Value of the manifest's ``format`` key.
+MANIFEST_FORMAT = "lsbg geometry manifest 1"
+#: Keys of ``design.json`` that the readers need: the design and the inertias.
+REQUIRED_KEYS = (*CONFIG_KEYS, "axial_inertia_pinion_kg_m2", "axial_inertia_gear_kg_m2")
+#: The workflow's name of a geometry directory (``lsbg.workflow.FILES["geometry"]``,
+#: ``{trace}_beta{spiral}``); a directory so named must hold that design point.
+POINT_NAME = re.compile(rf"^(?P<trace>{'|'.join(TRACES)})_beta(?P<spiral>[-+0-9.]+)$")
+
+
+class InputError(ValueError):
+    """An input file or directory is missing, of the wrong kind, corrupt, or changed
+    since lsbg wrote it.
+
+    The message is one line naming the path and, where lsbg wrote it, how to
+    regenerate it. The command line reports it with exit code 2.
+    """
+
+
+class InputFileNotFoundError(InputError, FileNotFoundError):
+    """An input path that does not exist (also a :class:`FileNotFoundError`)."""
+
+
+def _regenerate(directory):
+    return (f"to regenerate it, delete {directory} and rerun snakemake (or rerun "
+            f"'lsbg geometry --out {directory}' with its design options)")
+
+
+# ------------------------------------------------------------------ hashes
+def file_digest(path) -> str:
+    """SHA-256 of a file's bytes, as 64 hex digits."""
+    with open(path, "rb") as handle:
+        return hashlib.file_digest(handle, "sha256").hexdigest()
+
+
+def design_digest(record) -> str:
+    """SHA-256 of a design's inputs: identifies a design point.
+
+    Parameters
+    ----------
+    record : dict
+        ``design.json`` record or :meth:`GearPairDesign.to_config` (paper units);
+        only the keys of :data:`lsbg.design.CONFIG_KEYS` count.
+
+    Returns
+    -------
+    str
+        64 hex digits of the canonical JSON (sorted keys, no spaces). A value
+        survives the JSON round trip exactly, so the record read back from
+        ``design.json`` gives the digest written.
+    """
+    config = {key: record[key] for key in CONFIG_KEYS if key in record}
+    text = json.dumps(config, sort_keys=True, separators=(",", ":"), allow_nan=True)
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+
+
+def _design_point(record):
+    return {"trace": record["trace"], "spiral_angle_deg": record["spiral_angle_deg"]}
+
+
+def _json_file(path, directory):
+    """The content of a JSON file of a geometry directory; InputError if it is not JSON."""
+    try:
+        with open(path, encoding="utf-8") as handle:
+            return json.load(handle)
+    except (UnicodeDecodeError, json.JSONDecodeError) as error:
+        where = f" (line {error.lineno})" if isinstance(error, json.JSONDecodeError) else ""
+        raise InputError(f"{path}: not valid JSON{where}; {_regenerate(directory)}") from None
+
+
+def write_manifest(directory) -> Path:
+    """Write ``manifest.json`` of a geometry directory whose other files are complete.
+
+    Parameters
+    ----------
+    directory : str or os.PathLike
+        Holds every file of :data:`FILE_NAMES`.
+
+    Returns
+    -------
+    pathlib.Path
+        The manifest: ``format``, ``design_point`` (``trace``,
+        ``spiral_angle_deg`` [deg]), ``design_sha256`` (:func:`design_digest`)
+        and ``files``: name -> ``bytes`` [B] and ``sha256``. No time stamp:
+        the same files give the same manifest, byte for byte.
+    """
+    directory = Path(directory)
+    record = _json_file(directory / FILE_NAMES["design"], directory)
+    manifest = {
+        "format": MANIFEST_FORMAT,
+        "design_point": _design_point(record),
+        "design_sha256": design_digest(record),
+        "files": {name: {"bytes": (directory / name).stat().st_size,
+                         "sha256": file_digest(directory / name)}
+                  for name in sorted(FILE_NAMES.values())},
+    }
+    path = directory / MANIFEST
+    with open(path, "w", encoding="utf-8") as handle:
+        json.dump(manifest, handle, indent=1, sort_keys=True)
+        handle.write("\n")
+    return path
+
+
+# ----------------------------------------------------------------- reading
+def _checked(geometry_dir):
+    """(directory, design.json record) of a geometry directory that matches its manifest."""
+    directory = Path(geometry_dir)
+    if not directory.exists():
+        raise InputFileNotFoundError(f"{directory}: no such geometry directory (written by "
+                                     f"'lsbg geometry')")
+    if not directory.is_dir():
+        raise InputError(f"{directory}: a file, not a geometry directory (written by "
+                         f"'lsbg geometry')")
+    manifest_path = directory / MANIFEST
+    if not manifest_path.is_file():
+        if not any(directory.iterdir()):
+            raise InputError(f"{directory}: an empty directory, not a geometry directory "
+                             f"(written by 'lsbg geometry')")
+        raise InputError(f"{directory}: no {MANIFEST}, not a complete geometry directory "
+                         f"(interrupted, or written by an older lsbg); {_regenerate(directory)}")
+    manifest = _json_file(manifest_path, directory)
+    if not isinstance(manifest, dict):
+        manifest = {}
+    files = manifest.get("files")
+    if manifest.get("format") != MANIFEST_FORMAT or not isinstance(files, dict) \
+            or set(files) != set(FILE_NAMES.values()) \
+            or not all(isinstance(entry, dict) for entry in files.values()):
+        raise InputError(f"{manifest_path}: not a manifest of 'lsbg geometry' (format "
+                         f"{MANIFEST_FORMAT!r}, every file of {sorted(FILE_NAMES.values())}); "
+                         f"{_regenerate(directory)}")
+    for name, entry in files.items():
+        path = directory / name
+        if not path.is_file():
+            raise InputError(f"{path}: missing (listed in {MANIFEST}); {_regenerate(directory)}")
+        # the size first: a truncated or grown file needs no hashing to be caught
+        if path.stat().st_size != entry.get("bytes") or file_digest(path) != entry.get("sha256"):
+            raise InputError(f"{path}: changed since 'lsbg geometry' wrote it (size or SHA-256 "
+                             f"differs from {MANIFEST}); {_regenerate(directory)}")
+    design_path = directory / FILE_NAMES["design"]
+    record = _json_file(design_path, directory)
+    missing = [key for key in REQUIRED_KEYS if key not in record] if isinstance(record, dict) \
+        else list(REQUIRED_KEYS)
+    if missing:
+        raise InputError(f"{design_path}: not a design record of 'lsbg geometry' (missing "
+                         f"{missing}); {_regenerate(directory)}")
+    # The hashes above match, so these disagree only if the manifest was edited too.
+    if manifest.get("design_point") != _design_point(record) \
+            or manifest.get("design_sha256") != design_digest(record):
+        raise InputError(f"{design_path}: not the design point of {MANIFEST} "
+                         f"({manifest.get('design_point')}); {_regenerate(directory)}")
+    named = POINT_NAME.match(directory.name)
+    if named and (named["trace"] != record["trace"]
+                  or named["spiral"] != number_label(record["spiral_angle_deg"])):
+        raise InputError(f"{directory}: holds the {record['trace']} design point at spiral "
+                         f"angle {number_label(record['spiral_angle_deg'])} deg, not the one "
+                         f"its name says; {_regenerate(directory)}")
+    return directory, record
+
+
+def geometry_directory(geometry_dir) -> Path:
+    """A geometry directory written by ``lsbg geometry``, checked against its manifest.
+
+    Parameters
+    ----------
+    geometry_dir : str or os.PathLike
+
+    Returns
+    -------
+    pathlib.Path
+        ``geometry_dir``.
+
+    Raises
+    ------
+    InputError
+        In one line, naming the path: the directory does not exist
+        (:class:`InputFileNotFoundError`), is a file, is empty or has no
+        manifest; a file is missing or changed (size or SHA-256);
+        ``design.json`` is not JSON, lacks keys of :data:`REQUIRED_KEYS` or
+        holds another design point than the manifest; or the directory's name
+        follows the workflow's ``{trace}_beta{spiral}`` (:data:`POINT_NAME`)
+        but the design point is another.
+    """
+    return _checked(geometry_dir)[0]
 
 
 def read_record(geometry_dir) -> dict:
-    """The ``design.json`` record of a geometry directory (or the file itself).
+    """The ``design.json`` record of a geometry directory, checked (:func:`geometry_directory`).
 
     Parameters
     ----------
@@ -34,17 +240,10 @@ def read_record(geometry_dir) -> dict:
 
     Raises
     ------
-    FileNotFoundError
-        Naming the directory if it holds no ``design.json``.
+    InputError
+        See :func:`geometry_directory`.
     """
-    path = Path(geometry_dir)
-    if path.is_dir():
-        path = path / FILE_NAMES["design"]
-    if not path.is_file():
-        raise FileNotFoundError(f"{geometry_dir}: no design.json (not a geometry directory "
-                                f"of 'lsbg geometry')")
-    with open(path, encoding="utf-8") as handle:
-        return json.load(handle)
+    return _checked(geometry_dir)[1]
 
 
 def read_design(geometry_dir) -> GearPairDesign:
@@ -53,17 +252,101 @@ def read_design(geometry_dir) -> GearPairDesign:
     Parameters
     ----------
     geometry_dir : str or os.PathLike
-        Directory holding ``design.json`` (or the file itself).
+        Directory holding ``design.json`` and the manifest.
 
     Returns
     -------
     GearPairDesign
         Equal to the design that was written.
+
+    Raises
+    ------
+    InputError
+        See :func:`geometry_directory`; also an invalid design value.
     """
-    record = read_record(geometry_dir)
-    return GearPairDesign.from_config({key: record[key] for key in CONFIG_KEYS if key in record})
+    directory, record = _checked(geometry_dir)
+    try:
+        return GearPairDesign.from_config({key: record[key] for key in CONFIG_KEYS})
+    except DesignError as error:
+        raise InputError(f"{directory / FILE_NAMES['design']}: {error}; "
+                         f"{_regenerate(directory)}") from None
 
 
+# ------------------------------------------------------------- temporaries
+#: Suffixes of temporaries: a file being written (``part``), a directory
+#: being written (``tmp``), a replaced directory being removed (``old``).
+TEMPORARY_SUFFIXES = ("part", "tmp", "old")
+
+
+def temporary_beside(target, suffix, directory=False) -> Path:
+    """Create an empty temporary file or directory ``.<name>.<random>.<suffix>`` beside ``target``.
+
+    Parameters
+    ----------
+    target : pathlib.Path
+        The final path; its folder must exist.
+    suffix : str
+        One of :data:`TEMPORARY_SUFFIXES`.
+    directory : bool
+        A directory rather than a file.
+
+    Returns
+    -------
+    pathlib.Path
+        With the permissions of an ordinary new file or directory (the umask's),
+        not the private ones of :mod:`tempfile`, since it becomes the output.
+    """
+    if suffix not in TEMPORARY_SUFFIXES:
+        raise ValueError(f"suffix = {suffix!r}: must be one of {TEMPORARY_SUFFIXES}")
+    options = dict(prefix=f".{target.name}.", suffix=f".{suffix}", dir=target.parent)
+    if directory:
+        path = Path(tempfile.mkdtemp(**options))
+    else:
+        handle, name = tempfile.mkstemp(**options)
+        os.close(handle)
+        path = Path(name)
+    umask = os.umask(0)
+    os.umask(umask)
+    path.chmod((0o777 if directory else 0o666) & ~umask)
+    return path
+
+
+def remove_stale_temporaries(target) -> list:
+    """Remove the temporaries of ``target`` (:func:`temporary_beside`) left by a killed writer.
+
+    The writer of a target calls this before it starts. Snakemake never runs
+    two jobs for the same output at once, so every temporary of the target
+    that exists then is a dead writer's. (Two lsbg processes writing the same
+    target by hand: one may remove the other's temporary, which then fails;
+    the target is never half-written.)
+
+    Parameters
+    ----------
+    target : str or os.PathLike
+
+    Returns
+    -------
+    list of pathlib.Path
+        What was removed.
+    """
+    target = Path(target)
+    # tempfile's random part has no dots, so another target's temporaries never match
+    pattern = re.compile(rf"^\.{re.escape(target.name)}\.[A-Za-z0-9_]+\."
+                         rf"({'|'.join(TEMPORARY_SUFFIXES)})$")
+    if not target.parent.is_dir():
+        return []
+    removed = []
+    for path in sorted(target.parent.iterdir()):
+        if pattern.match(path.name):
+            if path.is_dir() and not path.is_symlink():
+                shutil.rmtree(path, ignore_errors=True)
+            else:
+                path.unlink(missing_ok=True)
+            removed.append(path)
+    return removed
+
+
+# ------------------------------------------------------------------- names
 def number_label(value):
     """A number as it appears in file names: 35 -> "35", 37.5 -> "37.5" (no exponent).
 

@@ -11,7 +11,6 @@ import datetime
 import math
 import os
 import platform
-import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -19,6 +18,8 @@ import xarray as xr
 
 import lsbg
 from lsbg import theory
+from lsbg.files import (InputError, InputFileNotFoundError, remove_stale_temporaries,
+                        temporary_beside)
 
 #: Variables of a run dataset on ``time``: name -> (units, long_name).
 VARIABLES = {
@@ -151,7 +152,10 @@ def write_atomically(path, write):
     """Write a file through a temporary file beside it, renamed at the end.
 
     A failure (or an interrupt) leaves neither a half-written ``path`` nor the
-    temporary file behind.
+    temporary file behind; the temporaries of ``path`` that a killed writer
+    left (``.<name>.<random>.part``, :func:`lsbg.files.temporary_beside`) are
+    removed before writing. The previous ``path`` stays until the new one is
+    complete.
 
     Parameters
     ----------
@@ -167,17 +171,13 @@ def write_atomically(path, write):
     """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
-    os.close(fd)
+    remove_stale_temporaries(path)
+    tmp = temporary_beside(path, "part")
     try:
-        write(tmp)
-        # mkstemp creates the file private (0600); give it the usual permissions.
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)
+        write(str(tmp))
         os.replace(tmp, path)
     except BaseException:
-        Path(tmp).unlink(missing_ok=True)
+        tmp.unlink(missing_ok=True)
         raise
     return path
 
@@ -185,16 +185,23 @@ def write_atomically(path, write):
 def write_dataset(ds, path):
     """Write a dataset to NetCDF atomically (see :func:`write_atomically`).
 
-    Variables on ``time_full`` (the full-rate record) are compressed (zlib
-    level 1, lossless).
+    Data variables on ``time_full`` (the full-rate record) are compressed
+    (zlib level 1, lossless). Every numeric array carries a Fletcher-32
+    checksum, so that reading a corrupted file fails (:func:`open_dataset`)
+    instead of returning wrong numbers; it costs about 13 % of the size.
 
     Parameters
     ----------
     ds : xarray.Dataset
     path : str or pathlib.Path
     """
-    encoding = {name: {"zlib": True, "complevel": 1, "shuffle": True}
-                for name, var in ds.data_vars.items() if "time_full" in var.dims}
+    encoding = {}
+    for name, var in ds.variables.items():
+        # HDF5 checksums chunked storage only: not scalars, empty arrays or strings
+        if var.dtype.kind in "fiu" and var.ndim and var.size:
+            encoding[name] = {"fletcher32": True}
+            if name in ds.data_vars and "time_full" in var.dims:
+                encoding[name].update(zlib=True, complevel=1, shuffle=True)
     write_atomically(path, lambda tmp: ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding))
 
 
@@ -237,10 +244,8 @@ def open_run(path) -> xr.Dataset:
 
     Raises
     ------
-    FileNotFoundError
-        If the file does not exist (the message names it).
-    ValueError
-        If the file is not a run dataset (missing variables or attributes).
+    lsbg.files.InputError
+        See :func:`open_dataset`.
     """
     return open_dataset(path, "run", ("time", "time_full", *VARIABLES, *FULL_RATE_VARIABLES),
                         REQUIRED_ATTRIBUTES, "a run dataset of lsbg.results")
@@ -266,21 +271,36 @@ def open_dataset(path, kind, variables, attributes, what) -> xr.Dataset:
 
     Raises
     ------
-    FileNotFoundError, ValueError
-        Naming the file.
+    lsbg.files.InputError
+        In one line naming the file: it does not exist
+        (:class:`lsbg.files.InputFileNotFoundError`), is a directory, cannot be
+        read, is not NetCDF, is truncated or corrupt (a failed checksum of
+        :func:`write_dataset`), or lacks ``variables`` or ``attributes``.
     """
     path = Path(path)
+    if not path.exists():
+        raise InputFileNotFoundError(f"{path}: no such {kind} file")
     if not path.is_file():
-        raise FileNotFoundError(f"{path}: no such {kind} file")
+        raise InputError(f"{path}: a directory, not a {kind} file")
+    again = "delete it and rerun snakemake (or the lsbg command that wrote it)"
     try:
-        with xr.open_dataset(path) as ds:
+        with xr.open_dataset(path, engine="netcdf4") as ds:
             ds = ds.load()
-    except (OSError, ValueError) as err:
-        raise ValueError(f"{path}: not a readable NetCDF file ({err})") from None
+    except PermissionError:
+        raise InputError(f"{path}: {kind} file not readable (permission denied)") from None
+    # netCDF4 reports a truncated or corrupt file as OSError or RuntimeError
+    # ("NetCDF: HDF error", also a failed checksum) or AttributeError (an
+    # unreadable attribute); the try holds nothing but the reading.
+    except (OSError, ValueError, RuntimeError, AttributeError) as err:
+        # the reason without the path again (an OSError's strerror), in one line
+        detail = getattr(err, "strerror", None) or (str(err).splitlines() or [repr(err)])[0]
+        raise InputError(f"{path}: not a readable NetCDF file, truncated or corrupt "
+                         f"({detail}); {again}") from None
     missing = [name for name in variables if name not in ds.variables]
     missing += [name for name in attributes if name not in ds.attrs]
     if missing:
-        raise ValueError(f"{path}: not {what} (missing {missing})")
+        more = f" and {len(missing) - 5} more" if len(missing) > 5 else ""
+        raise InputError(f"{path}: not {what} (missing {missing[:5]}{more}); {again}")
     ds.encoding["source"] = str(path)
     return ds
 

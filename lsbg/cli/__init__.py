@@ -20,12 +20,18 @@ the parser is built. To add a subcommand, write, in its own module::
         parser.set_defaults(handler=run_wear)
 
 and add ``"lsbg.<module>:add_wear_parser"`` to :data:`PARSERS`. Keep heavy
-imports inside the handler, so that ``lsbg --help`` stays fast. Handlers may
-raise :class:`lsbg.design.DesignError` (or :class:`CommandError`): :func:`main`
-prints the message on stderr and returns exit code 2.
+imports inside the handler, so that ``lsbg --help`` stays fast. Handlers
+check their outputs before the work starts
+(:func:`lsbg.cli.options.check_output`). A user's mistake is one of
+:data:`USER_ERRORS`: a bad design value (:class:`lsbg.design.DesignError`), a
+bad option (:class:`CommandError`), a missing, wrong, corrupt or changed input
+file (:class:`lsbg.files.InputError`, raised by lsbg.files and lsbg.results);
+:func:`main` prints its one-line message on stderr, without a traceback, and
+returns exit code 2. Any other exception is a bug and keeps its traceback.
 
 Exit codes: 0 success; 2 bad input (argparse usage errors raise
-``SystemExit(2)``, design errors return 2); 3 a simulation blew up.
+``SystemExit(2)``, the errors of :data:`USER_ERRORS` return 2); 3 a
+simulation blew up.
 """
 
 from __future__ import annotations
@@ -38,9 +44,13 @@ import sys
 from lsbg import __version__
 from lsbg.cli.options import CommandError, add_design_options, design_from_args
 from lsbg.design import DesignError
+from lsbg.files import InputError
 
 __all__ = ["main", "build_parser", "add_design_options", "design_from_args", "CommandError",
-           "PARSERS"]
+           "PARSERS", "USER_ERRORS"]
+
+#: Exceptions that are a user's mistake: exit code 2 with the message, no traceback.
+USER_ERRORS = (DesignError, CommandError, InputError)
 
 #: One ``add_<name>_parser(subparsers)`` per subcommand, as ``"module:function"``.
 PARSERS = [
@@ -89,15 +99,16 @@ def main(argv=None):
     Returns
     -------
     int
-        Exit code: 0 on success, 2 on bad input (message on stderr, nothing
-        written). Usage errors found by argparse raise ``SystemExit(2)``.
+        Exit code: 0 on success, 2 on bad input (one line on stderr, nothing
+        written), or the handler's (3: a simulation blew up). Usage errors
+        found by argparse raise ``SystemExit(2)``.
     """
     args = build_parser().parse_args(argv)
     if args.verbose:
         logging.basicConfig(level=logging.INFO, format="%(name)s: %(message)s")
     try:
         return args.handler(args)
-    except (DesignError, CommandError) as error:
+    except USER_ERRORS as error:
         print(f"lsbg {args.command}: error: {error}", file=sys.stderr)
         return 2
 

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import sys
 
-from lsbg.cli.options import CommandError, add_contact_options, contact_from_args, read_study_sections
+from lsbg.cli.options import (CommandError, add_contact_options, check_output, contact_from_args,
+                              read_study_sections)
 
 __all__ = ["add_ltca_parser", "add_combine_parser", "add_summary_parser", "add_report_parser"]
 
@@ -37,6 +38,7 @@ def run_ltca(args):
     from lsbg.ltca import ltca_for_geometry
     from lsbg.results import write_dataset
 
+    check_output(args.out, "--out")
     (simulation,) = read_study_sections(args.config, "simulation")
     load = args.load_torque
     if load is None:
@@ -81,6 +83,7 @@ def run_combine(args):
     from lsbg.results import write_dataset
     from lsbg.combine import combine_runs
 
+    check_output(args.out, "--out")
     try:
         ds = combine_runs(args.runs, meshes=args.meshes)
     except (OSError, ValueError) as err:
@@ -128,6 +131,7 @@ def run_summary(args):
     from lsbg.results import write_atomically
     from lsbg.summary import statistics_options, summary_table
 
+    check_output(args.out, "--out")
     (section,) = read_study_sections(args.config, "statistics")
     try:
         options = statistics_options(section)
@@ -173,6 +177,7 @@ def run_report(args):
     """Handler of ``lsbg report`` [exit code]."""
     from lsbg.reports import ReportError, parse_parameter, render_report
 
+    check_output(args.out, "--out")
     parameters = {}
     for text in args.param:
         try:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from lsbg.cli.options import add_design_options, design_from_args
+from lsbg.cli.options import add_design_options, check_output, design_from_args
 
 __all__ = ["add_geometry_parser", "add_points_parser"]
 
@@ -26,6 +26,7 @@ def run_geometry(args):
     from lsbg.export import STAGES, write_geometry
 
     design = design_from_args(args)
+    check_output(args.out, "--out", directory=True)
     result = write_geometry(design, args.out)
     times = ", ".join(f"{stage} {result.timings[stage]:.2f}" for stage in STAGES)
     print(f"lsbg geometry: {design.trace}, spiral angle {math.degrees(design.spiral_angle):g} deg "
@@ -108,6 +109,12 @@ def run_points(args):
     if len(angles) > 1 and len(set(names)) < len(names):
         raise CommandError("--geometry-out, --mesh-out, --run: several design points would "
                            "write the same file; put {spiral} in every template")
+    options = {"geometry": "--geometry-out", "mesh": "--mesh-out", "point": "--run",
+               "line": "--run"}
+    for point in files:
+        for key, path in point.items():
+            if path:
+                check_output(path, options[key], directory=key == "geometry")
     command = " ".join(["lsbg", *sys.argv[1:]])
     for design, point in zip(designs, files):
         write_geometry(design, point["geometry"])

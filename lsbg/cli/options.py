@@ -9,15 +9,55 @@ and :class:`lsbg.dynamics.SimulationSettings`.
 
 from __future__ import annotations
 
+import os
+from pathlib import Path
+
 from lsbg.design import BASE_CONE_RULES, CONFIG_KEYS, HANDS, TRACES, GearPairDesign
 
-__all__ = ["CommandError", "add_design_options", "design_from_args", "read_study_sections",
-           "add_contact_options", "contact_from_args", "add_simulation_options",
-           "simulation_from_args", "SIMULATION_OPTIONS"]
+__all__ = ["CommandError", "check_output", "add_design_options", "design_from_args",
+           "read_study_sections", "add_contact_options", "contact_from_args",
+           "add_simulation_options", "simulation_from_args", "SIMULATION_OPTIONS"]
 
 
 class CommandError(ValueError):
     """Bad command-line input that is not a design parameter (exit code 2)."""
+
+
+def check_output(path, option, directory=False):
+    """Fail before the work starts if lsbg could not write ``path`` at its end.
+
+    The writers (:func:`lsbg.results.write_atomically`,
+    :func:`lsbg.export.write_geometry`) create missing folders, so the nearest
+    existing folder above ``path`` must be a writable directory.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        Output file (or, with ``directory``, output directory).
+    option : str
+        The option that gave it, for the message (``"--out"``).
+    directory : bool
+        ``path`` is a directory that replaces an existing one.
+
+    Raises
+    ------
+    CommandError
+        Naming the option and path: ``path`` exists as a directory where a
+        file goes (or a file where a directory goes), a folder above it is a
+        file, or the folder it goes in is not writable.
+    """
+    path = Path(path)
+    if path.exists() and path.is_dir() != directory:
+        found, wanted = ("a directory", "file") if path.is_dir() else ("a file", "directory")
+        raise CommandError(f"{option} {path}: is {found}, not an output {wanted}")
+    folder = path.absolute().parent
+    while not folder.exists():
+        folder = folder.parent
+    if not folder.is_dir():
+        raise CommandError(f"{option} {path}: {folder} is a file, not a folder")
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise CommandError(f"{option} {path}: cannot write in {folder} (permission denied or "
+                           f"read-only)")
 
 
 # What each design key means; the unit comes from the key's suffix.
@@ -100,7 +140,11 @@ def _read_yaml(path, option="--design"):
     except OSError as error:
         raise CommandError(f"{option} {path}: {error.strerror}") from None
     except yaml.YAMLError as error:
-        raise CommandError(f"{option} {path}: not valid YAML ({error})") from None
+        # one line: where and what, without the YAML library's excerpt of the file
+        mark = getattr(error, "problem_mark", None)
+        where = f"line {mark.line + 1}, column {mark.column + 1}: " if mark else ""
+        problem = getattr(error, "problem", None) or str(error).splitlines()[0]
+        raise CommandError(f"{option} {path}: not valid YAML ({where}{problem})") from None
     if data is None:
         return {}
     if not isinstance(data, dict):

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import sys
 
-from lsbg.cli.options import CommandError, add_simulation_options, simulation_from_args
+from lsbg.cli.options import (CommandError, add_simulation_options, check_output,
+                              simulation_from_args)
 
 __all__ = ["add_simulate_parser", "add_sensitivity_parser", "add_convergence_parser"]
 
@@ -28,6 +29,7 @@ def run_simulate(args):
     from lsbg.results import write_dataset
 
     settings, params = simulation_from_args(args)
+    check_output(args.out, "--out")
     try:
         ds = simulate(args.geometry, settings, params, command=" ".join(["lsbg", *sys.argv[1:]]))
     except SimulationError as err:
@@ -82,6 +84,8 @@ def run_sensitivity(args):
     if len({path for _, path in cases.values()}) < len(cases):
         raise CommandError(f"--out {args.out!r}: the cases would write the same file; put "
                            f"{{case}} in it")
+    for _, path in cases.values():
+        check_output(path, "--out")
     command = " ".join(["lsbg", *sys.argv[1:]])
     for name, (params, path) in cases.items():
         try:
@@ -133,6 +137,9 @@ def run_convergence(args):
             raise CommandError(f"--default-run {text!r}: must be ENGINE=RUN.nc with ENGINE one "
                                f"of the table's engines {list(engines)}")
         outputs[engine] = path
+    for path in outputs.values():
+        check_output(path, "--default-run")
+    check_output(args.out, "--out")
     model = load_model(args.geometry, params)
     try:
         known = open_runs(args.known)

@@ -9,6 +9,7 @@ from lsbg.cli.options import (
     CommandError,
     add_contact_options,
     add_simulation_options,
+    check_output,
     contact_from_args,
     simulation_from_args,
 )
@@ -96,6 +97,7 @@ def run_speed_run(args):
     if fixed:
         raise CommandError(f"{', '.join(fixed)}: set by the speed sweep (use --mesh-cycles, "
                            f"--min-window, --settle-time, --samples-per-mesh)")
+    check_output(args.out, "--out")
     ramp = args.ramp_time
     args.ramp_time = None            # the config's ramp is the paper's run's, not the sweep's
     base, params = simulation_from_args(args)
@@ -142,6 +144,7 @@ def run_speed_curve(args):
     from lsbg.results import open_runs, write_dataset
     from lsbg.speed import speed_curve
 
+    check_output(args.out, "--out")
     try:
         curve = speed_curve(open_runs(args.runs))
     except (OSError, ValueError) as err:
