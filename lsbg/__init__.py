@@ -6,6 +6,7 @@ the ``units`` attributes of written datasets.
 """
 
 import hashlib
+import importlib
 import os
 import shutil
 from pathlib import Path
@@ -76,3 +77,36 @@ def _configure_numba_cache():
 
 
 _configure_numba_cache()
+
+
+def lazy_exports(package, exports):
+    """``__getattr__`` and ``__dir__`` for a package that re-exports its submodules lazily.
+
+    ``from lsbg import stats; stats.anderson_darling`` then imports
+    :mod:`lsbg.stats.normality` (and scipy, statsmodels) only when it is first
+    used, so that a stage which needs one light submodule (the steady state,
+    the contact models' names) does not pay for all of them at start-up.
+
+    Parameters
+    ----------
+    package : str
+        The package's ``__name__``.
+    exports : dict
+        ``{submodule: names}``: the names each submodule exports.
+
+    Returns
+    -------
+    tuple
+        ``(__getattr__, __dir__)`` to assign in the package's namespace.
+    """
+    owner = {name: module for module, names in exports.items() for name in names}
+
+    def __getattr__(name):
+        if name not in owner:
+            raise AttributeError(f"module {package!r} has no attribute {name!r}")
+        return getattr(importlib.import_module(f"{package}.{owner[name]}"), name)
+
+    def __dir__():
+        return sorted(owner)
+
+    return __getattr__, __dir__

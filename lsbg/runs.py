@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from lsbg import stats
+from lsbg.stats.samples import steady_state
 from lsbg.design import TRACE_LABELS
 from lsbg.files import read_record
 from lsbg.results import as_path_list, open_dataset, open_run
@@ -164,7 +164,7 @@ def steady(ds, name, start=0.2) -> np.ndarray:
     -------
     numpy.ndarray
     """
-    return stats.steady_state(ds[name].values, ds["time"].values, start)
+    return steady_state(ds[name].values, ds["time"].values, start)
 
 
 def quantity_label(ds, name):

@@ -12,31 +12,18 @@
   the exact geometry, and the line model's stiffness calibration.
 """
 
-from lsbg.contact.hertz import hertz_approach, hertz_stiffness, implied_correction_coefficient
-from lsbg.contact.law import (
-    friction_coefficient,
-    friction_coefficient_scalar,
-    impact_force,
-    impact_force_scalar,
-    line_load,
-    line_load_scalar,
-    step,
-    step_scalar,
-)
-from lsbg.contact.parameters import CONTACT_CONFIG_KEYS, CONTACT_MODELS, ContactParameters
-from lsbg.contact.mesh import (
-    ISO_MESH_STIFFNESS,
-    PHASE_SAMPLES_PER_PITCH,
-    MeshContact,
-    MeshForces,
-    PairContact,
-    calibrated_line_stiffness,
-)
+from lsbg import lazy_exports
 
-__all__ = [
-    "CONTACT_CONFIG_KEYS", "CONTACT_MODELS", "ContactParameters", "friction_coefficient",
-    "friction_coefficient_scalar", "hertz_approach", "hertz_stiffness", "impact_force",
-    "impact_force_scalar", "implied_correction_coefficient", "line_load", "line_load_scalar",
-    "step", "step_scalar", "ISO_MESH_STIFFNESS", "PHASE_SAMPLES_PER_PITCH", "MeshContact",
-    "MeshForces", "PairContact", "calibrated_line_stiffness",
-]
+#: Submodule -> the names it exports (imported when first used: the laws and
+#: kernels load numba, which a stage that only needs the parameters does not).
+_EXPORTS = {
+    "hertz": ("hertz_approach", "hertz_stiffness", "implied_correction_coefficient"),
+    "law": ("friction_coefficient", "friction_coefficient_scalar", "impact_force",
+            "impact_force_scalar", "line_load", "line_load_scalar", "step", "step_scalar"),
+    "parameters": ("CONTACT_CONFIG_KEYS", "CONTACT_MODELS", "ContactParameters"),
+    "mesh": ("ISO_MESH_STIFFNESS", "PHASE_SAMPLES_PER_PITCH", "MeshContact", "MeshForces",
+             "PairContact", "calibrated_line_stiffness"),
+}
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
+
+__all__ = [name for names in _EXPORTS.values() for name in names]

@@ -48,26 +48,21 @@ References
    The stationary bootstrap, J. Amer. Statist. Assoc. 89 (1994) 1303–1313.
 """
 
-from lsbg.stats.samples import (
-    as_1d, steady_state, subgroups_from_window, Description, describe, format_number,
-    BoxplotStats, boxplot_stats)
-from lsbg.stats.normality import (
-    AndersonDarling, ad_pvalue, anderson_darling, NormalProbability, normal_probability)
-from lsbg.stats.control import (
-    ControlChartConstants, control_chart_constants, XbarRChart, xbar_r_chart, xbar_r_ylims)
-from lsbg.stats.bootstrap import (
-    autocorrelation, integrated_autocorrelation_time, effective_sample_size, StdRatioCI,
-    std_ratio_ci, StdCI, std_ci)
-from lsbg.stats.comparison import (
-    TheoryComparison, compare_to_theory, BrownForsythe, brown_forsythe, FluctuationComparison,
-    compare_fluctuation)
+from lsbg import lazy_exports
 
-__all__ = [
-    "as_1d", "steady_state", "subgroups_from_window", "Description", "describe",
-    "format_number", "BoxplotStats", "boxplot_stats", "AndersonDarling", "ad_pvalue",
-    "anderson_darling", "NormalProbability", "normal_probability", "ControlChartConstants",
-    "control_chart_constants", "XbarRChart", "xbar_r_chart", "xbar_r_ylims", "autocorrelation",
-    "integrated_autocorrelation_time", "effective_sample_size", "StdRatioCI", "std_ratio_ci",
-    "StdCI", "std_ci", "TheoryComparison", "compare_to_theory", "BrownForsythe",
-    "brown_forsythe", "FluctuationComparison", "compare_fluctuation"
-]
+#: Submodule -> the names it exports (imported when first used).
+_EXPORTS = {
+    "samples": ("as_1d", "steady_state", "subgroups_from_window", "Description", "describe",
+                "format_number", "BoxplotStats", "boxplot_stats"),
+    "normality": ("AndersonDarling", "ad_pvalue", "anderson_darling", "NormalProbability",
+                  "normal_probability"),
+    "control": ("ControlChartConstants", "control_chart_constants", "XbarRChart",
+                "xbar_r_chart", "xbar_r_ylims"),
+    "bootstrap": ("autocorrelation", "integrated_autocorrelation_time", "effective_sample_size",
+                  "StdRatioCI", "std_ratio_ci", "StdCI", "std_ci"),
+    "comparison": ("TheoryComparison", "compare_to_theory", "BrownForsythe", "brown_forsythe",
+                   "FluctuationComparison", "compare_fluctuation"),
+}
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
+
+__all__ = [name for names in _EXPORTS.values() for name in names]
