@@ -38,7 +38,6 @@ import os
 import shutil
 import time
 from dataclasses import dataclass, field
-from datetime import datetime, timezone
 from pathlib import Path
 
 import numpy as np
@@ -234,8 +233,9 @@ def flank_dataset(pair: GearPair, n_cone=21, n_profile=31):
         attrs={
             "title": f"Tooth flanks of a {d.trace} spiral bevel gear pair",
             "source": f"lsbg {lsbg.__version__} (lsbg.geometry.GearPair.flank)",
-            "history": f"{datetime.now(timezone.utc).isoformat(timespec='seconds')} "
-                       f"created by lsbg.export.flank_dataset",
+            # no time stamp: a rerun writes the same bytes, so the directory and
+            # its manifest are bit-identical too
+            "history": "created by lsbg.export.flank_dataset",
             "Conventions": "CF-1.11",
             **{f"design_{key}": value for key, value in d.to_config().items()},
         },
@@ -298,7 +298,7 @@ def write_geometry(design: GearPairDesign, out_dir, resolution=solids.DEFAULT_RE
             handle.write("\n")
         lap("mass_properties")
         urdf.write_urdf(paths["urdf"], pair, props,
-                          {m: paths[f"{MEMBER_NAMES[m]}_stl"] for m in MEMBERS})
+                        {m: paths[f"{MEMBER_NAMES[m]}_stl"] for m in MEMBERS})
         lap("urdf")
         render.render_pair(paths["picture"], pair, meshes)
         lap("picture")
