@@ -1,11 +1,11 @@
-"""The Snakemake workflow's plan in plain Python: configuration checks, design
-points, file names and what each rule depends on.
+"""The Snakemake workflow's plan in plain Python: design points, file names and
+what each rule depends on.
 
-``workflow/rules/common.smk`` is only glue: it validates the configuration
-with the schema (``snakemake.utils.validate`` fills in its defaults), calls
-:func:`study_problems` and builds a :class:`Study`, whose attributes the rules
-read. Everything here is tested by pytest without Snakemake
-(tests/test_workflow_plan.py).
+``workflow/rules/common.smk`` is only glue: it checks the configuration with
+:func:`lsbg.config_check.check_config` (which also fills in the schema's
+defaults) and builds a :class:`Study`, whose attributes the rules read.
+Everything here is tested by pytest without Snakemake
+(tests/test_workflow_plan.py, tests/test_config_checks.py).
 
 File names are relative to the working directory (the repository root when
 run the documented way).
@@ -23,7 +23,7 @@ import yaml
 from lsbg.files import number_label
 
 __all__ = ["PAPER_TRACES", "CONTACT_MODELS", "REPORT_NAMES", "STUDY_SECTIONS", "FILES",
-           "schema_problems", "study_problems", "speed_labels", "canonical", "yaml_text",
+           "design_points", "speed_labels", "speed_keywords", "canonical", "yaml_text",
            "write_study_config", "simulation_params", "simulation_runtime", "Study"]
 
 #: Both traces run at the paper's design point (the paper compares them).
@@ -59,44 +59,9 @@ MODEL_ONLY_KEYS = {
 }
 
 
-# ------------------------------------------------------------- configuration
-def _key_path(parts):
-    """``["sweep", "spiral_angles_deg", 2]`` -> ``"sweep.spiral_angles_deg[2]"``."""
-    text = ""
-    for part in parts:
-        text += f"[{part}]" if isinstance(part, int) else (f".{part}" if text else str(part))
-    return text or "(top level)"
-
-
-def schema_problems(config, schema):
-    """Every violation of the schema, one line each, starting with the key path.
-
-    Parameters
-    ----------
-    config : dict
-    schema : dict
-        workflow/schemas/config.schema.yaml, loaded.
-
-    Returns
-    -------
-    list of str
-    """
-    import jsonschema
-
-    problems = []
-    for error in jsonschema.Draft202012Validator(schema).iter_errors(config):
-        where = list(error.absolute_path)
-        if error.validator == "additionalProperties":
-            known = sorted(error.schema.get("properties", {}))
-            problems += [f"{_key_path(where + [key])}: unknown key (known: {', '.join(known)})"
-                         for key in sorted(set(error.instance) - set(known))]
-        else:
-            problems.append(f"{_key_path(where)}: {error.message}")
-    return sorted(problems)
-
-
-def study_problems(config):
-    """What the schema cannot check: each design point and the settings, by lsbg itself.
+# ------------------------------------------------------------ design points
+def design_points(config):
+    """Every design point of a study and the keys of the configuration that ask for it.
 
     Parameters
     ----------
@@ -105,99 +70,31 @@ def study_problems(config):
 
     Returns
     -------
-    list of str
-        One line per problem, naming the key and the value.
+    dict
+        ``(trace, spiral label)`` -> key paths of the spiral angles that give the
+        point, e.g. ``("circular", "35") -> ["paper_spiral_angle_deg",
+        "sweep.spiral_angles_deg[1]"]``; sorted by trace, then angle. The label
+        is the angle [deg] as file names and the jobs have it
+        (:func:`lsbg.files.number_label`).
     """
-    from lsbg.contact import ContactParameters
-    from lsbg.design import DesignError, GearPairDesign
-    from lsbg.dynamics import SimulationSettings
-    from lsbg.sensitivity import scaled_contact
-
-    problems = []
-    points = {(t, number_label(s)) for t in config["sweep"]["traces"]
-              for s in config["sweep"]["spiral_angles_deg"]}
-    points |= {(t, number_label(config["paper_spiral_angle_deg"])) for t in PAPER_TRACES}
+    asked = [(trace, number_label(angle), f"sweep.spiral_angles_deg[{k}]")
+             for trace in config["sweep"]["traces"]
+             for k, angle in enumerate(config["sweep"]["spiral_angles_deg"])]
+    asked += [(trace, number_label(config["paper_spiral_angle_deg"]), "paper_spiral_angle_deg")
+              for trace in PAPER_TRACES]
     speed = config.get("speed_sweep")
     if speed:
+        key = "speed_sweep.spiral_angle_deg" if "spiral_angle_deg" in speed \
+            else "paper_spiral_angle_deg"
         angle = speed.get("spiral_angle_deg", config["paper_spiral_angle_deg"])
-        points |= {(t, number_label(angle)) for t in speed.get("traces", PAPER_TRACES)}
-    failing = {}  # message -> design points
-    for trace, spiral in sorted(points, key=lambda point: (point[0], float(point[1]))):
-        try:
-            GearPairDesign.from_config({**config["design"], "trace": trace,
-                                        "spiral_angle_deg": float(spiral)})
-        except DesignError as error:
-            failing.setdefault(str(error), []).append(f"{trace} {spiral} deg")
-    problems += [f"design at {', '.join(where)}: {message}" for message, where in failing.items()]
-    engines = config["engines"]
-    sweep_engine, reference = engines["sweep"], engines["reference"]
-    run = {sweep_engine, *(e for model in CONTACT_MODELS for e in reference.get(model, []))}
-    if engines["paper"] not in {sweep_engine, *reference.get("point", [])}:
-        problems.append(f"engines.paper = {engines['paper']!r}: must be engines.sweep or one of "
-                        f"engines.reference.point {reference.get('point', [])!r} (the paper "
-                        f"report reproduces the paper with the point model)")
-    for engine in sorted(run):
-        try:
-            SimulationSettings.from_config(config["simulation"], engine=engine)
-        except ValueError as error:
-            problems.append(str(error))
-    try:
-        ContactParameters.from_config(config["contact"])
-    except ValueError as error:
-        problems.append(str(error))
-    for key, factors in config["sensitivity"].items():
-        for k, factor in enumerate(factors):
-            try:
-                ContactParameters.from_config({**config["contact"], "model": "line",
-                                               **scaled_contact(config["contact"], key, factor)})
-            except ValueError as error:
-                problems.append(f"sensitivity.{key}[{k}] = {factor!r}: {error}")
-    duration = config["simulation"]["duration_s"]
-    steady = config["statistics"]["steady_state_after_s"]
-    if steady >= duration:
-        problems.append(f"statistics.steady_state_after_s = {steady!r}: "
-                        f"must be below simulation.duration_s = {duration!r}")
-    start, stop = config["statistics"]["control_chart_window_s"]
-    if not start < stop <= duration * (1 + 1e-9):
-        problems.append(f"statistics.control_chart_window_s = {[start, stop]!r}: needs "
-                        f"start < stop <= simulation.duration_s = {duration!r}")
-    if speed:
-        problems += _speed_sweep_problems(config)
-    return list(dict.fromkeys(problems))
-
-
-def _speed_sweep_problems(config):
-    """The speed sweep's settings, checked as ``lsbg speed-run`` will use them."""
-    from lsbg.dynamics import SimulationSettings
-    from lsbg.speed import speed_settings
-
-    speed = config["speed_sweep"]
-    grid = speed["pinion_speeds_deg_s"]
-    problems = []
-    angle = speed.get("spiral_angle_deg", config["paper_spiral_angle_deg"])
-    if number_label(angle) != number_label(config["paper_spiral_angle_deg"]):
-        swept = {number_label(a) for a in config["sweep"]["spiral_angles_deg"]}
-        missing = [t for t in speed["traces"]
-                   if t not in config["sweep"]["traces"] or number_label(angle) not in swept]
-        if missing:
-            problems.append(f"speed_sweep.spiral_angle_deg = {angle!r}: no design point of "
-                            f"{', '.join(missing)} there (use paper_spiral_angle_deg or an "
-                            f"angle of sweep.spiral_angles_deg)")
-    try:
-        speeds, labels = speed_labels(grid)
-    except ValueError as error:
-        return [f"speed_sweep.pinion_speeds_deg_s = {grid!r}: {error}"]
-    if len(set(labels)) < len(labels):
-        problems.append(f"speed_sweep.pinion_speeds_deg_s = {grid!r}: speeds too close to "
-                        f"tell apart in file names")
-    try:
-        base = SimulationSettings.from_config(config["simulation"], engine=speed["engine"])
-        for value in (speeds[0], speeds[-1]):
-            speed_settings(base, value, config["design"].get("pinion_teeth", 9),
-                           **_speed_options(speed))
-    except ValueError as error:
-        problems.append(f"speed_sweep: {error}")
-    return problems
+        asked += [(trace, number_label(angle), key)
+                  for trace in speed.get("traces", PAPER_TRACES)]
+    points = {}
+    for trace, spiral, key in sorted(asked, key=lambda a: (a[0], float(a[1]), a[2])):
+        keys = points.setdefault((trace, spiral), [])
+        if key not in keys:
+            keys.append(key)
+    return points
 
 
 def speed_labels(grid):
@@ -214,7 +111,7 @@ def speed_labels(grid):
     return speeds, [number_label(round(math.degrees(v), 3)) for v in speeds]
 
 
-def _speed_options(speed):
+def speed_keywords(speed):
     """Keywords of :func:`lsbg.speed.speed_settings` from the ``speed_sweep`` section."""
     return {"mesh_cycles": speed["mesh_cycles"], "min_window": speed["min_window_s"],
             "settle_time": speed["settle_time_s"], "ramp_time": speed["ramp_time_s"],
@@ -292,7 +189,7 @@ class Study:
     Parameters
     ----------
     config : dict
-        Validated by the schema (defaults filled in) and :func:`study_problems`.
+        Checked by :func:`lsbg.config_check.check_config` (defaults filled in).
     """
 
     config: dict

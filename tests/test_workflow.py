@@ -78,52 +78,8 @@ def write_yaml(path, data):
 
 
 # ------------------------------------------------------------ configuration
-BAD_CONFIGS = {
-    "spiral angle out of range": ({"sweep": {"spiral_angles_deg": [25, 75]}},
-                                  "sweep.spiral_angles_deg[1]"),
-    "no samples": ({"simulation": {"samples": 0}}, "simulation.samples"),
-    "unknown key": ({"simulation": {"durration_s": 1.0}}, "simulation.durration_s"),
-    "unknown top-level key": ({"sweeps": {}}, "sweeps"),
-    "unknown trace": ({"sweep": {"traces": ["logarithmic", "spiral"]}}, "sweep.traces[1]"),
-    "trace is not a design key": ({"design": {"trace": "circular"}}, "design.trace"),
-    "wrong type": ({"statistics": {"subgroup_size": "four"}}, "statistics.subgroup_size"),
-    # Checks beyond the schema: lsbg's own, and the statistics windows.
-    "chart window beyond the run": ({"statistics": {"control_chart_window_s": [0.8, 1.5]}},
-                                    "statistics.control_chart_window_s"),
-    "ramp longer than the run": ({"simulation": {"ramp_time_s": 2.0}},
-                                 "simulation.ramp_time_s"),
-    "no reference engine": ({"engines": {"sweep": "pybullet", "reference": []}},
-                            "engines.reference"),
-    "impossible design": ({"design": {"face_width_mm": 60}}, "face_width"),
-    # The line model and the sensitivity study.
-    "one slice": ({"contact": {"slices": 1}}, "contact.slices"),
-    "negative stiffness": ({"contact": {"line_stiffness_N_per_mm_um": -5}},
-                           "contact.line_stiffness_N_per_mm_um"),
-    "negative damping ratio": ({"contact": {"mesh_damping_ratio": -0.05}},
-                               "contact.mesh_damping_ratio"),
-    "unknown contact model": ({"contact": {"model": "surface"}}, "contact.model"),
-    "unknown sweep model": ({"sweep": {"contact_models": ["line", "spline"]}},
-                            "sweep.contact_models[1]"),
-    "sensitivity that halves the slices below 2": (
-        {"contact": {"slices": 2}, "sensitivity": {"slices": [0.5]}}, "sensitivity.slices[0]"),
-    "paper engine not run": ({"engines": {"sweep": "compiled", "reference": {"point": ["scipy"]},
-                                          "paper": "pybullet"}}, "engines.paper"),
-    "full rate that does not divide the sampling": ({"simulation": {"full_rate_hz": 33333}},
-                                                    "simulation.full_rate_hz"),
-}
-
-
-@pytest.mark.parametrize("name", BAD_CONFIGS)
-def test_bad_config_fails_before_any_job_naming_the_key(tmp_path, name):
-    override, key = BAD_CONFIGS[name]
-    bad = write_yaml(tmp_path / "bad.yaml", override)
-    proc = snakemake("-n", "--snakefile", SNAKEFILE, "--configfile", bad, cwd=tmp_path)
-    assert proc.returncode != 0
-    assert "invalid configuration" in proc.output
-    assert key in proc.output, proc.output
-    # Nothing was run or written: the check precedes the DAG.
-    assert not (tmp_path / "results").exists()
-    assert "Building DAG" not in proc.output
+# Invalid configurations: tests/test_config_checks.py (the fuzz suite, and a few
+# end to end through snakemake -n).
 
 
 def test_default_and_test_configs_are_valid_and_plan_the_study(tmp_path):

@@ -1,5 +1,6 @@
-"""lsbg.workflow, the workflow's plan without Snakemake: configuration checks, the
-design points, runs and files of a study, the rerun triggers and the study config."""
+"""lsbg.workflow, the workflow's plan without Snakemake: the design points, runs and
+files of a study, the rerun triggers and the study config (the configuration checks:
+tests/test_config_checks.py)."""
 
 import copy
 import os
@@ -35,11 +36,6 @@ def load(*names, **overrides):
 @pytest.fixture(scope="module")
 def default():
     return load()
-
-
-@pytest.mark.parametrize("names", [(), ("config-test.yaml",), ("config-speed.yaml",)])
-def test_shipped_configs_have_no_problems(names):
-    assert plan.study_problems(load(*names)) == []
 
 
 def test_every_run_and_file_of_the_default_study_is_planned_once(default):
@@ -90,40 +86,6 @@ def test_sensitivity_and_speed_sweep_runs_are_named_by_case_and_speed():
     assert plan.FILES["speed_curve"] in study.targets
     cases = study.sensitivity_runs()
     assert len(cases) == len(set(cases)) == 2 * sum(len(f) for f in config["sensitivity"].values())
-
-
-@pytest.mark.parametrize("overrides, message", [
-    ({"engines": {"sweep": "compiled", "reference": {"point": ["scipy"]}, "paper": "pybullet"}},
-     "engines.paper = 'pybullet'"),
-    ({"simulation": {"duration_s": 0.1}}, "statistics.steady_state_after_s = 0.2"),
-    ({"statistics": {"control_chart_window_s": [0.5, 0.4]}},
-     "statistics.control_chart_window_s = [0.5, 0.4]"),
-    ({"design": {"face_width_mm": 80}}, "design at circular"),
-    ({"sensitivity": {"mesh_damping_ratio": [100]}}, "sensitivity.mesh_damping_ratio[0] = 100"),
-    ({"speed_sweep": {"pinion_speeds_deg_s": {"start": 10, "stop": 10.0001, "count": 5}}},
-     "speeds too close"),
-    ({"speed_sweep": {"spiral_angle_deg": 33, "pinion_speeds_deg_s":
-                      {"start": 3000, "stop": 9000, "count": 3}}},
-     "speed_sweep.spiral_angle_deg = 33"),
-])
-def test_study_problems_name_the_key_and_the_value(default, overrides, message):
-    config = copy.deepcopy(default)
-    for section, values in overrides.items():
-        config[section] = ({**config[section], **values} if section in config else values)
-    if "speed_sweep" in overrides:
-        validate(config, str(SCHEMA))
-    problems = plan.study_problems(config)
-    assert any(message in p for p in problems), problems
-
-
-def test_schema_problems_name_every_bad_key(default):
-    config = copy.deepcopy(default)
-    config["simulation"]["samples"] = "many"
-    config["contact"]["stifness"] = 1.0
-    schema = yaml.safe_load(SCHEMA.read_text(encoding="utf-8"))
-    problems = plan.schema_problems(config, schema)
-    assert any(p.startswith("simulation.samples: 'many'") for p in problems), problems
-    assert any(p.startswith("contact.stifness: unknown key") for p in problems), problems
 
 
 def test_simulation_params_hold_only_what_the_run_reads(default):

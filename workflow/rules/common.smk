@@ -1,22 +1,23 @@
 """Glue between Snakemake and lsbg.workflow (no rules here).
 
-The configuration is validated against workflow/schemas/config.schema.yaml
-(snakemake.utils.validate, which also fills in the schema's defaults), then
-by lsbg.workflow.study_problems (each design point and the settings, by
-lsbg's own checks), before any job runs; each problem is reported with its
-key. lsbg.workflow.Study then names every design point, run and file; the
-rules read it as STUDY. Paths are relative to the working directory; the
+The configuration is checked completely by lsbg.config_check.check_config
+(finite numbers, workflow/schemas/config.schema.yaml, file names, lsbg's own
+checks of the settings and the statistics, the physics and the resource
+guard of every design point), which also fills in the schema's defaults,
+before any job runs; each problem is one line naming the user's key.
+lsbg.workflow.Study then names every design point, run and file; the rules
+read it as STUDY. Paths are relative to the working directory; the
 repository's own files (the notebooks) are found next to the Snakefile.
 """
 
 import os
+import sys
 from pathlib import Path
 
 import yaml
-from snakemake.exceptions import WorkflowError
 from snakemake.logging import logger
-from snakemake.utils import validate
 
+from lsbg import config_check
 from lsbg import workflow as plan
 
 #: The repository: the directory of the top-level Snakefile.
@@ -27,17 +28,17 @@ CONDA_ENV = "../envs/lsbg.yaml"
 
 
 def check_config(config):
-    """Validate ``config`` in place (schema defaults filled in); raise naming every bad key."""
-    try:
-        validate(config, str(SCHEMA))
-    except WorkflowError as error:
-        schema = yaml.safe_load(SCHEMA.read_text(encoding="utf-8"))
-        problems = plan.schema_problems(config, schema) or [str(error)]
-        raise WorkflowError("invalid configuration (workflow/schemas/config.schema.yaml):\n  "
-                            + "\n  ".join(f"config key {p}" for p in problems)) from None
-    problems = plan.study_problems(config)
+    """Check ``config`` (schema defaults filled in, in place); stop naming every bad key.
+
+    Printed and exited rather than raised: Snakemake prints a raised error with
+    the stack lines of this file around the message.
+    """
+    schema = yaml.safe_load(SCHEMA.read_text(encoding="utf-8"))
+    problems = config_check.check_config(config, schema)
     if problems:
-        raise WorkflowError("invalid configuration:\n  " + "\n  ".join(problems))
+        logger.error("invalid configuration (keys as in workflow/schemas/config.schema.yaml):\n"
+                     + "\n".join(f"  config key {p}" for p in problems))
+        sys.exit(1)
 
 
 check_config(config)

@@ -1,0 +1,347 @@
+"""The complete configuration check (lsbg.config_check): every invalid value is rejected
+before any job, naming the user's key path and value.
+
+Most cases run through :func:`lsbg.config_check.check_config`, the function
+workflow/rules/common.smk calls: a fuzz suite generated from the schema
+(every key with a wrong type, out of its range, NaN/inf, empty, duplicated,
+rounded to an existing file name, and unknown keys) and the checks beyond the
+schema (cross-field rules, sample counts, physics, resource guard). A handful
+run ``python -m snakemake -n`` end to end: one clean message, no stack lines,
+nothing created.
+"""
+
+import copy
+import math
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import yaml
+
+from lsbg import config_check, workflow as plan
+from lsbg.design import GearPairDesign
+from lsbg.geometry import GearPair
+
+REPO = Path(__file__).resolve().parents[1]
+SCHEMA = yaml.safe_load((REPO / "workflow" / "schemas" / "config.schema.yaml")
+                        .read_text(encoding="utf-8"))
+
+#: The optional sections, small, so that the fuzz suite reaches their keys too.
+OPTIONAL_SECTIONS = {
+    "speed_sweep": {"traces": ["logarithmic"], "spiral_angle_deg": 35,
+                    "pinion_speeds_deg_s": {"start": 3000, "stop": 9000, "count": 3},
+                    "engine": "compiled", "mesh_cycles": 100, "min_window_s": 0.05,
+                    "settle_time_s": 0.05, "ramp_time_s": 0.05, "samples_per_mesh": 32},
+    "load_sweep": {"torques_N_m": [1000, 3000], "traces": ["logarithmic"],
+                   "engine": "compiled", "contact_model": "point"},
+    "limits": {"memory_gb": 8, "geometry_minutes": 10},
+}
+
+
+def load(*names):
+    """workflow/config.yaml with other config files merged over it (as --configfile)."""
+    config = {}
+    for name in ("config.yaml", *names):
+        config.update(yaml.safe_load((REPO / "workflow" / name).read_text(encoding="utf-8")))
+    return config
+
+
+BASE = {**load("config-test.yaml"), **OPTIONAL_SECTIONS}
+
+
+def base():
+    """The test study with every optional section: valid, two design points."""
+    return copy.deepcopy(BASE)
+
+
+def with_value(config, path, value):
+    """A copy of ``config`` with ``value`` at the key path ``path`` (parents made)."""
+    config = copy.deepcopy(config)
+    parent = config
+    for part in path[:-1]:
+        parent = parent.setdefault(part, {}) if isinstance(part, str) else parent[part]
+    parent[path[-1]] = value
+    return config
+
+
+#: lsbg's SI field names (``face_width = 0.5``) and rules (``ContactParameters.``):
+#: never in a message to the user.
+INTERNAL = re.compile(r"(?:^|: |\()(module|face_width|addendum|dedendum|backlash|cutter_radius|"
+                      r"pinion_bore|gear_bore|shaft_angle|spiral_angle|duration|samples|"
+                      r"ramp_time|time_step|full_rate|full_rate_after|slices) = "
+                      r"|ContactParameters\.")
+
+
+def assert_rejected(problems, key):
+    """Rejected, naming ``key``, each problem one line in the user's names."""
+    assert problems, f"{key}: accepted"
+    assert any(key in line for line in problems), (key, problems)
+    for line in problems:
+        assert "\n" not in line and not INTERNAL.search(line), line
+
+
+# ------------------------------------------------- fuzz suite from the schema
+def valid_item(schema):
+    """A value the (scalar) ``schema`` accepts."""
+    if "enum" in schema:
+        return schema["enum"][0]
+    low = schema.get("minimum", schema.get("exclusiveMinimum", 0))
+    high = schema.get("maximum", schema.get("exclusiveMaximum", low + 2))
+    value = (low + high) / 2
+    return round(value) if schema.get("type") == "integer" else value
+
+
+def bad_values(schema):
+    """(category, value) pairs that ``schema`` (of one value) rejects."""
+    kind = schema.get("type")
+    if "enum" in schema:
+        return [("not one of the choices", "no-such-choice"), ("wrong type", 7)]
+    if kind in ("number", "integer"):
+        out = [("wrong type", "text"), ("wrong type", True)]
+        if kind == "integer":
+            out.append(("not whole", 2.5))
+        else:
+            out += [("NaN", math.nan), ("inf", math.inf), ("-inf", -math.inf)]
+        if "minimum" in schema:
+            out.append(("below the minimum", schema["minimum"] - 1))
+        if "exclusiveMinimum" in schema:
+            out.append(("at the exclusive minimum", schema["exclusiveMinimum"]))
+        if "maximum" in schema:
+            out.append(("above the maximum", 2 * schema["maximum"] + 1))
+        if "exclusiveMaximum" in schema:
+            out.append(("at the exclusive maximum", schema["exclusiveMaximum"]))
+        return out
+    if kind == "array":
+        item = valid_item(schema["items"])
+        out = [("wrong type", "text")]
+        if schema.get("minItems"):
+            out.append(("too short", [item] * (schema["minItems"] - 1)))
+        if "maxItems" in schema:
+            out.append(("too long", [item] * (schema["maxItems"] + 1)))
+        if schema.get("uniqueItems"):
+            out.append(("duplicate", [item, item]))
+        return out
+    if kind == "object":
+        return [("wrong type", [1, 2])]
+    raise AssertionError(f"no invalid values for {schema}")
+
+
+def fuzz_variants(schema=SCHEMA, path=()):
+    """Every invalid variant of the configuration the schema describes:
+    ``(name, key path to set, value, key path the message must name)``."""
+    variants = []
+    if schema.get("additionalProperties") is False:
+        where = [*path, "no_such_key"]
+        variants.append((f"{config_check.key_path(where)}: unknown key", where, 1,
+                         config_check.key_path(where)))
+    for key in schema.get("required", []) if path else []:
+        variants.append((f"{config_check.key_path(path)}: empty (no {key})", list(path), {},
+                         config_check.key_path([*path, key])))
+    for key, sub in schema.get("properties", {}).items():
+        where = [*path, key]
+        name = config_check.key_path(where)
+        variants += [(f"{name}: {category}", where, value, name)
+                     for category, value in bad_values(sub)]
+        if sub.get("type") == "object":
+            variants += fuzz_variants(sub, where)
+        if sub.get("type") == "array":
+            item = [*where, 0]
+            variants += [(f"{name}[0]: {category}", where, [value],
+                          config_check.key_path(item))
+                         for category, value in bad_values(sub["items"])]
+    return variants
+
+
+#: Sweep values that name files: two that differ below the names' 6 decimals.
+ROUNDED = [(["sweep", "spiral_angles_deg"], [30, 30.0000001]),
+           (["load_sweep", "torques_N_m"], [1000, 1000.0000004]),
+           (["sensitivity", "mesh_damping_ratio"], [2, 2.0000001]),
+           (["sensitivity", "line_stiffness_N_per_mm_um"], [0.5, 0.5000000001]),
+           (["sensitivity", "slices"], [2, 2.0000002])]
+VARIANTS = fuzz_variants() + [
+    (f"{config_check.key_path(path)}: same file name", path, values,
+     config_check.key_path([*path, 1])) for path, values in ROUNDED]
+
+
+def test_the_fuzz_suite_covers_every_key_of_the_schema():
+    assert len(VARIANTS) >= 80
+    keys = set()
+
+    def walk(schema, path):
+        for key, sub in schema.get("properties", {}).items():
+            keys.add(config_check.key_path([*path, key]))
+            walk(sub, [*path, key])
+
+    walk(SCHEMA, [])
+    assert keys <= {config_check.key_path(where) for _, where, _, _ in VARIANTS}
+    assert config_check.check_config(base(), SCHEMA) == []
+
+
+@pytest.mark.parametrize("name, where, value, key", VARIANTS, ids=[v[0] for v in VARIANTS])
+def test_every_invalid_value_is_rejected_naming_its_key(name, where, value, key):
+    assert_rejected(config_check.check_config(with_value(base(), where, value), SCHEMA), key)
+
+
+# ------------------------------------------------------- beyond the schema
+BEYOND_SCHEMA = {
+    # cross-field rules of the run and the statistics
+    "steady state after the run": ({"simulation": {"duration_s": 0.005}},
+                                   "statistics.steady_state_after_s = 0.01"),
+    "chart window beyond the run": ({"statistics": {"control_chart_window_s": [0.01, 1.5]}},
+                                    "statistics.control_chart_window_s"),
+    "chart window reversed": ({"statistics": {"control_chart_window_s": [0.04, 0.02]}},
+                              "statistics.control_chart_window_s = [0.04, 0.02]"),
+    "chart window in the transient": ({"statistics": {"control_chart_window_s": [0.0, 0.05]}},
+                                      "statistics.control_chart_window_s"),
+    "two samples": ({"simulation": {"samples": 2}}, "simulation.samples = 2"),
+    "subgroups that do not fit the window": ({"statistics": {"subgroup_size": 3}},
+                                             "statistics.subgroup_size = 3"),
+    "ramp longer than the run": ({"simulation": {"ramp_time_s": 2.0}},
+                                 "simulation.ramp_time_s = 2.0"),
+    "full rate that does not divide the sampling": ({"simulation": {"full_rate_hz": 33333}},
+                                                    "simulation.full_rate_hz = 33333"),
+    "a record beyond the memory": ({"simulation": {"full_rate_hz": 5e12}},
+                                   "simulation.full_rate_hz"),
+    # engines, contact, sensitivity, speed sweep
+    "paper engine not run": ({"engines": {"sweep": "compiled", "reference": {"point": ["scipy"]},
+                                          "paper": "pybullet"}}, "engines.paper = 'pybullet'"),
+    "friction velocity below stiction": ({"contact": {"friction_velocity_mm_s": 0.05}},
+                                         "contact.stiction_velocity_mm_s = 0.1"),
+    "sensitivity that halves the slices below 2": (
+        {"contact": {"slices": 2}, "sensitivity": {"slices": [0.5]}}, "sensitivity.slices[0]"),
+    "sensitivity beyond the damping range": ({"sensitivity": {"mesh_damping_ratio": [100]}},
+                                             "sensitivity.mesh_damping_ratio[0] = 100"),
+    "speeds too close for file names": (
+        {"speed_sweep": {"pinion_speeds_deg_s": {"start": 10, "stop": 10.0001, "count": 5}}},
+        "speed_sweep.pinion_speeds_deg_s"),
+    "speed sweep at no design point": ({"speed_sweep": {"spiral_angle_deg": 33}},
+                                       "speed_sweep.spiral_angle_deg = 33"),
+    "spiral angle named 0": ({"sweep": {"spiral_angles_deg": [35, 1e-7]}},
+                             "sweep.spiral_angles_deg[1] = 1e-07"),
+    # physics of every design point, in the user's keys and mm
+    "face width beyond half the cone distance": ({"design": {"face_width_mm": 500}},
+                                                 "design.face_width_mm = 500"),
+    "tiny module": ({"design": {"module_mm": 0.01}}, "design.module_mm = 0.01"),
+    "huge module": ({"design": {"module_mm": 1e6}}, "design.module_mm = 1000000.0"),
+    "backlash beyond a tenth of the pitch": ({"design": {"backlash_mm": 5}},
+                                             "design.backlash_mm = 5"),
+    "addendum beyond 1.25 module": ({"design": {"addendum_mm": 7}}, "design.addendum_mm = 7"),
+    "dedendum below the addendum": ({"design": {"dedendum_mm": 3}}, "design.dedendum_mm = 3"),
+    "cutter radius too small": ({"design": {"cutter_radius_mm": 10}},
+                                "design.cutter_radius_mm = 10"),
+    "bore through the teeth": ({"design": {"gear_bore_mm": 500}}, "design.gear_bore_mm = 500"),
+    "pinion larger than the gear": ({"design": {"pinion_teeth": 40}},
+                                    "design.pinion_teeth = 40"),
+    "pointed teeth": ({"design": {"normal_pressure_angle_deg": 30, "addendum_mm": 5.6,
+                                  "dedendum_mm": 7}}, "design.addendum_mm = 5.6"),
+    "trace is not a design key": ({"design": {"trace": "circular"}}, "design.trace"),
+    # the resource guard
+    "a gear of 100000 teeth": ({"design": {"gear_teeth": 100000}},
+                               "design.gear_teeth = 100000"),
+    "a memory limit below any point": ({"limits": {"memory_gb": 0.1}}, "limits.memory_gb = 0.1"),
+    "slices beyond the run's time": ({"contact": {"slices": 10**6}}, "contact.slices = 1000000"),
+    "a PyBullet step far too small": ({"simulation": {"time_step_s": 1e-12}},
+                                      "simulation.time_step_s = 1e-12"),
+    "a speed sweep beyond the memory": ({"speed_sweep": {"mesh_cycles": 10**9}},
+                                        "speed_sweep.mesh_cycles = 1000000000"),
+    "a design beyond lsbg's arithmetic": ({"design": {"module_mm": 1e300}},
+                                          "design.module_mm = 1e+300"),
+    "a sensitivity case of too many slices": ({"sensitivity": {"slices": [2e4]}},
+                                              "sensitivity.slices[0] = 20000.0"),
+}
+
+
+@pytest.mark.parametrize("name", BEYOND_SCHEMA)
+def test_checks_beyond_the_schema_name_the_key_and_value(name):
+    overrides, key = BEYOND_SCHEMA[name]
+    config = base()
+    for section, values in overrides.items():
+        config[section] = {**config.get(section, {}), **values}
+    problems = config_check.check_config(config, SCHEMA)
+    assert_rejected(problems, key)
+    if name.endswith("module"):  # the key at fault, in mm, not lsbg's metres
+        assert not re.search(r"\d m\b", " ".join(problems)), problems
+
+
+@pytest.mark.parametrize("names", [(), ("config-test.yaml",), ("config-speed.yaml",)])
+def test_shipped_configs_pass_with_the_schema_defaults_filled_in(names):
+    config = load(*names)
+    assert config_check.check_config(config, SCHEMA) == []
+    assert config["limits"] == {"geometry_minutes": 10}
+    assert config["contact"]["model"] == "point" and "slices" in config["contact"]
+
+
+def test_defaults_are_those_snakemake_fills_in():
+    from snakemake.utils import validate
+
+    ours, theirs = base(), base()
+    del ours["limits"], theirs["limits"], ours["simulation"], theirs["simulation"]
+    config_check.fill_defaults(ours, SCHEMA)
+    validate(theirs, str(REPO / "workflow" / "schemas" / "config.schema.yaml"))
+    assert ours == theirs
+
+
+def test_a_number_yaml_reads_as_text_gets_a_hint():
+    config = with_value(base(), ["simulation", "time_step_s"], "1e-6")
+    problems = config_check.check_config(config, SCHEMA)
+    assert_rejected(problems, "simulation.time_step_s")
+    assert "1.0e-6" in problems[0]
+
+
+def test_design_points_name_the_keys_that_ask_for_them():
+    config = base()
+    config["sweep"]["spiral_angles_deg"] = [30, 35.0]
+    points = plan.design_points(config)
+    assert list(points) == [("circular", "30"), ("circular", "35"), ("logarithmic", "30"),
+                            ("logarithmic", "35")]
+    assert points[("logarithmic", "35")] == [
+        "paper_spiral_angle_deg", "speed_sweep.spiral_angle_deg", "sweep.spiral_angles_deg[1]"]
+
+
+def test_geometry_cost_grows_with_the_teeth():
+    small, large = (config_check.geometry_cost(GearPair(GearPairDesign(gear_teeth=z)))
+                    for z in (37, 3000))
+    # the measured figures (geometry_cost's docstring): 0.29 GB, 3 s; 0.53 GB, 11 s
+    assert 0.25 < small["memory_gb"] < 0.4 and small["minutes"] < 0.1
+    assert 0.45 < large["memory_gb"] < 0.75 and 0.1 < large["minutes"] < 0.4
+    assert large["vertices"][2] > 10 * small["vertices"][2]
+
+
+# --------------------------------------------------------------- end to end
+END_TO_END = {
+    "YAML syntax error": ("design:\n  face_width_mm: [25\nsweep: {}\n", None),
+    "physics": ("design:\n  face_width_mm: 500\n", "design.face_width_mm = 500"),
+    "resource guard": ("design:\n  gear_teeth: 100000\n", "design.gear_teeth = 100000"),
+    "same file name": ("sweep:\n  traces: [logarithmic]\n  spiral_angles_deg: [35, 35.0000001]\n",
+                       "sweep.spiral_angles_deg[1] = 35.0000001"),
+    "too few samples": ("simulation:\n  samples: 2\n", "simulation.samples = 2"),
+}
+
+
+def dry_run(tmp_path, *args):
+    proc = subprocess.run([sys.executable, "-m", "snakemake", "-n", "--snakefile",
+                           REPO / "Snakefile", "--configfile", tmp_path / "bad.yaml", *args],
+                          cwd=tmp_path, capture_output=True, text=True, timeout=600)
+    return proc.returncode, proc.stdout + proc.stderr
+
+
+@pytest.mark.parametrize("name", END_TO_END)
+def test_snakemake_stops_before_any_job_with_one_clean_message(tmp_path, name):
+    text, key = END_TO_END[name]
+    (tmp_path / "bad.yaml").write_text(text, encoding="utf-8")
+    returncode, output = dry_run(tmp_path)
+    assert returncode != 0
+    assert "Traceback" not in output and "common.smk" not in output, output
+    # nothing was planned, run or written
+    assert "Building DAG" not in output and "Job stats" not in output, output
+    assert not (tmp_path / "results").exists() and not (tmp_path / "logs").exists()
+    if key is None:
+        # Snakemake reads a --configfile before the Snakefile: its message, without
+        # the file and line, which --verbose adds (documented in the schema)
+        assert "Config file is not valid JSON or YAML" in output, output
+        returncode, verbose = dry_run(tmp_path, "--verbose")
+        assert returncode != 0 and re.search(r'bad\.yaml", line 2', verbose), verbose
+    else:
+        assert "invalid configuration" in output and f"config key {key}" in output, output
