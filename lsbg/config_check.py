@@ -32,7 +32,7 @@ configuration that returns its problem lines):
    estimated from its mesh size (:func:`geometry_cost`), against
    ``limits.memory_gb`` and ``limits.geometry_minutes``; each run's record
    against ``limits.memory_gb`` and the line model's slices against the
-   runtime the simulation rules request (:func:`_run_cost_problems`).
+   runtime the simulation rules request (:func:`run_cost_problems`).
 
 A YAML syntax error in a ``--configfile`` never reaches this module:
 Snakemake 9 reads that file before the Snakefile and stops with
@@ -44,7 +44,6 @@ from __future__ import annotations
 
 import copy
 import math
-import os
 import re
 import warnings
 
@@ -52,11 +51,14 @@ import numpy as np
 
 from lsbg.design import CONFIG_KEYS, DesignError, GearPairDesign
 from lsbg.files import number_label
-from lsbg.workflow import (CONTACT_MODELS, design_points, simulation_runtime, speed_keywords,
-                           speed_labels)
+from lsbg.resources import (
+    engines_run, geometry_cost, memory_limit_gb, run_cost_problems, run_memory_gb)
+from lsbg.workflow import design_points, speed_keywords, speed_labels
 
-__all__ = ["check_config", "nonfinite_problems", "schema_problems", "fill_defaults",
-           "geometry_cost", "run_memory_gb", "machine_memory_gb", "memory_limit_gb", "key_path"]
+__all__ = [
+    "key_path", "check_config", "nonfinite_problems", "schema_problems", "fill_defaults",
+    "AD_MIN_SAMPLES"
+]
 
 
 def key_path(parts):
@@ -91,7 +93,7 @@ def check_config(config, schema):
     if problems:
         return problems
     fill_defaults(config, schema)
-    problems = (_name_problems(config) + _settings_problems(config) + _run_cost_problems(config)
+    problems = (_name_problems(config) + _settings_problems(config) + run_cost_problems(config)
                 + _statistics_problems(config) + _design_problems(config))
     return list(dict.fromkeys(problems))
 
@@ -226,7 +228,7 @@ def _settings_problems(config):
                         f"engines.reference.point {reference.get('point', [])!r} (the paper "
                         f"report reproduces the paper with the point model)")
     engines_failing = {}  # message -> engines
-    for engine in sorted(_engines_run(config)):
+    for engine in sorted(engines_run(config)):
         try:
             SimulationSettings.from_config(config["simulation"], engine=engine)
         except ValueError as error:
@@ -334,18 +336,6 @@ def _speed_sweep_problems(config):
 # --------------------------------------------------------------- statistics
 #: Fewest samples of lsbg.stats.anderson_darling (the summary's normality test).
 AD_MIN_SAMPLES = 3
-#: Memory of a run: a base and the bytes per recorded instant [GB, B]. Measured
-#: 160 B per instant and 0.26 GB (``lsbg simulate --engine compiled``, 0.05 s,
-#: full rate 2 and 8 MHz: 80 000 and 320 000 instants, 275 and 313 MB peak);
-#: three times that per instant covers the other engines' working copies.
-RUN_MEMORY_BASE_GB = 0.26
-RUN_BYTES_PER_INSTANT = 500
-#: Wall time of the line model per slice and simulated second, compiled
-#: engine [s]: 1.6, 1.4 and 5.4 s for 20, 200 and 2000 slices over 0.05 s
-#: simulated (``lsbg simulate --engine compiled --contact-model line``).
-LINE_SECONDS_PER_SLICE = 0.039
-#: Wall time of one PyBullet step [s] (README: 7.67 us, tests/benchmarks/bench_dynamics.py).
-PYBULLET_SECONDS_PER_STEP = 7.67e-6
 
 
 def _statistics_problems(config):
@@ -378,7 +368,7 @@ def _statistics_problems(config):
                         f"simulation.duration_s = {duration!r}")
     if problems or (run_memory_gb(samples, duration, simulation["full_rate_hz"])[1]
                     > memory_limit_gb(config)[0]):
-        return problems  # a record too large for the grid below: named by _run_cost_problems
+        return problems  # a record too large for the grid below: named by run_cost_problems
     # The output instants (SimulationSettings.sample_times), valid settings or not.
     time = np.linspace(0.0, duration, int(samples) + 1)
     where = f"simulation.samples = {samples!r} over simulation.duration_s = {duration!r}"
@@ -414,83 +404,15 @@ def _statistics_problems(config):
     return problems
 
 
-def run_memory_gb(samples, duration, full_rate):
-    """Instants a run records [-] and the memory it needs [GB].
-
-    Parameters
-    ----------
-    samples : int
-        Output intervals [-].
-    duration : float
-        Simulated time [s].
-    full_rate : float
-        Rate of the full-rate record [1/s].
-    """
-    instants = samples + 1 + duration * full_rate
-    return instants, RUN_MEMORY_BASE_GB + instants * RUN_BYTES_PER_INSTANT / 1e9
-
-
-def _run_cost_problems(config):
-    """The resource guard of the runs: each run's record against the memory limit,
-    and the line model's slices against the runtime the simulation rules request.
-
-    A run records ``samples + 1`` output instants and ``full_rate_hz`` per
-    second (:data:`RUN_BYTES_PER_INSTANT`). A line-model step costs in
-    proportion to the slices (:data:`LINE_SECONDS_PER_SLICE`, the compiled
-    engine, the fastest: the estimate is a lower bound); the rules request
-    :func:`lsbg.workflow.simulation_runtime` minutes per run.
-    """
-    from lsbg.sensitivity import scaled_contact
-
-    simulation = config["simulation"]
-    duration, samples, rate = (simulation["duration_s"], simulation["samples"],
-                               simulation["full_rate_hz"])
-    problems = []
-    instants, need = run_memory_gb(samples, duration, rate)
-    limit, source = memory_limit_gb(config)
-    if need > limit:
-        problems.append(f"simulation.samples = {samples!r}, simulation.full_rate_hz = {rate!r}: "
-                        f"each run records {instants:.3g} instants over simulation.duration_s "
-                        f"= {duration!r}, about {need:.3g} GB, more than {source} = "
-                        f"{limit:.3g} GB")
-    budget = simulation_runtime(config)
-    slices = [("contact.slices", config["contact"]["slices"], config["contact"]["slices"])]
-    slices += [(f"sensitivity.slices[{k}]", factor,
-                scaled_contact(config["contact"], "slices", factor)["slices"])
-               for k, factor in enumerate(config["sensitivity"].get("slices", []))]
-    for key, value, count in slices:
-        minutes = LINE_SECONDS_PER_SLICE * count * duration / 60
-        if minutes > budget:
-            problems.append(f"{key} = {value!r}: a line-model run of {count} slices over "
-                            f"simulation.duration_s = {duration!r} takes at least "
-                            f"{minutes:.3g} min, more than the {budget} min its rule requests")
-    step = simulation["time_step_s"]
-    minutes = PYBULLET_SECONDS_PER_STEP * duration / step / 60
-    if "pybullet" in _engines_run(config) and minutes > budget:
-        problems.append(f"simulation.time_step_s = {step!r}: a PyBullet run of "
-                        f"{duration / step:.3g} steps over simulation.duration_s = "
-                        f"{duration!r} takes about {minutes:.3g} min, more than the {budget} "
-                        f"min its rule requests")
-    return problems
-
-
-def _engines_run(config):
-    """Every engine some run of the study uses."""
-    engines = config["engines"]
-    run = {engines["sweep"], *(e for model in CONTACT_MODELS
-                               for e in engines["reference"].get(model, []))}
-    if config.get("load_sweep"):
-        run.add(config["load_sweep"].get("engine", engines["sweep"]))
-    if config.get("speed_sweep"):
-        run.add(config["speed_sweep"]["engine"])
-    return run
-
-
 # ------------------------------------------------------------ design points
 #: lsbg's SI name of each design key (``face_width`` -> ``face_width_mm``).
 _DESIGN_KEYS = {re.sub(r"_(mm|deg|kg_m3)$", "", key): key for key in CONFIG_KEYS}
+
+
 #: A DesignError's message: ``name = value: why``.
 _DESIGN_ERROR = re.compile(r"^(\w+) = (.*?): (.*)$", re.DOTALL)
+
+
 #: A length in metres inside a DesignError's message.
 _METRES = re.compile(r"(?<![\w.])([-+]?\d+(?:\.\d*)?(?:[eE][-+]?\d+)?) m\b")
 
@@ -599,112 +521,3 @@ def _design_problems(config):
               ", ".join(where[:4]) + (f" and {len(where) - 4} more" if len(where) > 4 else ""))
         problems.append(f"{head}: {why} (at {at})")
     return problems
-
-
-# ----------------------------------------------------------- resource guard
-#: Geometry cost model (:func:`geometry_cost`), fitted to ``lsbg geometry``
-#: of the paper's design with 37 to 40 000 gear teeth (43 thousand to 7.9
-#: million mesh vertices): peak memory = base + per vertex, wall time =
-#: base + per vertex * (vertices / 1e6)**(exponent - 1).
-GEOMETRY_MEMORY_BASE_GB = 0.29
-GEOMETRY_BYTES_PER_VERTEX = 500.0
-GEOMETRY_SECONDS_BASE = 3.0
-GEOMETRY_SECONDS_PER_VERTEX = 20e-6
-GEOMETRY_TIME_EXPONENT = 1.2
-
-
-def geometry_cost(pair):
-    """Estimated peak memory and wall time of ``lsbg geometry`` for a design point.
-
-    The geometry stage builds both solid meshes (:func:`lsbg.solids.gear_mesh`)
-    and works on arrays of their vertices and triangles (mass properties,
-    STL, the rendered picture); its cost grows with the vertex count and is
-    otherwise nearly constant (the exact flanks, ``flanks.nc``). The vertex
-    count is estimated without building a mesh, from the same resolution
-    (:data:`lsbg.solids.DEFAULT_RESOLUTION`): per member, the lofted sections
-    times the teeth times the outline points per tooth, plus on each end
-    face a ring of at least z points per ``end_face_step`` of polar angle
-    between bore and root and the cap area over ``end_face_step**2``
-    (within 15 % of the actual count over 9 to 3000 teeth).
-
-    Calibration: ``lsbg -v geometry --gear-teeth Z`` (the paper's design
-    otherwise) on 2 shared cores, 23.5 GB, load average 2-4 (a second series
-    at load 3.6-5.7 in its own column); vertices measured from the STL
-    triangle counts / 2; the model's figures from the estimated count:
-
-    ======  ========  =========  ========  ===========  =====  ========  =====
-    z2      vertices  estimated  wall [s]  (high load)  model  RSS [GB]  model
-    ======  ========  =========  ========  ===========  =====  ========  =====
-    37      43 k      38 k       3.1                    3.4    0.29      0.31
-    1 000   201 k     230 k      4.8                    6.4    0.35      0.41
-    3 000   598 k     660 k      10.7                   15     0.53      0.62
-    5 000             1.08 M               55           25     0.67      0.83
-    10 000  1.98 M    2.16 M     36                     53     1.19      1.37
-    20 000  3.96 M    4.30 M     109       151          118    2.14      2.44
-    40 000  7.92 M    8.58 M     246       388          267    4.13      4.58
-    ======  ========  =========  ========  ===========  =====  ========  =====
-
-    Memory: 0.29 GB + 500 B per vertex; the measured
-    slope is 480-495 B per vertex and the same in both series, so with the
-    estimate's 8-15 % excess the model stays 7-17 % above the measurement.
-    Time: 3 s + 20 us per vertex times (vertices / 1e6)**0.2: the cost per
-    vertex rises from 11 to 31 us over the table (meshing and the picture
-    outgrow the caches), which the exponent 1.2 follows; the wall time also
-    grows with the machine's load (up to 1.6 times above). For
-    ``design.gear_teeth: 100000`` (21 M vertices estimated) the model gives
-    11 GB and 13 min; the default ``limits.geometry_minutes`` of 10 min
-    admits up to about 79 000 teeth on the paper's pinion.
-
-    Parameters
-    ----------
-    pair : lsbg.geometry.GearPair
-
-    Returns
-    -------
-    dict
-        ``vertices`` ({member: estimated vertex count} [-]), ``memory_gb``
-        [GB], ``minutes`` [min].
-    """
-    from lsbg import solids
-    from lsbg.geometry import MEMBERS
-
-    design, resolution = pair.design, solids.DEFAULT_RESOLUTION
-    step = resolution.end_face_step
-    vertices = {}
-    for member in MEMBERS:
-        teeth = design.teeth[member - 1]
-        sections = solids.section_cone_distances(pair, member, resolution).size
-        # the outline counts at the mean point (cheap: one flank of 201 points)
-        flank, top, root_arc = solids._outline_counts(pair, member, resolution)
-        per_tooth = 2 * (flank + resolution.extension) + top + root_arc
-        bore = (design.pinion_bore if member == 1 else design.gear_bore) / 2
-        theta_bore = math.asin(min(1.0, bore / design.inner_cone_distance))
-        root = design.root_angle(member)
-        rings = max(0, math.ceil((root - theta_bore) / step))
-        cap = 2 * math.pi * (math.cos(theta_bore) - math.cos(root)) / step**2
-        vertices[member] = sections * teeth * per_tooth + 2 * (teeth * rings + cap)
-    total = sum(vertices.values())
-    seconds = (GEOMETRY_SECONDS_BASE + GEOMETRY_SECONDS_PER_VERTEX * total
-               * (total / 1e6) ** (GEOMETRY_TIME_EXPONENT - 1))
-    return {"vertices": vertices,
-            "memory_gb": GEOMETRY_MEMORY_BASE_GB + GEOMETRY_BYTES_PER_VERTEX * total / 1e9,
-            "minutes": seconds / 60}
-
-
-def machine_memory_gb():
-    """Physical memory of this machine [GB], or None where the OS does not tell."""
-    try:
-        return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES") / 1e9
-    except (AttributeError, ValueError, OSError):
-        return None
-
-
-def memory_limit_gb(config):
-    """The memory a job may use [GB] and the words that name where it comes from."""
-    limit = config["limits"].get("memory_gb")
-    if limit is not None:
-        return limit, "limits.memory_gb"
-    machine = machine_memory_gb()
-    if machine is None:
-        return math.inf, "limits.memory_gb (unset)"
-    return machine, "limits.memory_gb (default: this machine's memory)"

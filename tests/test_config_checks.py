@@ -20,7 +20,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from lsbg import config_check, workflow as plan
+from lsbg import config_check, resources, workflow as plan
 from lsbg.design import GearPairDesign
 from lsbg.geometry import GearPair
 
@@ -301,7 +301,7 @@ def test_design_points_name_the_keys_that_ask_for_them():
 
 
 def test_geometry_cost_grows_with_the_teeth():
-    small, large = (config_check.geometry_cost(GearPair(GearPairDesign(gear_teeth=z)))
+    small, large = (resources.geometry_cost(GearPair(GearPairDesign(gear_teeth=z)))
                     for z in (37, 3000))
     # the measured figures (geometry_cost's docstring): 0.29 GB, 3 s; 0.53 GB, 11 s
     assert 0.25 < small["memory_gb"] < 0.4 and small["minutes"] < 0.1

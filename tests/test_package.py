@@ -28,7 +28,7 @@ LAYERS = (
     ("summary",),
     ("tables",),
     ("figures",),
-    ("reports", "workflow", "config_check", "stages"),
+    ("reports", "workflow", "config_check", "resources", "stages"),
     ("cli",),
 )
 MAX_LINES = 620
