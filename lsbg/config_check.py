@@ -38,6 +38,9 @@ A YAML syntax error in a ``--configfile`` never reaches this module:
 Snakemake 9 reads that file before the Snakefile and stops with
 "Config file is not valid JSON or YAML" (without the file or the line;
 ``--verbose`` adds the YAML parser's message, which names both).
+``lsbg check-config FILE`` (:mod:`lsbg.cli.config`) reads the files as
+Snakemake does, names the file and line of such an error, and runs
+:func:`check_config`.
 """
 
 from __future__ import annotations

@@ -54,6 +54,7 @@ USER_ERRORS = (DesignError, CommandError, InputError)
 
 #: One ``add_<name>_parser(subparsers)`` per subcommand, as ``"module:function"``.
 PARSERS = [
+    "lsbg.cli.config:add_check_config_parser",
     "lsbg.cli.geometry:add_geometry_parser",
     "lsbg.cli.geometry:add_points_parser",
     "lsbg.cli.simulate:add_simulate_parser",

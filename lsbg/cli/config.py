@@ -1,0 +1,78 @@
+"""``lsbg check-config``: the workflow's configuration check, outside Snakemake.
+
+Snakemake reads a ``--configfile`` before the workflow's own code runs and,
+on a YAML syntax error, says only "Config file is not valid JSON or YAML",
+naming neither the file nor the line. This command reads the same files the
+same way (``workflow/config.yaml``, then each given file merged over it, as
+``snakemake --configfile`` does), names the file, line and column of a syntax
+error, and runs :func:`lsbg.config_check.check_config`, the check the
+workflow runs before any job.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from lsbg.cli.options import CommandError, _read_yaml
+
+__all__ = ["add_check_config_parser", "merge_config"]
+
+#: The repository of an editable install: the workflow's files are beside lsbg/.
+REPO = Path(__file__).resolve().parents[2]
+
+
+def merge_config(base, update):
+    """``update`` merged into ``base`` key by key, as Snakemake merges config files.
+
+    Parameters
+    ----------
+    base, update : dict
+
+    Returns
+    -------
+    dict
+        A new mapping: nested mappings merged, any other value replaced.
+    """
+    merged = dict(base)
+    for key, value in update.items():
+        if isinstance(value, dict) and isinstance(merged.get(key), dict):
+            merged[key] = merge_config(merged[key], value)
+        else:
+            merged[key] = value
+    return merged
+
+
+def add_check_config_parser(subparsers):
+    parser = subparsers.add_parser(
+        "check-config", help="check a workflow configuration as snakemake would, naming "
+                             "the file and line of a YAML error")
+    parser.add_argument("configfiles", nargs="*", metavar="CONFIGFILE",
+                        help="files given to snakemake --configfile (merged in order over "
+                             "workflow/config.yaml)")
+    parser.add_argument("--workflow-dir", type=Path, default=REPO / "workflow",
+                        help="the workflow folder holding config.yaml and "
+                             "schemas/config.schema.yaml (default: %(default)s)")
+    parser.set_defaults(handler=run_check_config)
+
+
+def run_check_config(args):
+    """Handler of ``lsbg check-config`` [exit code]."""
+    from lsbg.config_check import check_config
+    from lsbg.workflow import design_points
+
+    base = args.workflow_dir / "config.yaml"
+    schema = args.workflow_dir / "schemas" / "config.schema.yaml"
+    if not base.is_file() or not schema.is_file():
+        raise CommandError(f"--workflow-dir {args.workflow_dir}: no config.yaml and "
+                           f"schemas/config.schema.yaml there")
+    config = _read_yaml(base, "workflow config")
+    for path in args.configfiles:
+        config = merge_config(config, _read_yaml(path, "configfile"))
+    problems = check_config(config, _read_yaml(schema, "schema"))
+    if problems:
+        for line in problems:
+            print(f"invalid configuration: {line}", file=sys.stderr)
+        return 2
+    print(f"configuration is valid: {len(design_points(config))} design points")
+    return 0

@@ -1,0 +1,31 @@
+"""``lsbg check-config``: the workflow's check outside Snakemake, naming a YAML error's line."""
+
+import yaml
+
+from lsbg import cli
+from lsbg.cli.config import REPO, merge_config
+
+
+def test_merge_config_merges_mappings_and_replaces_values():
+    base = {"design": {"module_mm": 4.5, "gear_teeth": 37}, "sweep": {"traces": ["a", "b"]}}
+    merged = merge_config(base, {"design": {"module_mm": 5}, "sweep": {"traces": ["a"]}})
+    assert merged == {"design": {"module_mm": 5, "gear_teeth": 37}, "sweep": {"traces": ["a"]}}
+    assert base["design"]["module_mm"] == 4.5          # the base is not changed
+
+
+def test_yaml_error_names_the_file_line_and_column(tmp_path, capsys):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("design:\n  module_mm: 4.5\n  gear_teeth: [37\n")
+    assert cli.main(["check-config", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert str(bad) in err and "line 4, column 1" in err and "Traceback" not in err
+
+
+def test_invalid_value_is_named_by_its_key_and_valid_configs_pass(tmp_path, capsys):
+    bad = tmp_path / "wide.yaml"
+    bad.write_text(yaml.safe_dump({"design": {"face_width_mm": 500}}))
+    assert cli.main(["check-config", str(bad)]) == 2
+    assert "design.face_width_mm = 500" in capsys.readouterr().err
+    test_config = REPO / "workflow" / "config-test.yaml"
+    assert cli.main(["check-config", str(test_config)]) == 0
+    assert "valid: 2 design points" in capsys.readouterr().out
