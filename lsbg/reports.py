@@ -19,10 +19,11 @@ from __future__ import annotations
 import io
 import logging
 import os
-import tempfile
+import shutil
 from pathlib import Path
 
 import lsbg
+from lsbg.files import remove_stale_temporaries, temporary_beside
 from lsbg.results import write_atomically
 
 __all__ = ["NOTEBOOK_DIR", "PATH_PARAMETER_SUFFIXES", "ReportError", "notebook_path",
@@ -262,8 +263,12 @@ def render_report(name, out_html, parameters=None, notebook_dir=None, cwd=None,
     # ipykernel warns on every start that its local TCP sockets are unencrypted.
     # (and logs an ERROR for the interrupt jupyter_client sends before shutdown).
     quiet = ["--IPKernelApp.log_level=CRITICAL"] if kernel_name == "python3" else []
-    with tempfile.TemporaryDirectory(prefix=f"lsbg-report-{name}-") as work:
-        executed = Path(work) / f"{name}.ipynb"
+    # The executed notebook goes beside the report, where a rerun removes what
+    # a killed run left (lsbg.files.remove_stale_temporaries), not into /tmp.
+    remove_stale_temporaries(out_html)
+    work = temporary_beside(out_html, "tmp", directory=True)
+    try:
+        executed = work / f"{name}.ipynb"
         try:
             papermill.execute_notebook(
                 str(notebook), str(executed), parameters=parameters, kernel_name=kernel_name,
@@ -284,6 +289,8 @@ def render_report(name, out_html, parameters=None, notebook_dir=None, cwd=None,
         for message in _strip_stderr(nb):
             log.warning("report %s: %s", name, message.strip())
         html = notebook_to_html(nb)
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
     return write_atomically(out_html, lambda tmp: Path(tmp).write_text(html, encoding="utf-8"))
 
 

@@ -186,6 +186,7 @@ def test_verification_report_via_cli_with_relative_paths(study_files, monkeypatc
 
 def test_failing_notebook_raises_and_writes_nothing(study_files, tmp_path):
     out = tmp_path / "paper.html"
+    (tmp_path / ".paper.html.k1ll3d.tmp").mkdir()    # left by a killed report job: removed
     parameters = {**paper_parameters(study_files), "mesh_files": [tmp_path / "missing.nc"]}
     with pytest.raises(reports.ReportError, match=r"paper.ipynb failed in cell .*"
                                                    r"FileNotFoundError: .*missing.nc"):
