@@ -7,7 +7,9 @@ rule combine:
         meshes=STUDY.meshes,
         sources=sources("aggregate"),
     output:
-        FILES["sweep"],
+        # update(): Snakemake keeps the previous file until the new one is complete
+        # (by default it deletes a job's outputs before the job runs).
+        update(FILES["sweep"]),
     log:
         "logs/combine/sweep.log",
     threads: 1
@@ -27,7 +29,7 @@ rule summary:
         config=ancient(FILES["study_config"]),
         sources=sources("aggregate"),
     output:
-        report(FILES["summary"], caption="../report/summary.rst", category="Summary"),
+        report(update(FILES["summary"]), caption="../report/summary.rst", category="Summary"),
     params:
         # Rerun trigger: the statistics settings the table depends on.
         statistics=plan.canonical(config["statistics"]),
