@@ -131,14 +131,17 @@ def test_lint_passes(tmp_path):
 
 
 def test_slurm_profile_schedules_with_resources(tmp_path):
-    """The SLURM profile parses and every job carries mem_mb and runtime (dry run, no sbatch)."""
+    """The SLURM profile alone selects the executor and gives every job its memory, time
+    and one CPU (dry run, no sbatch; tests/test_slurm.py runs it on a real cluster)."""
+    profile = REPO / "workflow" / "profiles" / "slurm"
+    assert yaml.safe_load((profile / "config.yaml").read_text())["executor"] == "slurm"
     proc = snakemake("-n", "--snakefile", SNAKEFILE, "--configfile", REPO / TEST_CONFIG,
-                     "--executor", "slurm", "--profile", REPO / "workflow" / "profiles" / "slurm",
-                     cwd=tmp_path, check=True)
+                     "--profile", profile, cwd=tmp_path, check=True)
     bodies = [body for rule, body in _JOB.findall(proc.output) if rule != "all"]
     assert bodies
     for body in bodies:
         assert re.search(r"mem_mb=\d+", body) and re.search(r"runtime=\d+", body), body
+        assert "cpus_per_task=1" in body, body
 
 
 # ---------------------------------------------------------------- end to end
