@@ -28,10 +28,8 @@ from scipy import stats as sps
 
 from lsbg import spectra, stats
 from lsbg.design import TRACE_LABELS
-from lsbg.runs import QUANTITY_LABELS, full_rate_series, steady
+from lsbg.runs import QUANTITY_LABELS, TYPE_ORDER, full_rate_series, steady
 
-#: Gear types in the order of every table: the paper's (a) SBG, (b) LSBG.
-TYPES = ("SBG", "LSBG")
 #: Quantities compared under the line model (full-rate variables exist for them).
 VERDICT_QUANTITIES = ("gear_speed", "tangential_force", "transmission_error")
 
@@ -50,7 +48,7 @@ MESH_FIGURES = {
 
 
 def _ordered(by_type):
-    return {t: by_type[t] for t in TYPES if t in by_type}
+    return {t: by_type[t] for t in TYPE_ORDER if t in by_type}
 
 
 def mesh_table(meshes) -> pd.DataFrame:
@@ -78,7 +76,7 @@ def mesh_table(meshes) -> pd.DataFrame:
         row.update({t: float(reduce(ds["contact_length"].values)) for t, ds in meshes.items()})
         rows.append(row)
     table = pd.DataFrame(rows)
-    if set(TYPES) <= set(meshes):
+    if set(TYPE_ORDER) <= set(meshes):
         table["ratio"] = table["SBG"] / table["LSBG"]
     return table
 
@@ -112,7 +110,7 @@ def compare_fluctuation(runs, quantity, start=0.2, full_rate=True, confidence=0.
         with the smaller fluctuation where the interval of the ratio excludes
         1, else ``"neither"``.
     """
-    series = {t: _series(runs[t], quantity, start, full_rate) for t in TYPES}
+    series = {t: _series(runs[t], quantity, start, full_rate) for t in TYPE_ORDER}
     row = {}
     for t, x in series.items():
         ci = stats.std_ci(x, confidence=confidence, n_boot=n_boot, seed=seed)
@@ -153,7 +151,7 @@ def fluctuation_table(runs, start=0.2, quantities=VERDICT_QUANTITIES, **options)
             row.update(compare_fluctuation(runs, quantity, start, full_rate, **options))
             rows.append(row)
     table = pd.DataFrame(rows)
-    for t in TYPES:
+    for t in TYPE_ORDER:
         torque = full_rate_series(runs[t], "contact_torque", start)
         table[f"dynamic_factor_{t}"] = spectra.dynamic_factor(
             torque, float(runs[t].attrs["solver_load_torque_N_m"]))
@@ -360,7 +358,7 @@ def sweep_ratio_table(sweep, contact_model="line", quantities=VERDICT_QUANTITIES
     rows = []
     for angle in model["spiral_angle"].values:
         point = {t: model.sel(trace=trace, spiral_angle=angle) for t, trace in types.items()}
-        if not all(t in point and np.isfinite(point[t]["gear_speed"].values).all() for t in TYPES):
+        if not all(t in point and np.isfinite(point[t]["gear_speed"].values).all() for t in TYPE_ORDER):
             continue
         for quantity in quantities:
             result = compare_fluctuation(point, quantity, start, full_rate, **options)
