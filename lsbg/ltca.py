@@ -78,7 +78,10 @@ def loaded_tca(contact: MeshContact, load_torque, phases=PHASES, profile_points=
     contact : lsbg.contact.MeshContact
         A line-model contact (damping plays no part at rest).
     load_torque : float
-        Torque on the gear [N m], > 0.
+        Torque on the gear [N m], >= 0. At 0 the analysis is the unloaded
+        TCA of the model: the flanks just touch, the transmission error is
+        zero for conjugate flanks, and the mesh stiffness is the slope at
+        first touch.
     phases : int
         Mesh positions over one base pitch [-] (at least 8).
     profile_points : int
@@ -99,15 +102,15 @@ def loaded_tca(contact: MeshContact, load_torque, phases=PHASES, profile_points=
     Raises
     ------
     ValueError
-        For a point-model contact, a non-positive load or fewer than 8 phases.
+        For a point-model contact, a negative load or fewer than 8 phases.
     """
     import xarray as xr
 
     if contact.params.model != "line":
         raise ValueError(f"contact model = {contact.params.model!r}: the loaded TCA is "
                          f"defined for the line model")
-    if not (math.isfinite(load_torque) and load_torque > 0):
-        raise ValueError(f"load_torque = {load_torque!r}: must be a positive number [N m]")
+    if not (math.isfinite(load_torque) and load_torque >= 0):
+        raise ValueError(f"load_torque = {load_torque!r}: must be a number >= 0 [N m]")
     if isinstance(phases, bool) or int(phases) != phases or phases < 8:
         raise ValueError(f"phases = {phases!r}: must be a whole number >= 8")
     pair, design = contact.pair, contact.pair.design
@@ -116,11 +119,18 @@ def loaded_tca(contact: MeshContact, load_torque, phases=PHASES, profile_points=
     pinion = mesh_phase_pinion_angle(contact, fraction)
     gear = np.array([contact.static_gear_angle(load_torque, p) for p in pinion])
     te = pinion * z1 / z2 - gear
-    # Mesh stiffness: the torque's slope at the equilibrium (a central
-    # difference a millionth of the elastic approach wide).
-    h = 1e-6 * np.abs(te).max()
-    slope = np.array([(contact.forces(p, g - h).gear_torque - contact.forces(p, g + h).gear_torque)
-                      / (2 * h) for p, g in zip(pinion, gear)])
+    # Mesh stiffness: the torque's slope at the equilibrium, a central
+    # difference a millionth of the elastic approach wide; unloaded, one-sided
+    # into the flanks (backing off they separate and carry nothing).
+    if load_torque > 0.0:
+        h = 1e-6 * np.abs(te).max()
+        slope = np.array([(contact.forces(p, g - h).gear_torque
+                           - contact.forces(p, g + h).gear_torque) / (2 * h)
+                          for p, g in zip(pinion, gear)])
+    else:
+        h = 1e-9
+        slope = np.array([(contact.forces(p, g - h).gear_torque - contact.forces(p, g).gear_torque)
+                          / h for p, g in zip(pinion, gear)])
     stiffness = slope / contact.base_radius**2
     # Tooth pairs and slices at each equilibrium (drive side only: the load
     # keeps the coast flanks apart).

@@ -83,6 +83,16 @@ def test_linear_in_load(pair):
     np.testing.assert_allclose(double.pair_load, 2 * single.pair_load, rtol=1e-9, atol=1e-6)
 
 
+def test_unloaded_analysis_touches_at_the_kinematic_position(pair, analysis):
+    """At zero load the model's flanks touch with no transmission error (they are
+    conjugate), carry nothing, and the slope at first touch is the loaded
+    stiffness (the slice law is linear)."""
+    unloaded = ltca.loaded_tca(MeshContact(pair, LINE), 0.0, phases=32)
+    assert np.abs(unloaded.transmission_error.values * 1e-6).max() < 1e-9
+    assert np.abs(unloaded.pair_load.values).max() < 1e-6
+    np.testing.assert_allclose(unloaded.mesh_stiffness, analysis.mesh_stiffness[::8], rtol=1e-3)
+
+
 def test_mesh_stiffness_is_the_standards_and_its_closed_form(analysis):
     c_gamma = analysis.attrs["mesh_stiffness_per_face_width_N_per_mm_um"]
     assert 5 < c_gamma < 40
