@@ -285,10 +285,17 @@ class Study:
         reference engines, each over its time steps or tolerances."""
         return [self.sweep_engine, *self.reference[model]]
 
-    def known_runs(self, trace, model):
-        """The default runs a convergence table reuses: its reference engines' (it writes
-        the sweep engine's itself)."""
-        return [self.run(trace, self.paper_spiral, model, e) for e in self.reference[model]]
+    def convergence_runs(self, trace, model):
+        """The runs a convergence table writes: each of its engines' at the default
+        settings, at the paper's design point (no separate job makes them)."""
+        return [self.run(trace, self.paper_spiral, model, e)
+                for e in self.convergence_engines(model)]
+
+    def convergence_default_runs(self, trace, model):
+        """``--default-run ENGINE=RUN.nc`` options of a convergence table: every run it
+        writes (:meth:`convergence_runs`)."""
+        return " ".join(f"--default-run {e}={r}" for e, r in
+                        zip(self.convergence_engines(model), self.convergence_runs(trace, model)))
 
     @property
     def convergence_files(self):

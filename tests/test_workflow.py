@@ -29,7 +29,8 @@ TEST_CONFIG = "workflow/config-test.yaml"
 
 # Rule -> the stage of lsbg.stages whose source files it lists as inputs.
 RULE_STAGES = {"paper_geometry": "geometry", "paper_ltca": "ltca", "sweep_points": "points", "simulate": "simulate",
-               "sensitivity": "simulate", "convergence": "convergence", "combine": "aggregate",
+               "sensitivity": "simulate", "convergence_point": "convergence",
+               "convergence_line": "convergence", "combine": "aggregate",
                "summary": "aggregate", "report_paper": "report", "report_sweep": "report",
                "report_verification": "report"}
 
@@ -94,11 +95,15 @@ def test_default_and_test_configs_are_valid_and_plan_the_study(tmp_path):
     points = [f for rule, out in jobs if rule in ("paper_geometry", "sweep_points")
               for f in out.split(", ") if f.startswith("results/geometry/")]
     assert len(points) == len(set(points)) == len(traces) * len(config["sweep"]["spiral_angles_deg"])
-    # both traces at the paper's point with each model's reference engines
-    reference = 2 * sum(len(engines) for engines in config["engines"]["reference"].values())
-    assert rules_of(jobs).count("simulate") == reference
+    # the reference engines' runs at the paper's point come from the convergence tables
+    # (one per trace and model), which write every engine's run at the default settings
+    assert "simulate" not in rules_of(jobs)
     assert rules_of(jobs).count("sensitivity") == 2  # one job per trace, every case
-    assert rules_of(jobs).count("convergence") == 4  # both traces, both models
+    assert rules_of(jobs).count("convergence_point") == rules_of(jobs).count("convergence_line") == 2
+    written = {f for rule, out in jobs if rule.startswith("convergence_") for f in out.split(", ")}
+    for model, engines in config["engines"]["reference"].items():
+        for engine in engines:
+            assert {f"results/runs/{t}_beta35_{model}_{engine}.nc" for t in traces} <= written
     for rule in ("combine", "summary", "report_paper", "report_sweep", "report_verification",
                  "all"):
         assert rule in rules_of(jobs)
@@ -111,6 +116,10 @@ def test_default_and_test_configs_are_valid_and_plan_the_study(tmp_path):
 def test_rules_list_the_lsbg_files_they_run(tmp_path):
     proc = snakemake("-n", "--snakefile", SNAKEFILE, cwd=tmp_path, check=True)
     inputs = job_inputs(proc.output)
+    # `simulate` makes single runs asked for by name (the study's come from other rules)
+    single = snakemake("-n", "--snakefile", SNAKEFILE, "results/runs/circular_beta30_point_pybullet.nc",
+                       cwd=tmp_path, check=True)
+    inputs["simulate"] = job_inputs(single.output)["simulate"]
     from lsbg.stages import stage_sources
 
     for rule, stage in RULE_STAGES.items():
@@ -255,8 +264,8 @@ def test_study_keeps_the_logs_and_the_validated_settings(study):
     root, _ = study
     assert "lsbg.export" in (root / "logs" / "paper_geometry"
                              / "logarithmic_beta35.log").read_text()
-    assert "lsbg.dynamics" in (root / "logs" / "simulate"
-                               / "circular_beta35_line_scipy.log").read_text()
+    assert "tangential_force_std_N" in (root / "logs" / "convergence"
+                                        / "circular_line.log").read_text()
     settings = yaml.safe_load((root / "results" / "config.yaml").read_text(encoding="utf-8"))
     assert settings["simulation"]["duration_s"] == 0.05
     assert settings["design"]["module_mm"] == 4.5
@@ -291,40 +300,37 @@ def test_a_changed_setting_reruns_only_the_runs_that_use_it(study, tmp_path):
     extra = write_yaml(tmp_path / "dt.yaml", {"simulation": {"time_step_s": 2e-6}})
     jobs, output = dry_run(study, extra)
     # (the point model's convergence tables write its compiled runs too: combine follows)
-    assert rules_of(jobs) == sorted(["simulate"] * 2 + ["convergence"] * 2
+    assert rules_of(jobs) == sorted(["convergence_point"] * 2
                                     + ["combine", "summary", "report_paper", "report_sweep",
                                        "report_verification", "all"]), output
-    assert {out for rule, out in jobs if rule == "simulate"} == {
-        f"results/runs/{t}_beta35_point_pybullet.nc" for t in ("logarithmic", "circular")}
-    assert {f for rule, out in jobs if rule == "convergence" for f in out.split(", ")} == {
+    assert {f for rule, out in jobs if rule == "convergence_point" for f in out.split(", ")} == {
         f"results/{name}" for t in ("logarithmic", "circular")
         for name in (f"verification/convergence_{t}_point.csv",
-                     f"runs/{t}_beta35_point_compiled.nc")}
+                     f"runs/{t}_beta35_point_compiled.nc", f"runs/{t}_beta35_point_pybullet.nc")}
     extra = write_yaml(tmp_path / "line.yaml", {"contact": {"mesh_damping_ratio": 0.07}})
     jobs, output = dry_run(study, extra)
-    assert rules_of(jobs) == sorted(["paper_ltca"] * 2 + ["simulate"] * 2 + ["sensitivity"] * 2
-                                    + ["convergence"] * 2
+    assert rules_of(jobs) == sorted(["paper_ltca"] * 2 + ["sensitivity"] * 2
+                                    + ["convergence_line"] * 2
                                     + ["combine", "summary", "report_paper", "report_sweep",
                                        "report_verification", "all"]), output
-    assert all("_line_" in out for rule, out in jobs if rule == "simulate")
     # Statistics settings rerun the statistics, not the simulations.
     extra = write_yaml(tmp_path / "stats.yaml", {"statistics": {"subgroup_size": 4}})
     jobs, output = dry_run(study, extra)
     assert rules_of(jobs) == sorted(["summary", "report_paper", "report_sweep", "all"]), output
 
 
+_CONVERGENCE = ["convergence_point"] * 2 + ["convergence_line"] * 2
 _AGGREGATES = ["combine", "summary", "report_paper", "report_sweep", "report_verification",
                "all"]
 CODE_CHANGES = {
-    "lsbg/verification.py": ["convergence"] * 4 + _AGGREGATES,
+    "lsbg/verification.py": _CONVERGENCE + _AGGREGATES,
     "lsbg/stats/samples.py": _AGGREGATES,
     "lsbg/ltca.py": ["paper_ltca"] * 2 + _AGGREGATES,
-    # every run at the paper's point reads its geometry; the convergence tables reuse the
-    # reference runs and write the compiled ones
-    "lsbg/sensitivity.py": ["simulate"] * 4 + ["sensitivity"] * 2 + ["convergence"] * 4
-                           + _AGGREGATES,
-    "lsbg/solids.py": ["paper_geometry"] * 2 + ["paper_ltca"] * 2 + ["simulate"] * 4
-                      + ["sensitivity"] * 2 + ["convergence"] * 4 + _AGGREGATES,
+    "lsbg/sensitivity.py": ["sensitivity"] * 2 + [r for r in _AGGREGATES if r != "combine"],
+    # every run at the paper's point reads its geometry; the convergence tables write
+    # every engine's run there
+    "lsbg/solids.py": ["paper_geometry"] * 2 + ["paper_ltca"] * 2
+                      + ["sensitivity"] * 2 + _CONVERGENCE + _AGGREGATES,
     "workflow/notebooks/sweep.ipynb": ["report_sweep", "all"],
 }
 

@@ -56,14 +56,19 @@ def test_every_run_and_file_of_the_default_study_is_planned_once(default):
     sweep_engine = {run for run in study.all_runs if run.endswith(f"_{study.sweep_engine}.nc")}
     assert sweep_engine == {f for f in produced if f.startswith("results/runs/")}
     assert set(study.meshes) == {f for f in produced if f.startswith("results/mesh/")}
-    # reference engines only at the paper's point; a convergence table reuses their runs
-    # (not its own engine's run, which it writes)
+    # reference engines only at the paper's point, where the convergence tables write
+    # every engine's default run: each reference run once, the sweep engine's too
     for run in study.reference_runs():
         assert f"_beta{study.paper_spiral}_" in run and run not in produced
-    for trace in plan.PAPER_TRACES:
-        for model in plan.CONTACT_MODELS:
-            assert set(study.known_runs(trace, model)) == set(study.reference_runs(model)) & {
-                study.run(trace, study.paper_spiral, model, e) for e in ("pybullet", "scipy")}
+    by_tables = [run for trace in plan.PAPER_TRACES for model in plan.CONTACT_MODELS
+                 for run in study.convergence_runs(trace, model)]
+    assert len(by_tables) == len(set(by_tables))
+    assert set(by_tables) == set(study.paper_runs)
+    assert set(study.reference_runs()) < set(by_tables)
+    options = study.convergence_default_runs("circular", "point")
+    assert options.split() == [
+        "--default-run", "compiled=results/runs/circular_beta35_point_compiled.nc",
+        "--default-run", "pybullet=results/runs/circular_beta35_point_pybullet.nc"]
     assert study.targets == [*study.reports.values(), plan.FILES["sweep"],
                              plan.FILES["summary"]]
 

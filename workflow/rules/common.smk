@@ -31,9 +31,15 @@ def check_config(config):
     """Check ``config`` (schema defaults filled in, in place); stop naming every bad key.
 
     Printed and exited rather than raised: Snakemake prints a raised error with
-    the stack lines of this file around the message.
+    the stack lines of this file around the message. Inside a job (a SLURM job's
+    Snakemake and its job step) the submitting Snakemake has checked the same
+    configuration: only the defaults are filled in there, which spares every
+    job about a CPU-second per Snakemake (the physics of every design point).
     """
     schema = yaml.safe_load(SCHEMA.read_text(encoding="utf-8"))
+    if workflow.remote_exec or workflow.subprocess_exec:
+        config_check.fill_defaults(config, schema)
+        return
     problems = config_check.check_config(config, schema)
     if problems:
         logger.error("invalid configuration (keys as in workflow/schemas/config.schema.yaml):\n"

@@ -1,9 +1,14 @@
-# At the paper's design point: the runs of the reference engines (one per trace,
-# model and engine), the model-form sensitivity runs (one job per trace) and
-# the convergence tables (one per trace and model). A convergence table reuses
-# the reference engines' default runs and writes its sweep-engine run at the
-# default tolerance as the design point's run of that engine (the same run
-# `lsbg simulate` would make: one job fewer per trace and model).
+# At the paper's design point: the model-form sensitivity runs (one job per
+# trace) and the convergence tables (one job per trace and contact model).
+# A convergence table runs every engine of its model over its time steps or
+# tolerances and writes each engine's run at the default settings as the
+# design point's run of that engine (the run `lsbg simulate` would make: no
+# job, no process start-up and no SLURM submission of its own). `simulate`
+# makes any other single run asked for by file name.
+
+
+ruleorder: convergence_point > simulate
+ruleorder: convergence_line > simulate
 
 
 rule simulate:
@@ -60,37 +65,43 @@ if STUDY.sensitivity:
             " --config {input.config} {params.cases} --out '{params.out}' > {log} 2>&1"
 
 
-rule convergence:
-    input:
-        geometry=template(FILES["geometry"], spiral=PAPER_SPIRAL),
-        known=lambda wildcards: STUDY.known_runs(wildcards.trace, wildcards.model),
-        config=ancient(FILES["study_config"]),
-        sources=sources("convergence"),
-    output:
-        table=report(
-            FILES["convergence"],
-            caption="../report/convergence.rst",
-            category="Verification",
-            labels={"trace": "{trace}", "table": "convergence {model}"},
-        ),
-        run=template(FILES["run"], spiral=PAPER_SPIRAL, engine=SWEEP_ENGINE),
-    params:
-        engine=SWEEP_ENGINE,
-        engines=lambda wildcards: " ".join(STUDY.convergence_engines(wildcards.model)),
-        settings=lambda wildcards: plan.canonical({
-            engine: simulation_params(engine, wildcards.model)
-            for engine in STUDY.convergence_engines(wildcards.model)}),
-        steady_state_after=config["statistics"]["steady_state_after_s"],
-    log:
-        "logs/convergence/{trace}_{model}.log",
-    threads: 1
-    resources:
-        mem_mb=1000,
-        runtime=simulation_runtime(runs=6),
-    conda:
-        CONDA_ENV
-    shell:
-        "lsbg -v convergence --geometry {input.geometry} --config {input.config}"
-        " --contact-model {wildcards.model} --engines {params.engines} --known {input.known}"
-        " --default-run {params.engine}={output.run}"
-        " --steady-state-after {params.steady_state_after} --out {output.table} > {log} 2>&1"
+for model in plan.CONTACT_MODELS:
+
+    rule:
+        name:
+            f"convergence_{model}"
+        input:
+            geometry=template(FILES["geometry"], spiral=PAPER_SPIRAL),
+            config=ancient(FILES["study_config"]),
+            sources=sources("convergence"),
+        output:
+            table=report(
+                template(FILES["convergence"], model=model),
+                caption="../report/convergence.rst",
+                category="Verification",
+                labels={"trace": "{trace}", "table": f"convergence {model}"},
+            ),
+            runs=[template(FILES["run"], spiral=PAPER_SPIRAL, model=model, engine=engine)
+                  for engine in STUDY.convergence_engines(model)],
+        params:
+            model=model,
+            engines=" ".join(STUDY.convergence_engines(model)),
+            default_runs=lambda wildcards, rule=model: STUDY.convergence_default_runs(
+                wildcards.trace, rule),
+            # Rerun trigger: the settings of the table's engines.
+            settings=plan.canonical({engine: simulation_params(engine, model)
+                                     for engine in STUDY.convergence_engines(model)}),
+            steady_state_after=config["statistics"]["steady_state_after_s"],
+        log:
+            f"logs/convergence/{{trace}}_{model}.log",
+        threads: 1
+        resources:
+            mem_mb=1000,
+            runtime=simulation_runtime(runs=6),
+        conda:
+            CONDA_ENV
+        shell:
+            "lsbg -v convergence --geometry {input.geometry} --config {input.config}"
+            " --contact-model {params.model} --engines {params.engines} {params.default_runs}"
+            " --steady-state-after {params.steady_state_after} --out {output.table}"
+            " > {log} 2>&1"
