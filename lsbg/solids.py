@@ -365,20 +365,50 @@ def _line_starts(azimuth):
     return np.flatnonzero(np.diff(azimuth, prepend=np.nan) != 0)
 
 
-def _chain_zip(left, left_polar, right, right_polar):
-    """Triangles between two meridian chains (left at the smaller azimuth).
+def _chain_zip(vertex, polar, left_start, left_count, right_start, right_count):
+    """Triangles between pairs of meridian chains (left at the smaller azimuth), pair by pair.
 
-    Each chain runs up from the root in polar angle; the result is
-    counter-clockwise in the (azimuth, polar angle) chart, like :func:`_zip`.
+    Each chain runs up from the root in polar angle. Within a pair the steps
+    up either chain are taken in order of the polar angle they reach (left
+    first on ties), each step one triangle; the result is counter-clockwise
+    in the (azimuth, polar angle) chart, like :func:`_zip`. All pairs are
+    zipped at once: a call per pair (~1500 per gear) cost 0.1-0.2 s per gear.
+
+    Parameters
+    ----------
+    vertex, polar : numpy.ndarray, shape (n,)
+        Vertex indices and polar angles [rad] of all chains end to end; the
+        polar angle never decreases along a chain.
+    left_start, left_count, right_start, right_count : numpy.ndarray of int, shape (k,)
+        Position in ``vertex`` of each pair's left and right chain and their
+        vertex counts (at least 1 each) [-].
+
+    Returns
+    -------
+    numpy.ndarray, shape (sum(left_count + right_count - 2), 3)
+        The faces of pair 0, then pair 1, ...
     """
-    nl, nr = left.size, right.size
-    keys = np.concatenate([left_polar[1:], right_polar[1:]])
-    is_left = np.concatenate([np.ones(nl - 1, bool), np.zeros(nr - 1, bool)])
-    step_l = is_left[np.argsort(keys, kind="stable")]
-    i0 = np.cumsum(step_l) - step_l
-    j0 = np.cumsum(~step_l) - ~step_l
-    third = np.where(step_l, left[np.minimum(i0 + 1, nl - 1)], right[np.minimum(j0 + 1, nr - 1)])
-    return np.stack([left[i0], right[j0], third], axis=1)
+    def steps(count):  # (pair, position of the step's upper vertex 1 ... count - 1)
+        owner = np.repeat(np.arange(count.size), count - 1)
+        first = np.cumsum(count - 1) - (count - 1)
+        return owner, np.arange(owner.size) - first[owner] + 1
+
+    pair_l, pos_l = steps(left_count)
+    pair_r, pos_r = steps(right_count)
+    pair, pos = np.concatenate([pair_l, pair_r]), np.concatenate([pos_l, pos_r])
+    is_left = np.arange(pair.size) < pair_l.size
+    key = polar[np.where(is_left, left_start[pair], right_start[pair]) + pos]
+    # Stable: ties go to the left chain (listed first), then up the chain.
+    order = np.lexsort((key, pair))
+    pair, pos, is_left = pair[order], pos[order], is_left[order]
+    per_pair = left_count + right_count - 2
+    rank = np.arange(pair.size) - (np.cumsum(per_pair) - per_pair)[pair]
+    # Steps already taken up the left (i) and right (j) chain before this one.
+    i0 = np.where(is_left, pos - 1, rank - (pos - 1))
+    j0 = np.where(is_left, rank - (pos - 1), pos - 1)
+    lower_left, lower_right = left_start[pair] + i0, right_start[pair] + j0
+    third = np.where(is_left, lower_left + 1, lower_right + 1)
+    return np.stack([vertex[lower_left], vertex[lower_right], vertex[third]], axis=1)
 
 
 def _tooth_region(index, polar, azimuth, root, step, new_points):
@@ -409,47 +439,36 @@ def _tooth_region(index, polar, azimuth, root, step, new_points):
     """
     starts = _line_starts(azimuth)
     ends = np.append(starts[1:], index.size)
-    at_root = np.isclose(polar, root, rtol=0, atol=1e-12)
-    # Levels below each single outline vertex above the root.
-    lines = []
-    new_theta, new_phi, owner = [], [], []
-    for g, (s, e) in enumerate(zip(starts, ends)):
-        members = np.arange(s, e)
-        lowest = members[np.argmin(polar[s:e])]
-        levels = np.empty(0)
-        if not at_root[lowest]:
-            n = int(math.ceil((polar[lowest] - root) / step))
-            levels = root + (polar[lowest] - root) * np.arange(n) / n
-        new_theta.append(levels)
-        new_phi.append(np.full(levels.size, azimuth[s]))
-        owner.append(np.full(levels.size, g))
-        lines.append(members)
-    new_theta = np.concatenate(new_theta)
-    added = new_points(new_theta, np.concatenate(new_phi))
-    owner = np.concatenate(owner)
-    split = np.searchsorted(owner, np.arange(len(lines) + 1))
-    chains, chain_polar = [], []
-    for g, members in enumerate(lines):
-        extra = slice(split[g], split[g + 1])
-        theta = np.concatenate([new_theta[extra], polar[members]])
-        order = np.argsort(theta, kind="stable")
-        chains.append(np.concatenate([added[extra], index[members]])[order])
-        chain_polar.append(theta[order])
-    faces = []
-    n_lines = len(lines)
-    for g in range(n_lines):
-        h = (g + 1) % n_lines
-        # The column's top edge joins the outline vertex that leaves line g
-        # to the one that enters line h.
-        top_left = polar[ends[g] - 1]
-        top_right = polar[starts[h]]
-        left = chain_polar[g] <= top_left
-        right = chain_polar[h] <= top_right
-        if left.sum() > 1 or right.sum() > 1:
-            faces.append(_chain_zip(chains[g][left], chain_polar[g][left],
-                                    chains[h][right], chain_polar[h][right]))
-    bottom = np.array([c[0] for c in chains])
-    return bottom, np.concatenate(faces)
+    n_lines = starts.size
+    line = np.repeat(np.arange(n_lines), ends - starts)
+    # Levels below the lowest outline vertex of each meridian, unless it is on the root.
+    lowest = np.minimum.reduceat(polar, starts)
+    rise = lowest - root
+    count = np.where(np.isclose(lowest, root, rtol=0, atol=1e-12), 0,
+                     np.maximum(np.ceil(rise / step), 0)).astype(np.int64)
+    owner = np.repeat(np.arange(n_lines), count)
+    level = np.arange(owner.size) - (np.cumsum(count) - count)[owner]
+    # Same operations, in the same order, as root + rise * arange(n) / n per meridian.
+    new_theta = root + rise[owner] * level / count[owner]
+    added = new_points(new_theta, azimuth[starts][owner])
+    # Each meridian's chain: its new levels, then its outline vertices, sorted
+    # by polar angle (stable, so new levels first on ties).
+    theta = np.concatenate([new_theta, polar])
+    chain_line = np.concatenate([owner, line])
+    order = np.lexsort((theta, chain_line))
+    chains, chain_polar, chain_line = (np.concatenate([added, index])[order], theta[order],
+                                       chain_line[order])
+    size = count + (ends - starts)
+    first = np.cumsum(size) - size
+    # Column g joins meridian g (up to the outline vertex that leaves it) to
+    # meridian h = g + 1 (up to the one that enters it); chains are sorted, so
+    # these are prefixes.
+    below = (chain_polar <= polar[ends - 1][chain_line],
+             chain_polar <= polar[starts][chain_line])
+    left_count, right_count = (np.add.reduceat(b.astype(np.int64), first) for b in below)
+    faces = _chain_zip(chains, chain_polar, first, left_count,
+                       np.roll(first, -1), np.roll(right_count, -1))
+    return chains[first], faces
 
 
 def _quads(first, second, points=None, period=None):

@@ -60,3 +60,14 @@ def test_picture_of_the_pair_shows_both_members(tmp_path):
     # background white around, caption dark at the top
     assert pixels[-1, -1].tolist() == [1.0, 1.0, 1.0]
     assert pixels[:30].min() < 0.3
+
+
+@pytest.mark.parametrize("factor", [1, 2, 3, 4])
+def test_downsample_is_bit_for_bit_the_numpy_block_sum(factor):
+    rng = np.random.default_rng(factor)
+    shape = (70 * factor, 50 * factor, 3)
+    # float32 sums of mixed magnitudes: any other order of addition shows
+    image = (rng.random(shape) * rng.choice([1e-4, 1.0, 1e4], shape)).astype(np.float32)
+    expected = image.reshape(70, factor, 50, factor, 3).sum(axis=(1, 3))
+    blocks = render._downsample(image, factor)
+    assert blocks.dtype == expected.dtype and np.array_equal(blocks, expected)

@@ -143,6 +143,130 @@ def test_end_faces_face_away_from_the_solid(built, member):
     assert (-radial[inner]).min() > 0.3
 
 
+# ------------------------------------- vectorised end-face columns vs the loops
+def _chain_zip_loop(left, left_polar, right, right_polar):
+    """The per-pair reference (lsbg 21acaf0): one column at a time."""
+    nl, nr = left.size, right.size
+    keys = np.concatenate([left_polar[1:], right_polar[1:]])
+    is_left = np.concatenate([np.ones(nl - 1, bool), np.zeros(nr - 1, bool)])
+    step_l = is_left[np.argsort(keys, kind="stable")]
+    i0 = np.cumsum(step_l) - step_l
+    j0 = np.cumsum(~step_l) - ~step_l
+    third = np.where(step_l, left[np.minimum(i0 + 1, nl - 1)], right[np.minimum(j0 + 1, nr - 1)])
+    return np.stack([left[i0], right[j0], third], axis=1)
+
+
+def _tooth_region_loop(index, polar, azimuth, root, step, new_points):
+    """The loop reference (lsbg 21acaf0) of :func:`solids._tooth_region`."""
+    starts = solids._line_starts(azimuth)
+    ends = np.append(starts[1:], index.size)
+    at_root = np.isclose(polar, root, rtol=0, atol=1e-12)
+    lines, new_theta, new_phi, owner = [], [], [], []
+    for g, (s, e) in enumerate(zip(starts, ends)):
+        members = np.arange(s, e)
+        lowest = members[np.argmin(polar[s:e])]
+        levels = np.empty(0)
+        if not at_root[lowest]:
+            n = int(math.ceil((polar[lowest] - root) / step))
+            levels = root + (polar[lowest] - root) * np.arange(n) / n
+        new_theta.append(levels)
+        new_phi.append(np.full(levels.size, azimuth[s]))
+        owner.append(np.full(levels.size, g))
+        lines.append(members)
+    new_theta = np.concatenate(new_theta)
+    added = new_points(new_theta, np.concatenate(new_phi))
+    split = np.searchsorted(np.concatenate(owner), np.arange(len(lines) + 1))
+    chains, chain_polar = [], []
+    for g, members in enumerate(lines):
+        extra = slice(split[g], split[g + 1])
+        theta = np.concatenate([new_theta[extra], polar[members]])
+        order = np.argsort(theta, kind="stable")
+        chains.append(np.concatenate([added[extra], index[members]])[order])
+        chain_polar.append(theta[order])
+    faces = []
+    for g in range(len(lines)):
+        h = (g + 1) % len(lines)
+        left = chain_polar[g] <= polar[ends[g] - 1]
+        right = chain_polar[h] <= polar[starts[h]]
+        if left.sum() > 1 or right.sum() > 1:
+            faces.append(_chain_zip_loop(chains[g][left], chain_polar[g][left],
+                                         chains[h][right], chain_polar[h][right]))
+    return np.array([c[0] for c in chains]), np.concatenate(faces)
+
+
+def _same(a, b):
+    return a.dtype == b.dtype and a.shape == b.shape and np.array_equal(a, b)
+
+
+def test_chain_zip_zips_every_pair_as_the_loop_does():
+    rng = np.random.default_rng(7)
+    chains, polar, lengths = [], [], []
+    for _ in range(60):
+        n = int(rng.choice([1, 1, 2, 3, 7]))
+        # coarse values: ties inside a chain and across chains
+        polar.append(np.sort(rng.integers(0, 5, n)) * 0.25)
+        chains.append(rng.integers(0, 10_000, n))
+        lengths.append(n)
+    start = np.cumsum(lengths) - lengths
+    vertex, polar_all = np.concatenate(chains), np.concatenate(polar)
+    left, right = rng.integers(0, 60, 200), rng.integers(0, 60, 200)
+    count_l = np.array([rng.integers(1, lengths[g] + 1) for g in left])
+    count_r = np.array([rng.integers(1, lengths[g] + 1) for g in right])
+    faces = solids._chain_zip(vertex, polar_all, start[left], count_l, start[right], count_r)
+    expected = np.concatenate([
+        _chain_zip_loop(chains[g][:nl], polar[g][:nl], chains[h][:nr], polar[h][:nr])
+        for g, h, nl, nr in zip(left, right, count_l, count_r)])
+    assert _same(faces, expected)
+    # a single pair, and a pair with one vertex on each side (no triangle)
+    one = solids._chain_zip(vertex, polar_all, start[:1], count_l[:1], start[1:2], count_r[:1])
+    assert _same(one, _chain_zip_loop(chains[0][:count_l[0]], polar[0][:count_l[0]],
+                                      chains[1][:count_r[0]], polar[1][:count_r[0]]))
+    assert solids._chain_zip(vertex, polar_all, *(np.array([0, 1, 0, 1][k:k + 1])
+                                                  for k in range(4))).shape == (0, 3)
+
+
+def _outlines(rng):
+    """Outlines with meridians of several vertices, vertices on the root, ties."""
+    root, step = 0.2, 0.03
+    for trial in range(40):
+        n_lines = int(rng.integers(1, 12))
+        per_line = rng.integers(1, 5, n_lines)
+        azimuth = np.repeat(np.sort(rng.choice(100, n_lines, replace=False)) * 0.05, per_line)
+        height = rng.choice([0.0, 0.0, 1e-13, 0.015, 0.03, 0.06, 0.1, 0.1234567], azimuth.size)
+        if trial % 2:  # arbitrary heights: rounding of the levels shows
+            height = np.where(height > 1e-12, rng.uniform(0, 0.2, azimuth.size), height)
+        polar = root + height
+        index = rng.permutation(10_000)[:azimuth.size]
+        yield index, polar, azimuth, root, step
+
+
+def test_tooth_region_matches_the_loop_on_outlines_and_gears(lsbg_pair):
+    rng = np.random.default_rng(11)
+    cases = list(_outlines(rng))
+    pair, d = lsbg_pair, lsbg_pair.design
+    for member in MEMBERS:        # the pinion has the radial continuation
+        radii = [d.inner_cone_distance, d.outer_cone_distance]
+        out = solids.section_outline(pair, member, radii)
+        for k in range(2):
+            cases.append((np.arange(out.azimuth.shape[1]) + 50, out.polar_angle[k],
+                          out.azimuth[k], d.root_angle(member), 0.03))
+    for index, polar, azimuth, root, step in cases:
+        results, made = [], []
+        for region in (solids._tooth_region, _tooth_region_loop):
+            calls = []
+
+            def new_points(theta, phi):
+                calls.append((theta, phi))
+                return 20_000 + np.arange(theta.size)
+
+            results.append(region(index, polar, azimuth, root, step, new_points))
+            made.append(calls)
+        (bottom, faces), (bottom_ref, faces_ref) = results
+        assert len(made[0]) == len(made[1]) == 1
+        assert all(_same(a, b) for a, b in zip(made[0][0], made[1][0]))
+        assert _same(bottom, bottom_ref) and _same(faces, faces_ref)
+
+
 # ---------------------------------------------------------- mass properties
 @pytest.mark.parametrize("member", MEMBERS)
 def test_mesh_mass_and_axial_inertia_match_the_quadrature(built, member):
