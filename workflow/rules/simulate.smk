@@ -86,6 +86,7 @@ for model in plan.CONTACT_MODELS:
         params:
             model=model,
             engines=" ".join(STUDY.convergence_engines(model)),
+            # (the default binds this rule's model: the loop variable moves on)
             default_runs=lambda wildcards, rule=model: STUDY.convergence_default_runs(
                 wildcards.trace, rule),
             # Rerun trigger: the settings of the table's engines.
