@@ -101,11 +101,12 @@ def stage_sources(stage, root=None):
     Returns
     -------
     list of str
-        ``lsbg/__init__.py`` and the files of the stage's modules.
+        ``lsbg/__init__.py`` with ``lsbg/numba_cache.py``, which it imports, and the
+        files of the stage's modules.
     """
     if stage not in STAGE_MODULES:
         raise ValueError(f"stage = {stage!r}: must be one of {sorted(STAGE_MODULES)}")
-    files = {PACKAGE / "__init__.py"}
+    files = {PACKAGE / "__init__.py", PACKAGE / "numba_cache.py"}
     for name in STAGE_MODULES[stage]:
         files.update(module_files(name))
     if root is None:

@@ -13,6 +13,7 @@ from pathlib import Path
 import pytest
 
 import lsbg
+from lsbg import numba_cache
 
 PACKAGE = Path(lsbg.__file__).resolve().parent
 NUMBA = "0.68.1"
@@ -41,8 +42,8 @@ def _copy_package(destination, mtime=None):
 
 
 def _copy_compiled(destination, mtime=None):
-    """Only the files of COMPILED_MODULES, enough for lsbg.numba_cache_dir."""
-    for name in lsbg.COMPILED_MODULES:
+    """Only the files of COMPILED_MODULES, enough for numba_cache.numba_cache_dir."""
+    for name in numba_cache.COMPILED_MODULES:
         (destination / name).parent.mkdir(parents=True, exist_ok=True)
         shutil.copy(PACKAGE / name, destination / name)
         if mtime is not None:
@@ -78,7 +79,7 @@ def first_copy(tmp_path_factory):
 def test_every_module_with_cached_kernels_is_listed():
     cached = {p.relative_to(PACKAGE).as_posix() for p in PACKAGE.rglob("*.py")
               if re.search(r"jit\([^)]*cache=True", p.read_text(encoding="utf-8"))}
-    assert cached == set(lsbg.COMPILED_MODULES)
+    assert cached == set(numba_cache.COMPILED_MODULES)
 
 
 def test_the_directory_depends_on_content_and_numba_version_not_on_path(tmp_path, monkeypatch):
@@ -87,21 +88,21 @@ def test_the_directory_depends_on_content_and_numba_version_not_on_path(tmp_path
     here = _copy_compiled(tmp_path / "here")
     there = _copy_compiled(tmp_path / "deeper" / "there", mtime=OLD)
     root = tmp_path / "cache"
-    directory = lsbg.numba_cache_dir(here, str(root), NUMBA)
+    directory = numba_cache.numba_cache_dir(here, str(root), NUMBA)
     assert Path(directory).parent == root and Path(directory).is_dir()
-    assert lsbg.numba_cache_dir(there, str(root), NUMBA) == directory
-    assert lsbg.numba_cache_dir(here, str(root), "0.69.0") != directory
-    assert lsbg.compiled_sources_tag(here) == lsbg.compiled_sources_tag(here, numba.__version__)
+    assert numba_cache.numba_cache_dir(there, str(root), NUMBA) == directory
+    assert numba_cache.numba_cache_dir(here, str(root), "0.69.0") != directory
+    assert numba_cache.compiled_sources_tag(here) == numba_cache.compiled_sources_tag(here, numba.__version__)
     name = Path(directory).name
     # the root: the user's NUMBA_CACHE_DIR, else $XDG_CACHE_HOME/lsbg, else ~/.cache/lsbg
     monkeypatch.delenv("NUMBA_CACHE_DIR", raising=False)
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
-    assert Path(lsbg.numba_cache_dir(here, None, NUMBA)) == tmp_path / "xdg" / "lsbg" / name
+    assert Path(numba_cache.numba_cache_dir(here, None, NUMBA)) == tmp_path / "xdg" / "lsbg" / name
     monkeypatch.setenv("XDG_CACHE_HOME", "relative/ignored")
     monkeypatch.setenv("HOME", str(tmp_path / "home"))
-    assert Path(lsbg.numba_cache_dir(here, None, NUMBA)) == tmp_path / "home/.cache/lsbg" / name
+    assert Path(numba_cache.numba_cache_dir(here, None, NUMBA)) == tmp_path / "home/.cache/lsbg" / name
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "user"))
-    assert Path(lsbg.numba_cache_dir(here, None, NUMBA)) == tmp_path / "user" / name
+    assert Path(numba_cache.numba_cache_dir(here, None, NUMBA)) == tmp_path / "user" / name
 
 
 def test_lsbg_kernels_use_the_content_keyed_locator():
@@ -109,14 +110,14 @@ def test_lsbg_kernels_use_the_content_keyed_locator():
 
     from lsbg.dynamics import settings
 
-    LsbgCacheLocator = lsbg.numba_cache_locator()
+    LsbgCacheLocator = numba_cache.numba_cache_locator()
     assert caching.CacheImpl._locator_classes[0] is LsbgCacheLocator
     locator = settings.pinion_state._cache._impl.locator
     assert isinstance(locator, LsbgCacheLocator)
     path = Path(locator.get_cache_path())
-    assert path.name == "lsbg.dynamics.settings" and path.parent.name == lsbg.compiled_sources_tag()
+    assert path.name == "lsbg.dynamics.settings" and path.parent.name == numba_cache.compiled_sources_tag()
     assert locator.get_source_stamp() == (
-        lsbg.compiled_sources_tag(),
+        numba_cache.compiled_sources_tag(),
         hashlib.sha256((PACKAGE / "dynamics" / "settings.py").read_bytes()).hexdigest())
 
     def elsewhere(x):
@@ -126,13 +127,13 @@ def test_lsbg_kernels_use_the_content_keyed_locator():
 
 
 def test_import_lsbg_stays_light_and_registers_the_locator_whatever_the_order():
-    check = ("from numba.core import caching; locator = lsbg.numba_cache_locator(); "
+    check = ("from numba.core import caching; locator = numba_cache.numba_cache_locator(); "
              "assert caching.CacheImpl._locator_classes[0] is locator; "
              "assert caching.CacheImpl._locator_classes.count(locator) == 1; "
-             "lsbg.register_numba_cache_locator(); "
+             "numba_cache.register_numba_cache_locator(); "
              "assert caching.CacheImpl._locator_classes.count(locator) == 1")
-    for code in ("import sys, lsbg; assert 'numba' not in sys.modules; import numba; " + check,
-                 "import numba, lsbg; " + check):
+    for code in ("import sys, lsbg; from lsbg import numba_cache; assert 'numba' not in sys.modules; import numba; " + check,
+                 "import numba, lsbg; from lsbg import numba_cache; " + check):
         proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                               env=dict(os.environ, PYTHONDONTWRITEBYTECODE="1"))
         assert proc.returncode == 0, proc.stderr
@@ -169,16 +170,16 @@ def test_old_versions_beyond_keep_caches_are_removed_least_recently_used_first(t
     root = tmp_path / "cache"
     kernels = copy / "contact" / "kernels.py"
     sources, directories = [], []
-    for k in range(lsbg.KEEP_CACHES):
+    for k in range(numba_cache.KEEP_CACHES):
         kernels.write_text(kernels.read_text(encoding="utf-8") + f"# edit {k}\n", encoding="utf-8")
         sources.append(kernels.read_text(encoding="utf-8"))
-        directories.append(Path(lsbg.numba_cache_dir(copy, str(root), NUMBA)))
+        directories.append(Path(numba_cache.numba_cache_dir(copy, str(root), NUMBA)))
         os.utime(directories[-1], (OLD + k, OLD + k))       # used in this order
-    assert len(set(directories)) == lsbg.KEEP_CACHES
+    assert len(set(directories)) == numba_cache.KEEP_CACHES
     kernels.write_text(sources[0], encoding="utf-8")       # the oldest version used again
-    assert Path(lsbg.numba_cache_dir(copy, str(root), NUMBA)) == directories[0]
+    assert Path(numba_cache.numba_cache_dir(copy, str(root), NUMBA)) == directories[0]
     kernels.write_text(sources[-1] + "# a new version\n", encoding="utf-8")
-    latest = Path(lsbg.numba_cache_dir(copy, str(root), NUMBA))
+    latest = Path(numba_cache.numba_cache_dir(copy, str(root), NUMBA))
     kept = {p for p in root.iterdir()}
     assert kept == {latest, directories[0], directories[2]}   # the second one was least used
 
@@ -187,16 +188,16 @@ def test_an_unwritable_cache_root_falls_back(tmp_path, monkeypatch):
     copy = _copy_compiled(tmp_path / "copy")
     blocked = tmp_path / "a-file"
     blocked.write_text("")                     # nothing can be created below a file, even as root
-    directory = Path(lsbg.numba_cache_dir(copy, str(blocked / "cache"), NUMBA))
+    directory = Path(numba_cache.numba_cache_dir(copy, str(blocked / "cache"), NUMBA))
     assert directory.parent == copy / "__pycache__" and directory.is_dir()
     shutil.rmtree(copy / "__pycache__")
     (copy / "__pycache__").write_text("")
-    assert lsbg.numba_cache_dir(copy, str(blocked / "cache"), NUMBA) is None
+    assert numba_cache.numba_cache_dir(copy, str(blocked / "cache"), NUMBA) is None
     # no directory at all: the locator declines and numba's own locators take over
     from lsbg.dynamics import settings
 
-    monkeypatch.setattr(lsbg, "_cache_directory", lambda *args: None)
-    assert lsbg.numba_cache_locator().from_function(
+    monkeypatch.setattr(numba_cache, "_cache_directory", lambda *args: None)
+    assert numba_cache.numba_cache_locator().from_function(
         settings.pinion_state.py_func, settings.__file__) is None
 
 
@@ -221,7 +222,7 @@ def test_concurrent_saves_into_one_cache_are_serialised(tmp_path, monkeypatch):
 
     path = tmp_path / "lsbg.module"
     path.mkdir()
-    monkeypatch.setattr(lsbg, "_lsbg_cache_paths", {str(path)})
+    monkeypatch.setattr(numba_cache, "_lsbg_cache_paths", {str(path)})
     first = IndexDataCacheFile(str(path), "module.f-1.py311", ("numba-0", "digest"))
     second = IndexDataCacheFile(str(path), "module.f-1.py311", ("numba-0", "digest"))
     others = []

@@ -16,6 +16,7 @@ PLOTTING = ("figures", "reports", "cli")
 #: Top-level modules in the order the data flows: a module may import only
 #: modules of its own layer or of layers before it.
 LAYERS = (
+    ("numba_cache",),
     ("design",),
     ("geometry", "polyhedra", "theory"),
     ("solids", "render", "files", "mass", "urdf"),

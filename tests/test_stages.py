@@ -41,6 +41,7 @@ def test_report_stage_covers_the_notebooks(name):
 def test_stage_sources_are_files_of_the_package():
     files = stages.stage_sources("simulate", root=REPO)
     assert "lsbg/__init__.py" in files and "lsbg/contact/kernels.py" in files
+    assert "lsbg/numba_cache.py" in files     # imported by lsbg/__init__.py
     assert "lsbg/dynamics/compiled_engine.py" in files
     assert all((REPO / f).is_file() for f in files)
     assert "lsbg/stats.py" not in files
