@@ -179,6 +179,29 @@ def test_compiled_engine_matches_scipy_at_tight_tolerance(geometry, model):
         assert samples["compiled"] == pytest.approx(samples["scipy"], rel=1e-3), name
 
 
+def test_scipy_engine_lsoda_agrees_with_a_solve_ivp_method(geometry):
+    """LSODA runs through odeint and the other methods through solve_ivp: two
+    drivers and two methods of one equation (line model) agree within 0.02 %
+    on the stds (measured: 4e-5 at most)."""
+    model = load_model(geometry, ContactParameters(model="line"))
+    short = SimulationSettings(engine="scipy", duration=0.1, samples=50, ramp_time=0.04,
+                               full_rate_after=0.04)
+    runs = {method: model.run(short.replace(method=method)) for method in ("LSODA", "DOP853")}
+    for name in ("gear_speed", "tangential_force"):
+        stds = {method: getattr(r.full_rate, name).std(ddof=1) for method, r in runs.items()}
+        assert stds["LSODA"] == pytest.approx(stds["DOP853"], rel=2e-4), name
+        assert stds["LSODA"] > 0
+
+
+def test_scipy_engine_reports_an_odepack_failure(geometry, monkeypatch):
+    from lsbg.dynamics import scipy_engine
+
+    monkeypatch.setattr(scipy_engine, "_MAX_STEPS_PER_INTERVAL", 5)
+    short = SimulationSettings(engine="scipy", duration=0.02, samples=10, ramp_time=0.01)
+    with pytest.raises(SimulationError, match=r"odeint \(LSODA\) failed: Excess work"):
+        load_model(geometry).run(short)
+
+
 def test_compiled_engine_converges_under_tightening_tolerance(geometry):
     model = load_model(geometry)
     stds = [np.degrees(model.run(QUARTER.replace(engine="compiled", rtol=rtol)).full_rate

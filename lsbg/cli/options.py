@@ -196,7 +196,7 @@ SIMULATION_OPTIONS = {
     "samples": ("samples", int, "output intervals; samples+1 instants (paper: 500)"),
     "dt": ("time_step_s", float, "fixed time step of the pybullet engine [s] (1e-6)"),
     "rtol": ("rtol", float, "relative tolerance of the scipy engine (1e-8)"),
-    "method": ("method", str, "solve_ivp method of the scipy engine (LSODA)"),
+    "method": ("method", str, "method of the scipy engine (LSODA, or a solve_ivp method)"),
     "pinion_speed": ("pinion_speed_deg_s", float, "final pinion speed [deg/s] (paper: 7703)"),
     "ramp_time": ("ramp_time_s", float, "STEP ramp time of the pinion speed [s] (paper: 0.2)"),
     "load_torque": ("load_torque_N_m", float, "resisting torque on the gear [N m] (paper: 1964.99)"),
@@ -249,7 +249,7 @@ def add_simulation_options(parser, contact_model=True):
     parser.add_argument("--geometry", required=True, metavar="DIR",
                         help="geometry directory written by 'lsbg geometry'")
     parser.add_argument("--engine", choices=("pybullet", "scipy", "compiled"), default="pybullet",
-                        help="integrator: pybullet (multibody, fixed step), scipy (solve_ivp) or "
+                        help="integrator: pybullet (multibody, fixed step), scipy (scipy's LSODA) or "
                              "compiled (embedded Runge-Kutta compiled with numba) "
                              "(default: pybullet)")
     add_contact_options(parser, model=contact_model)

@@ -6,7 +6,7 @@
   inertias), run records, :func:`load_model` and :func:`simulate`;
 * the engines, three independent integrators of the same model:
   :mod:`~lsbg.dynamics.pybullet_engine` (the multibody model in PyBullet,
-  fixed step), :mod:`~lsbg.dynamics.scipy_engine` (solve_ivp, LSODA) and
+  fixed step), :mod:`~lsbg.dynamics.scipy_engine` (scipy's LSODA) and
   :mod:`~lsbg.dynamics.compiled_engine` (an embedded Runge-Kutta loop compiled
   with numba).
 

@@ -26,10 +26,10 @@ from numba import njit
 
 from lsbg.contact.law import step_scalar
 
-#: Integrators: the multibody engine, scipy's solve_ivp, and the compiled
-#: embedded Runge-Kutta loop (:mod:`lsbg.dynamics.compiled_engine`).
+#: Integrators: the multibody engine, scipy's LSODA (or another solve_ivp
+#: method), and the compiled embedded Runge-Kutta loop (:mod:`lsbg.dynamics.compiled_engine`).
 ENGINES = ("pybullet", "scipy", "compiled")
-#: solve_ivp methods of the scipy engine.
+#: Methods of the scipy engine: LSODA through odeint, the others through solve_ivp.
 SCIPY_METHODS = ("DOP853", "LSODA", "RK45", "Radau", "BDF")
 #: Embedded Runge-Kutta pairs of the compiled engine.
 COMPILED_METHODS = ("DOP853", "RK45")
@@ -65,7 +65,8 @@ class SimulationSettings:
         Absolute tolerances on angle [rad] and speed [rad/s] (scipy and
         compiled engines).
     method : str
-        :func:`scipy.integrate.solve_ivp` method of the scipy engine.
+        Method of the scipy engine: LSODA (through :func:`scipy.integrate.odeint`)
+        or another :func:`scipy.integrate.solve_ivp` method.
     compiled_method : {"DOP853", "RK45"}
         Embedded Runge-Kutta pair of the compiled engine.
     full_rate : float
