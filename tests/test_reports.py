@@ -5,6 +5,7 @@ import re
 import shutil
 from pathlib import Path
 
+import pandas as pd
 import pytest
 import xarray as xr
 
@@ -82,7 +83,7 @@ def paper_parameters(files):
     return {"runs": list(files["runs"].values()), "sensitivity_runs": files["sensitivity"],
             "mesh_files": list(files["meshes"].values()),
             "geometry_dirs": [files["geometry"][t] for t in ("logarithmic", "circular")],
-            "summary_file": files["summary"], "paper_engine": "pybullet",
+            "paper_engine": "pybullet",
             "line_engine": "compiled", **STATISTICS}
 
 
@@ -115,7 +116,7 @@ def test_paper_report(study_files, tmp_path):
               "7. Xbar-R control charts", "8. Simulated means", "9. The paper", "10. Which gear",
               "11. Agreement", "12. What the paper", "13. The line model",
               "14. Dynamics under the line model", "15. Model-form sensitivity",
-              "16. The workflow", "17. Conclusion"],
+              "16. The summary statistics", "17. Conclusion"],
         # pair picture, Fig. 8, 9-10, 11, 12, 13, 14, 15 (2), 16, 17 (2), 18 (2); sampling
         # luck, spectrum, full-rate stretch; TE and stiffness, load sharing, contact
         # pattern; two spectra, full-rate stretch; sensitivity
@@ -136,6 +137,10 @@ def test_paper_report(study_files, tmp_path):
     for cell in ("line model (baseline)", "point model", "damping ratio ×2", "500-Hz sampling"):
         assert cell in html
     assert "survives the model form" in html or "no ranking is stated" in html
+    # Section 16 recomputes the summary table's rows of this design point
+    table = pd.read_csv(study_files["summary"])
+    for row in table[table.engine != "ltca"].itertuples():
+        assert f"{row.full_rate_std:.6g}" in html, row.run
 
 
 def test_sweep_report(study_files, tmp_path):
@@ -206,9 +211,9 @@ def test_bad_report_input_exit_2(tmp_path, capsys):
 
 def test_notebooks_declare_the_interface_parameters():
     expected = {
-        "paper": {"runs", "sensitivity_runs", "mesh_files", "geometry_dirs", "summary_file",
-                  "paper_engine", "line_engine", "steady_state_after_s",
-                  "chart_window_start_s", "chart_window_stop_s", "subgroup_size"},
+        "paper": {"runs", "sensitivity_runs", "mesh_files", "geometry_dirs", "paper_engine",
+                  "line_engine", "steady_state_after_s", "chart_window_start_s",
+                  "chart_window_stop_s", "subgroup_size"},
         "sweep": {"sweep_file", "summary_file", "speed_curve_file", "steady_state_after_s"},
         "verification": {"convergence_files", "geometry_dirs", "runs", "mesh_files",
                          "steady_state_after_s"},

@@ -10,7 +10,6 @@ rule report_paper:
         sensitivity=STUDY.sensitivity_runs(),
         meshes=STUDY.paper_meshes,
         geometry=STUDY.paper_geometry,
-        summary=FILES["summary"],
         sources=sources("report"),
     output:
         report(STUDY.reports["paper"], caption="../report/reports.rst", category="Reports",
@@ -39,7 +38,6 @@ rule report_paper:
         "lsbg -v report paper --notebook-dir {params.notebook_dir} --out {output}"
         " --param 'runs={params.runs}' --param 'sensitivity_runs={params.sensitivity}'"
         " --param 'mesh_files={params.meshes}' --param 'geometry_dirs={params.geometry}'"
-        " --param summary_file={input.summary}"
         " --param paper_engine={params.paper_engine}"
         " --param line_engine={params.line_engine}"
         " --param steady_state_after_s={params.steady_state_after}"
