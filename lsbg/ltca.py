@@ -288,7 +288,7 @@ def unloaded_transmission_error(pair, pinion_angles, side="drive", n_face=7):
     """
     from scipy.optimize import minimize_scalar
 
-    from lsbg.geometry import rotate
+    from lsbg.vectors import rotate
 
     if side != "drive":
         raise ValueError(f"side = {side!r}: only the drive side is implemented")

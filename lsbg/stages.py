@@ -19,25 +19,24 @@ PACKAGE = Path(__file__).resolve().parent
 #: Stage -> the lsbg modules (or packages) its command imports, directly or not.
 STAGE_MODULES = {
     # (contact ... theory: lsbg.cli.options reads contact and simulation options too)
-    "geometry": ("cli", "design", "files", "geometry", "polyhedra", "solids", "mass", "urdf",
-                 "render", "export", "contact", "dynamics", "results", "theory"),
-    "ltca": ("cli", "design", "files", "geometry", "contact", "dynamics", "ltca", "results",
-             "theory"),
-    "points": ("cli", "design", "files", "geometry", "polyhedra", "solids", "mass", "urdf",
-               "render", "export", "contact", "dynamics", "ltca", "results", "theory"),
-    "simulate": ("cli", "design", "files", "geometry", "contact", "dynamics", "results",
+    "geometry": ("cli", "design", "files", "geometry", "vectors", "polyhedra", "solids", "mass",
+                 "urdf", "render", "export", "contact", "dynamics", "results", "theory"),
+    "ltca": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "ltca",
+             "results", "theory"),
+    "points": ("cli", "design", "files", "geometry", "vectors", "polyhedra", "solids", "mass",
+               "urdf", "render", "export", "contact", "dynamics", "ltca", "results", "theory"),
+    "simulate": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "results",
                  "theory", "sensitivity"),
-    "convergence": ("cli", "design", "files", "geometry", "contact", "dynamics", "results",
-                    "theory", "verification"),
-    "speed": ("cli", "design", "files", "geometry", "contact", "dynamics", "results", "theory",
-              "spectra", "speed"),
-    "aggregate": ("cli", "design", "files", "geometry", "contact", "dynamics", "results",
+    "convergence": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics",
+                    "results", "theory", "verification"),
+    "speed": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "results",
+              "theory", "spectra", "speed"),
+    "aggregate": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "results",
                   "theory", "stats", "spectra", "runs", "combine", "summary"),
     # the notebooks' imports too (tests/test_stages.py reads them)
-    "report": ("cli", "design", "files", "geometry", "contact", "dynamics", "results", "theory",
-               "stats", "spectra", "runs", "combine", "summary", "ltca", "reports",
-               "verification", "tables",
-               "figures", "sensitivity", "speed"),
+    "report": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "results",
+               "theory", "stats", "spectra", "runs", "combine", "summary", "ltca", "reports",
+               "verification", "tables", "figures", "sensitivity", "speed"),
 }
 
 #: Stage -> where its command starts: ``"module:function"`` of the lsbg.cli

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from lsbg.design import DesignError, GearPairDesign, circular_arc_sin_angle
-from lsbg.geometry import GearPair, rotate
+from lsbg.geometry import GearPair
+from lsbg.vectors import rotate
 
 
 @pytest.fixture(scope="module", params=["logarithmic", "circular"])

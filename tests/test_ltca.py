@@ -12,7 +12,8 @@ from lsbg.contact import ContactParameters, MeshContact
 from lsbg.design import GearPairDesign
 from lsbg.dynamics import SimulationSettings, load_model
 from lsbg.export import write_geometry
-from lsbg.geometry import GearPair, rotate
+from lsbg.geometry import GearPair
+from lsbg.vectors import rotate
 
 LOAD = 1964.99
 LINE = ContactParameters(model="line")

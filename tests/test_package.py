@@ -18,6 +18,7 @@ PLOTTING = ("figures", "reports", "cli")
 LAYERS = (
     ("numba_cache",),
     ("design",),
+    ("vectors",),
     ("geometry", "polyhedra", "theory"),
     ("solids", "render", "files", "mass", "urdf"),
     ("export",),

@@ -10,7 +10,8 @@ from scipy import integrate
 from lsbg import mass, solids
 from lsbg.urdf import write_urdf
 from lsbg.design import GearPairDesign
-from lsbg.geometry import GearPair, rotate
+from lsbg.geometry import GearPair
+from lsbg.vectors import rotate
 
 MEMBERS = (1, 2)
 

@@ -496,3 +496,17 @@ def test_plot_xbar_r_marks_out_of_control_and_shares_scales():
     assert alarms(ax_r) == ([21], "red")
     calm_fig = statistics_figures.plot_xbar_r(calm, xbar_ylim=xbar_ylim, r_ylim=r_ylim)
     assert alarms(calm_fig.axes[0])[0] == []
+
+
+def test_circular_bootstrap_replicates_are_the_resampled_series_stds():
+    """The compiled prefix-sum kernel gives each replicate the std of the series
+    resampled at its blocks' indices (the definition), to rounding."""
+    from lsbg.stats import bootstrap
+
+    rng = np.random.default_rng(11)
+    x = np.cumsum(rng.normal(size=1003)) * 0.1 + rng.normal(size=1003)
+    for length in (1, 7, 40):
+        fast = bootstrap._bootstrap_std(x, length, 300, np.random.default_rng(5), "circular")
+        indices = bootstrap._block_indices(x.size, length, 300, np.random.default_rng(5),
+                                           "circular")
+        np.testing.assert_allclose(fast, x[indices].std(axis=1, ddof=1), rtol=1e-12)

@@ -29,7 +29,8 @@ stats.anderson_darling(x)``):
   plot's positions;
 * :mod:`lsbg.stats.control`: Xbar-R control-chart constants and limits;
 * :mod:`lsbg.stats.bootstrap`: autocorrelation, effective sample size and
-  block-bootstrap intervals of a standard deviation or of a ratio of two;
+  block-bootstrap intervals of a standard deviation or of a ratio of two
+  (its hot loop compiled in :mod:`lsbg.stats.kernels`);
 * :mod:`lsbg.stats.comparison`: the simulated means against theory and the
   fluctuation of two gear types compared.
 

@@ -194,13 +194,16 @@ def _bootstrap_std(series, length, n_boot, rng, method):
     """Standard deviations (ddof = 1) of ``n_boot`` block-bootstrap replicates.
 
     Circular replicates are summed block by block from prefix sums of the
-    (centred) series, so a long series (a full-rate record of 40 000 samples)
-    costs n_boot x blocks operations instead of n_boot x n; the random starts
-    are the draws of :func:`_block_indices`, so the replicates are the same.
+    (centred) series (:func:`lsbg.stats.kernels.circular_block_stds`), so a
+    long series (a full-rate record of 40 000 samples) costs n_boot x blocks
+    operations instead of n_boot x n; the random starts are the draws of
+    :func:`_block_indices`, so the replicates are the same.
     """
     if method != "circular":
         return series[_block_indices(series.size, length, n_boot, rng, method)].std(
             axis=1, ddof=1)
+    from lsbg.stats.kernels import circular_block_stds
+
     n = series.size
     n_blocks = -(-n // length)
     starts = rng.integers(0, n, size=(n_boot, n_blocks, 1))[..., 0]
@@ -208,11 +211,9 @@ def _bootstrap_std(series, length, n_boot, rng, method):
     wrapped = np.concatenate([centred, centred[:length]])
     sums = np.concatenate([[0.0], np.cumsum(wrapped)])
     squares = np.concatenate([[0.0], np.cumsum(wrapped * wrapped)])
-    ends = np.full(n_blocks, length)
-    ends[-1] = n - (n_blocks - 1) * length   # the last block is cut to n samples
-    total = (sums[starts + ends] - sums[starts]).sum(axis=1)
-    total_squares = (squares[starts + ends] - squares[starts]).sum(axis=1)
-    return np.sqrt(np.maximum(total_squares - total * total / n, 0.0) / (n - 1))
+    lengths = np.full(n_blocks, length, dtype=np.int64)
+    lengths[-1] = n - (n_blocks - 1) * length   # the last block is cut to n samples
+    return circular_block_stds(sums, squares, np.ascontiguousarray(starts), lengths, n)
 
 
 def _percentile_interval(replicates, confidence):

@@ -261,7 +261,8 @@ def conjugacy_errors(design, side="drive", phases=25, n=17) -> pd.DataFrame:
         member's flank point from the contact line point) [m] and
         ``normal_mismatch`` (largest |n1 + n2|) [-].
     """
-    from lsbg.geometry import GearPair, rotate
+    from lsbg.geometry import GearPair
+    from lsbg.vectors import rotate
 
     pair = GearPair(design)
     lo, hi = pair.planes[side].field[:2]
