@@ -24,7 +24,8 @@ from lsbg.files import number_label
 
 __all__ = ["PAPER_TRACES", "CONTACT_MODELS", "REPORT_NAMES", "STUDY_SECTIONS", "FILES",
            "design_points", "speed_labels", "speed_keywords", "canonical", "yaml_text",
-           "write_study_config", "simulation_params", "simulation_runtime", "Study"]
+           "write_study_config", "simulation_params", "simulation_runtime", "JOB_SECONDS",
+           "GATE_RULES", "job_priority", "Study"]
 
 #: Both traces run at the paper's design point (the paper compares them).
 PAPER_TRACES = ("logarithmic", "circular")
@@ -175,6 +176,45 @@ BUDGET_PER_SECOND = 100.0
 def simulation_runtime(config, runs=1):
     """Cluster time limit [min] of ``runs`` simulations (generous, at least 10 min)."""
     return max(10, math.ceil(runs * config["simulation"]["duration_s"] * BUDGET_PER_SECOND / 60))
+
+
+#: Wall time [s] of one job of each rule in the default study, measured with
+#: ``snakemake -j2`` on the 2-core reference machine (tests/benchmarks/bench_study.py,
+#: 2026-11-24). Only their order matters: it is the order of :func:`job_priority`.
+JOB_SECONDS = {"sweep_points": 15, "convergence_point": 14, "report_paper": 12,
+               "report_verification": 8, "report_sweep": 8, "convergence_line": 6,
+               "sensitivity": 4, "summary": 3, "combine": 2}
+#: Short jobs that every report and aggregate waits for: before all others, in this order.
+GATE_RULES = ("paper_geometry", "paper_ltca")
+
+
+def job_priority(rule):
+    """Snakemake priority of the jobs of ``rule``: the paper point's gates, then of the
+    jobs ready to run the longest first.
+
+    Snakemake knows the DAG but not what a job costs. Without priorities it
+    started a sweep batch last, and the combined dataset, the summary and the
+    sweep report then ran after it with a core idle (65 s with -j2, 1.72 times
+    faster than -j1). Longest-processing-time-first leaves short jobs for the
+    end, where they fill both cores; the paper point's geometry and loaded TCA
+    (1-2 s each) go first because every report and aggregate waits for them
+    (left to the end by their length, they held all of those back: 82 s).
+
+    Parameters
+    ----------
+    rule : str
+        A rule of the workflow.
+
+    Returns
+    -------
+    int
+        Above every measured rule for :data:`GATE_RULES` (the first highest), else
+        the rule's measured job seconds (:data:`JOB_SECONDS`; 0 for a rule not
+        measured there).
+    """
+    if rule in GATE_RULES:
+        return max(JOB_SECONDS.values()) + len(GATE_RULES) - GATE_RULES.index(rule)
+    return JOB_SECONDS.get(rule, 0)
 
 
 # ---------------------------------------------------------------- the study

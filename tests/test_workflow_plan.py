@@ -122,3 +122,36 @@ def test_study_config_is_written_only_when_it_changes(default, tmp_path):
     plan.write_study_config(path, changed)
     assert yaml.safe_load(path.read_text(encoding="utf-8"))["simulation"]["samples"] == 1000
     assert not list(path.parent.glob("*.part"))
+
+
+def _rule_priorities():
+    """{rule: the rule named in its ``priority: plan.job_priority(...)``} of every rule in
+    workflow/rules/*.smk that has one (the convergence rules, made in a loop over the
+    contact models, once per model)."""
+    import re
+
+    found = {}
+    for path in sorted((REPO / "workflow" / "rules").glob("*.smk")):
+        text = path.read_text(encoding="utf-8")
+        starts = [(m.start(), m.group(1) or m.group(2)) for m in
+                  re.finditer(r"^\s*rule (\w+):|^\s*f\"(convergence_\{model\})\"", text, re.M)]
+        for (start, name), (end, _) in zip(starts, starts[1:] + [(len(text), None)]):
+            match = re.search(r"priority: plan\.job_priority\(f?\"([^\"]+)\"\)", text[start:end])
+            if match:
+                for model in plan.CONTACT_MODELS:
+                    found[name.format(model=model)] = match.group(1).format(model=model)
+    return found
+
+
+def test_jobs_run_longest_first_after_the_paper_points_gates():
+    priorities = _rule_priorities()
+    assert priorities == {rule: rule for rule in priorities}     # each rule names itself
+    assert set(priorities) == set(plan.JOB_SECONDS) | set(plan.GATE_RULES)
+    gates = [plan.job_priority(rule) for rule in plan.GATE_RULES]
+    assert gates == sorted(gates, reverse=True) and len(set(gates)) == len(gates)
+    assert all(min(gates) > plan.job_priority(rule) for rule in plan.JOB_SECONDS)
+    for a in plan.JOB_SECONDS:
+        for b in plan.JOB_SECONDS:
+            assert (plan.JOB_SECONDS[a] > plan.JOB_SECONDS[b]) == \
+                (plan.job_priority(a) > plan.job_priority(b)), (a, b)
+    assert plan.job_priority("speed_run") == 0        # not measured: after the study's jobs

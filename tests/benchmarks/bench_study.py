@@ -24,6 +24,7 @@ the copied lsbg):
 import argparse
 import base64
 import json
+import math
 import os
 import shutil
 import subprocess
@@ -50,18 +51,23 @@ def copy_repository(target):
 
 
 def job_records(root):
-    """(rule, first output, seconds) of every job, from Snakemake's metadata (one record
-    per output file there: a job with several outputs is counted once)."""
+    """(rule, first output, start, end) of every job [s since the first start], from
+    Snakemake's metadata. It keeps one record per output file, each with its own time
+    stamps (they differ by milliseconds between the outputs of one job): a job is
+    its rule and log file, which every rule names per job."""
     jobs = {}
     folder = root / ".snakemake" / "metadata"
     for entry in sorted(folder.iterdir()):
         meta = json.loads(entry.read_text())
         if meta.get("starttime") and meta.get("endtime"):
             output = base64.urlsafe_b64decode(entry.name.encode()).decode(errors="replace")
-            seconds = max(0.0, meta["endtime"] - meta["starttime"])
-            jobs.setdefault((meta["rule"], meta["starttime"], meta["endtime"]),
-                            (meta["rule"], output, seconds))
-    return list(jobs.values())
+            key = (meta["rule"], tuple(meta.get("log") or [output]))
+            rule, first, start, end = jobs.get(key, (meta["rule"], output, math.inf, -math.inf))
+            jobs[key] = (rule, min(first, output), min(start, meta["starttime"]),
+                         max(end, meta["endtime"]))
+    origin = min((start for _, _, start, _ in jobs.values()), default=0.0)
+    return sorted((rule, first, start - origin, end - origin)
+                  for rule, first, start, end in jobs.values())
 
 
 #: What each start-up probe imports (a new interpreter each).
@@ -123,16 +129,24 @@ def clean(root):
         shutil.rmtree(root / name, ignore_errors=True)
 
 
-def print_rules(root, label):
+def print_rules(root, label, cores=1):
+    """Print the job time per rule and, for ``cores`` > 1, the timeline and the idle
+    core time; return the job records."""
     records = job_records(root)
     per_rule = defaultdict(list)
-    for rule, _, seconds in records:
-        per_rule[rule].append(seconds)
+    for rule, _, start, end in records:
+        per_rule[rule].append(end - start)
     total = sum(sum(v) for v in per_rule.values())
     print(f"\njob time per rule, {label} ({len(records)} jobs, {total:.0f} job-s):")
     for rule, times in sorted(per_rule.items(), key=lambda item: -sum(item[1])):
         print(f"  {rule:<22} {len(times):3d} jobs  sum {sum(times):7.1f} s  "
               f"max {max(times):7.1f} s  ({100 * sum(times) / total:4.1f} %)")
+    if cores > 1 and records:
+        span = max(end for _, _, _, end in records)
+        print(f"timeline [s from the first job's start] (first job to last: {span:.1f} s, "
+              f"idle core time {cores * span - total:.1f} s):")
+        for rule, first, start, end in sorted(records, key=lambda r: r[2]):
+            print(f"  {start:6.1f} {end:6.1f}  {rule:<22} {first}")
     return records
 
 
@@ -167,7 +181,7 @@ def main(argv=None):
             clean(root)
             walls[jobs] = run_workflow(root, env, jobs)
             print(f"full study -j{jobs}: {walls[jobs]:.1f} s")
-            records = print_rules(root, f"-j{jobs}")
+            records = print_rules(root, f"-j{jobs}", cores=jobs)
         figures.append(figure("full study, snakemake -j2 from scratch", walls[2], "s",
                               STUDY_TARGET_S))
         if 1 in walls:
@@ -176,20 +190,18 @@ def main(argv=None):
                                   PARALLEL_TARGET, smaller=False))
         import xarray as xr
 
-        print("\none simulation (integration = the run's wall_time_s; job = Snakemake job):")
-        jobs = {Path(out).name: seconds for rule, out, seconds in records if rule == "simulate"}
+        print("\nintegration time of each run (its wall_time_s attribute):")
         for path in sorted((root / "results" / "runs").glob("*.nc")):
             with xr.open_dataset(path) as ds:
                 seconds = float(ds.attrs["wall_time_s"])
-            print(f"  {path.name:<36} integration {seconds:7.1f} s   "
-                  f"job {jobs.get(path.name, float('nan')):7.1f} s")
+            print(f"  {path.name:<40} integration {seconds:7.1f} s")
         if not args.no_speed:
-            before = {(rule, out) for rule, out, _ in job_records(root)}
+            before = {(rule, out) for rule, out, _, _ in job_records(root)}
             wall = run_workflow(root, env, 2, "workflow/config-speed.yaml")
-            speed = [(rule, out, s) for rule, out, s in job_records(root)
+            speed = [rule for rule, out, _, _ in job_records(root)
                      if (rule, out) not in before or rule in ("speed_run", "speed_curve")]
             print(f"speed sweep on top of the study, -j2: {wall:.1f} s "
-                  f"({sum(rule == 'speed_run' for rule, _, _ in speed)} runs)")
+                  f"({speed.count('speed_run')} runs)")
             print_rules(root, "with the speed sweep")
             figures.append(figure("speed sweep (runs, curve, sweep report), -j2", wall, "s",
                                   SPEED_TARGET_S))

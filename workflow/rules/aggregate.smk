@@ -10,6 +10,7 @@ rule combine:
         # update(): Snakemake keeps the previous file until the new one is complete
         # (by default it deletes a job's outputs before the job runs).
         update(FILES["sweep"]),
+    priority: plan.job_priority("combine")
     log:
         "logs/combine/sweep.log",
     threads: 1
@@ -33,6 +34,7 @@ rule summary:
     params:
         # Rerun trigger: the statistics settings the table depends on.
         statistics=plan.canonical(config["statistics"]),
+    priority: plan.job_priority("summary")
     log:
         "logs/summary/summary.log",
     threads: 1

@@ -30,7 +30,7 @@ rule paper_geometry:
         design=plan.canonical(config["design"]),
     wildcard_constraints:
         spiral=re.escape(PAPER_SPIRAL),
-    priority: 10
+    priority: plan.job_priority("paper_geometry")
     log:
         "logs/paper_geometry/{trace}_beta{spiral}.log",
     threads: 1
@@ -57,6 +57,7 @@ rule paper_ltca:
         contact=simulation_params(SWEEP_ENGINE, "line")["contact"],
     wildcard_constraints:
         spiral=re.escape(PAPER_SPIRAL),
+    priority: plan.job_priority("paper_ltca")
     log:
         "logs/paper_ltca/{trace}_beta{spiral}.log",
     threads: 1
@@ -105,6 +106,7 @@ if BATCH:
                 for m in STUDY.sweep_models),
             design=plan.canonical(config["design"]),
             settings={m: simulation_params(SWEEP_ENGINE, m) for m in STUDY.sweep_models},
+        priority: plan.job_priority("sweep_points")
         log:
             "logs/sweep_points/{trace}.log",
         threads: 1

@@ -26,6 +26,7 @@ rule report_paper:
         window_start=config["statistics"]["control_chart_window_s"][0],
         window_stop=config["statistics"]["control_chart_window_s"][1],
         subgroup_size=config["statistics"]["subgroup_size"],
+    priority: plan.job_priority("report_paper")
     log:
         "logs/report_paper/paper.log",
     threads: 1
@@ -59,6 +60,7 @@ rule report_sweep:
     params:
         notebook_dir=lambda wildcards, input: os.path.dirname(input.notebook),
         steady_state_after=config["statistics"]["steady_state_after_s"],
+    priority: plan.job_priority("report_sweep")
     log:
         "logs/report_sweep/sweep.log",
     threads: 1
@@ -92,6 +94,7 @@ rule report_verification:
         runs=lambda wildcards, input: yaml_list(input.runs),
         meshes=lambda wildcards, input: yaml_list(input.meshes),
         steady_state_after=config["statistics"]["steady_state_after_s"],
+    priority: plan.job_priority("report_verification")
     log:
         "logs/report_verification/verification.log",
     threads: 1

@@ -52,6 +52,7 @@ if STUDY.sensitivity:
             out=lambda w: template(FILES["sensitivity_run"], trace=w.trace, spiral=PAPER_SPIRAL),
             engine=SWEEP_ENGINE,
             settings=simulation_params(SWEEP_ENGINE, "line"),
+        priority: plan.job_priority("sensitivity")
         log:
             "logs/sensitivity/{trace}.log",
         threads: 1
@@ -93,6 +94,7 @@ for model in plan.CONTACT_MODELS:
             settings=plan.canonical({engine: simulation_params(engine, model)
                                      for engine in STUDY.convergence_engines(model)}),
             steady_state_after=config["statistics"]["steady_state_after_s"],
+        priority: plan.job_priority(f"convergence_{model}")
         log:
             f"logs/convergence/{{trace}}_{model}.log",
         threads: 1
