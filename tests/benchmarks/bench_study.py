@@ -176,18 +176,28 @@ def main(argv=None):
         for name, seconds in startup_costs().items():
             print(f"  {name:45s} {seconds:6.2f}")
             figures.append(figure(f"start-up: {name}", seconds, "s"))
-        walls = {}
+        walls, job_seconds = {}, {}
         for jobs in ((1, 2) if not args.no_j1 else (2,)):
             clean(root)
             walls[jobs] = run_workflow(root, env, jobs)
             print(f"full study -j{jobs}: {walls[jobs]:.1f} s")
             records = print_rules(root, f"-j{jobs}", cores=jobs)
+            job_seconds[jobs] = sum(end - start for _, _, start, end in records)
         figures.append(figure("full study, snakemake -j2 from scratch", walls[2], "s",
                               STUDY_TARGET_S))
         if 1 in walls:
             figures.append(figure("full study, snakemake -j1 from scratch", walls[1], "s"))
             figures.append(figure("parallel efficiency, -j1 / -j2", walls[1] / walls[2], "",
                                   PARALLEL_TARGET, smaller=False))
+            # What the machine takes away: the same jobs run slower two at a time (shared
+            # caches, the host), and Snakemake's own start-up is not parallel. With the
+            # -j2 jobs packed without a gap, -j2 could take at best W2/2 + S.
+            contention = job_seconds[2] / job_seconds[1]
+            serial = walls[1] - job_seconds[1]
+            figures.append(figure("job seconds -j2 / -j1 (two jobs at once run slower)",
+                                  contention, ""))
+            figures.append(figure("efficiency with the -j2 jobs packed without a gap",
+                                  walls[1] / (job_seconds[2] / 2 + serial), ""))
         import xarray as xr
 
         print("\nintegration time of each run (its wall_time_s attribute):")
