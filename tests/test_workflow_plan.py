@@ -4,6 +4,7 @@ tests/test_config_checks.py)."""
 
 import copy
 import os
+import re
 from pathlib import Path
 
 import pytest
@@ -128,8 +129,6 @@ def _rule_priorities():
     """{rule: the rule named in its ``priority: plan.job_priority(...)``} of every rule in
     workflow/rules/*.smk that has one (the convergence rules, made in a loop over the
     contact models, once per model)."""
-    import re
-
     found = {}
     for path in sorted((REPO / "workflow" / "rules").glob("*.smk")):
         text = path.read_text(encoding="utf-8")
