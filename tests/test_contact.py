@@ -548,3 +548,19 @@ def test_force_never_negative_and_friction_opposes_sliding(kernel):
     details = kernel.pair_contacts(0.1, gear_angle + 0.1 * 9 / 37, 0.0, 1e4)
     assert details
     assert all(pc.normal_force == 0.0 for pc in details)
+
+
+@pytest.mark.parametrize("pinion_speed", [1e3, 1e9, -1e9])
+def test_the_table_prefetch_leaves_the_forces_alone(kernel, pinion_speed):
+    """The point model prefetches the phase table's rows the contact lines
+    will reach (kernels._prefetch_rows): however fast they turn, the normal
+    force at a state is the one at rest (the gear keeps pace, no approach
+    rate), and a NaN speed gives NaN, not a crash or a hang."""
+    gear_angle = kernel.static_gear_angle(LOAD, 0.1)
+    at_rest = kernel.forces(0.1, gear_angle)
+    gear_speed = pinion_speed * kernel.e1 / kernel.e2
+    moving = kernel.forces(0.1, gear_angle, pinion_speed, gear_speed)
+    assert moving.normal_force == pytest.approx(at_rest.normal_force, rel=1e-6)
+    assert moving.max_penetration == at_rest.max_penetration
+    assert moving.pairs == at_rest.pairs
+    assert math.isnan(kernel.forces(0.1, gear_angle, float("nan"), 0.0).normal_force)

@@ -229,7 +229,7 @@ class MeshContact:
             point = plane.point(rho_star, phases + plane.curve.polar_angle(rho_star))
             a = np.cross(pair.rotation_axis[1], point)  # pinion circumferential x radius
             b = np.cross(pair.rotation_axis[2], point)  # gear circumferential x radius
-            columns = np.zeros((n, k.N_COLUMNS))
+            columns = np.zeros((n, k.N_PHASE_COLUMNS))
             columns[:, k.T_LEVER] = lever
             columns[:, k.T_AA], columns[:, k.T_AB] = np.sum(a * a, 1), np.sum(a * b, 1)
             columns[:, k.T_BB], columns[:, k.T_RADIUS] = np.sum(b * b, 1), np.linalg.norm(b, axis=1)
@@ -237,7 +237,7 @@ class MeshContact:
             columns[~inside] = 0.0
             sides[s, k.S_INV_STEP], sides[s, k.S_ROWS] = 1.0 / step_, n
             tables.append(columns)
-        table = np.zeros((2, max(len(t) for t in tables), k.N_COLUMNS))
+        table = np.zeros((2, max(len(t) for t in tables), k.N_PHASE_COLUMNS))
         for s, columns in enumerate(tables):
             table[s, :len(columns)] = columns
         return sides, table
