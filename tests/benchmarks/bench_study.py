@@ -73,6 +73,10 @@ def job_records(root):
 #: What each start-up probe imports (a new interpreter each).
 STARTUP_PROBES = {
     "python alone": "pass",
+    # every snakemake run pays it once: its plugins are collected at import (the
+    # SLURM executor plugin asks `scontrol show config`, which waits up to 10 s
+    # when scontrol is installed but no controller answers)
+    "snakemake (import, executor plugins)": "import snakemake.cli",
     "lsbg command line (parser)": "import lsbg.cli; lsbg.cli.build_parser()",
     "simulation stage (lsbg.dynamics)": "import lsbg.dynamics, lsbg.results",
     "design point stage (geometry, solids, ltca)": "import lsbg.export, lsbg.ltca",
