@@ -80,7 +80,8 @@ N_DETAILS = 14
 #: How far ahead of the contact lines' motion the point model's phase table
 #: is prefetched [s] (see :func:`_prefetch_rows`): about five PyBullet steps.
 PREFETCH_TIME = 5e-6
-#: Most rows prefetched ahead per tooth pair [-] (also the cap at NaN speeds).
+#: Most rows prefetched ahead per tooth pair [-]: PREFETCH_TIME's worth up to
+#: about three times the paper's pinion speed (19 rows at the paper's).
 PREFETCH_ROWS = 64
 
 
@@ -99,7 +100,7 @@ def _prefetch(typingctx, array, side, offset):
         i32 = ir.IntType(32)
         prefetch = cgutils.get_or_insert_function(
             builder.module, ir.FunctionType(ir.VoidType(), [address.type, i32, i32, i32]),
-            "llvm.prefetch." + ("p0" if address.type.is_opaque else "p0i8"))
+            "llvm.prefetch.p0")
         builder.call(prefetch, [address, ir.Constant(i32, 0), ir.Constant(i32, 3),
                                 ir.Constant(i32, 1)])
         return context.get_dummy_value()
@@ -124,7 +125,6 @@ def _prefetch_rows(table, side, row, ahead, rows):
     columns = table.shape[2]
     for offset in range(lo * columns, hi * columns, 8):  # 8 doubles: one 64-byte line
         _prefetch(table, side, offset)
-
 
 
 @njit(cache=True)
@@ -172,7 +172,8 @@ def _point_side(side, eps, eps_rate, sign, phase, phase_rate, w1, w2, params, si
     relative = w1 * params[P_E1] - w2 * params[P_E2]
     phase += math.ceil((first - phase) / pitch) * pitch
     ahead = phase_rate * PREFETCH_TIME * inv_step
-    ahead = int(ahead) if abs(ahead) < PREFETCH_ROWS else 0  # also 0 at NaN
+    # at most PREFETCH_ROWS either way; none at a NaN speed
+    ahead = int(min(max(ahead, -PREFETCH_ROWS), PREFETCH_ROWS)) if ahead == ahead else 0
     gear = pinion = tangential = normal = 0.0
     pairs = 0
     deepest = -math.inf
