@@ -1,11 +1,32 @@
-"""The figure factory and the colours every figure shares."""
+"""The figure factory, the colours, and the labels and legends every figure shares.
+
+Every figure is read in a browser at about 1400 px, from a PNG rendered at
+100 dpi (:func:`lsbg.reports.figure_png`), so what this module builds keeps a
+figure readable there: axis labels "quantity [unit]" with units as printed
+(µrad, N/µm, N·m; :func:`axis_label`), long labels wrapped rather than cut,
+and legends outside the data (:func:`figure_legend`, :func:`legend_above`).
+"""
 
 from __future__ import annotations
+
+import textwrap
 
 import numpy as np
 from matplotlib.figure import Figure
 
 from lsbg.design import TRACE_LABELS
+from lsbg.tables.style import display_unit  # one unit spelling for tables and axes
+
+#: Widest figure a report shows at full size: 1340 px at 100 dpi [inch].
+MAX_WIDTH = 13.4
+
+#: Units of the run quantities as lsbg writes them, for tables that do not carry them.
+QUANTITY_UNITS = {
+    "pinion_speed": "deg/s", "gear_speed": "deg/s", "tangential_force": "N",
+    "tangential_force_outer": "N", "normal_force": "N", "contact_torque": "N m",
+    "transmission_error": "urad", "max_penetration": "um", "contact_pairs": "1",
+}
+
 #: One colour per gear type in every figure.
 TYPE_COLORS = {"SBG": "C0", "LSBG": "C1"}
 
@@ -17,6 +38,9 @@ def type_color(label):
 
 def new_figure(nrows=1, ncols=1, width=4.6, height=3.2, **subplot_kw):
     """A constrained-layout figure and its axes, always a 2-D array.
+
+    The figure is at most :data:`MAX_WIDTH` wide: more panels in a row get
+    narrower.
 
     Parameters
     ----------
@@ -31,7 +55,8 @@ def new_figure(nrows=1, ncols=1, width=4.6, height=3.2, **subplot_kw):
     -------
     matplotlib.figure.Figure, numpy.ndarray of Axes
     """
-    fig = Figure(figsize=(width * ncols + 0.6, height * nrows + 0.4), layout="constrained")
+    total = min(width * ncols + 0.6, MAX_WIDTH)
+    fig = Figure(figsize=(total, height * nrows + 0.4), layout="constrained")
     axes = fig.subplots(nrows, ncols, squeeze=False, **subplot_kw)
     return fig, axes
 
@@ -72,3 +97,210 @@ def envelope(x, y, bins=1500, log=False):
     high_at = np.array([s + np.argmax(y[s:e]) for s, e in zip(starts, ends)])
     index = np.stack([np.minimum(low_at, high_at), np.maximum(low_at, high_at)], axis=1).ravel()
     return x[index], y[index]
+
+
+def wrap_label(text, width=None) -> str:
+    """A label wrapped to lines of at most ``width`` characters, a bracketed unit kept whole.
+
+    Parameters
+    ----------
+    text : str
+        E.g. "gear-speed fluctuation [% of mean]".
+    width : int, optional
+        Characters per line [-]; None leaves the label on one line.
+
+    Returns
+    -------
+    str
+    """
+    text = str(text)
+    if width is None or len(text) <= width:
+        return text
+    # no-break spaces inside brackets: textwrap breaks only at ASCII whitespace
+    kept = []
+    depth = 0
+    for char in text:
+        depth += (char == "[") - (char == "]")
+        kept.append("\u00a0" if char == " " and depth > 0 else char)
+    return textwrap.fill("".join(kept), width=width, break_long_words=False,
+                         break_on_hyphens=False)
+
+
+def axis_label(quantity, unit, wrap=None) -> str:
+    """An axis label "quantity [unit]", the unit as printed, wrapped if long.
+
+    Parameters
+    ----------
+    quantity : str
+        What the axis shows, e.g. "gear angular velocity".
+    unit : str
+        Its unit as a dataset writes it (``urad``, ``N/um``, ``1``) or as
+        printed; empty for none (no brackets).
+    wrap : int, optional
+        Wrap the label to lines of at most this many characters [-], the
+        unit kept whole (:func:`wrap_label`): a y label longer than its axes
+        is cut off at the figure's edge or runs along the next panel.
+
+    Returns
+    -------
+    str
+    """
+    shown = display_unit(unit)
+    return wrap_label(f"{quantity} [{shown}]" if shown else str(quantity), wrap)
+
+
+def legend_entries(axes, first=()):
+    """Legend handles and labels of the axes, each label once.
+
+    Parameters
+    ----------
+    axes : iterable of Axes
+    first : sequence of str
+        Labels starting with one of these come first, in this order (e.g.
+        the gear types before a theory line drawn in every panel); the rest
+        follow in order of appearance.
+
+    Returns
+    -------
+    handles, labels : list
+    """
+    entries = {}
+    for ax in axes:
+        for handle, label in zip(*ax.get_legend_handles_labels()):
+            entries.setdefault(label, handle)
+
+    def rank(label):
+        starts = [k for k, prefix in enumerate(first) if label.startswith(prefix)]
+        return starts[0] if starts else len(first)
+
+    labels = sorted(entries, key=rank)   # sorted() is stable: appearance order within a rank
+    return [entries[label] for label in labels], labels
+
+
+def figure_legend(fig, axes=None, handles=None, labels=None, ncols=None, fontsize="small",
+                  first=(), **kwargs):
+    """One legend for the whole figure, above its panels, where it covers no data.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        With constrained layout, which makes room for the legend.
+    axes : iterable of Axes, optional
+        Whose labelled artists make the entries, each label once (default:
+        every axes of the figure); ignored if ``handles`` is given.
+    handles, labels : list, optional
+        The entries themselves (e.g. proxy artists for line styles).
+    ncols : int, optional
+        Columns (default: up to three, fewer for fewer entries).
+    fontsize : str or float
+    first : sequence of str
+        Labels starting with these come first (see :func:`legend_entries`).
+    **kwargs
+        Passed to :meth:`matplotlib.figure.Figure.legend` (e.g. ``markerscale``).
+
+    Returns
+    -------
+    matplotlib.legend.Legend or None
+        None if there is nothing to show.
+    """
+    if handles is None:
+        handles, labels = legend_entries(fig.axes if axes is None else axes, first)
+    elif labels is None:
+        labels = [h.get_label() for h in handles]
+    if not handles:
+        return None
+    return fig.legend(handles, labels, loc="outside upper center",
+                      ncols=ncols or min(len(handles), 3), fontsize=fontsize, frameon=False,
+                      **kwargs)
+
+
+def type_entries(labels, styles=()):
+    """Legend proxies: a line per gear type in its colour, then a grey line per style.
+
+    Parameters
+    ----------
+    labels : sequence of str
+        Gear types (or traces), one entry each.
+    styles : sequence of (dict, str)
+        ``(Line2D keywords, text)``: what a marker or line style means
+        whatever the colour (e.g. ``({"marker": "s", "ls": ":"}, "full rate")``).
+
+    Returns
+    -------
+    list of matplotlib.lines.Line2D
+        For :func:`figure_legend` ``handles``.
+    """
+    from matplotlib.lines import Line2D
+
+    handles = [Line2D([], [], color=type_color(label), marker="o", ms=4,
+                      label=TRACE_LABELS.get(label, label)) for label in labels]
+    handles += [Line2D([], [], label=text, **{"color": "0.35", **style}) for style, text in styles]
+    return handles
+
+
+def legend_above(ax, ncols=1, fontsize="small", **kwargs):
+    """The axes' legend just above it, outside the data (for entries of one panel only).
+
+    Constrained layout makes room for it between the panel and what is above.
+
+    Returns
+    -------
+    matplotlib.legend.Legend
+    """
+    return ax.legend(loc="lower center", bbox_to_anchor=(0.5, 1.0), ncols=ncols,
+                     fontsize=fontsize, frameon=False, borderaxespad=0.2, **kwargs)
+
+
+_SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
+def scientific(value, digits=3) -> str:
+    """A number as a label prints it: 3.55×10⁻¹⁵ rather than 3.55e-15, 10⁻⁶ for 1e-06.
+
+    Parameters
+    ----------
+    value : float
+    digits : int
+        Significant figures [-].
+    """
+    mantissa, exponent = f"{float(value):.{max(digits - 1, 0)}e}".split("e")
+    mantissa = mantissa.rstrip("0").rstrip(".") if "." in mantissa else mantissa
+    power = f"10{str(int(exponent)).translate(_SUPERSCRIPT)}"
+    return power if mantissa == "1" else f"{mantissa}×{power}"
+
+
+def sparse_log_ticks(axis):
+    """Minor ticks of a log axis at 2 and 5 times the powers of ten, labelled over few decades.
+
+    Over about one decade matplotlib labels every minor tick (2, 3, ... 9 ×
+    10ⁿ), and on a panel a few inches wide 3×10⁴ and 4×10⁴ overprint each
+    other. Here the minor ticks sit at 2× and 5× only, labelled while the
+    view spans at most two and a half decades, unlabelled beyond (the powers
+    of ten are then enough). Call it after the data are drawn: it reads the
+    axis' view.
+
+    Parameters
+    ----------
+    axis : matplotlib.axis.Axis
+        Of a log-scaled axes.
+    """
+    from matplotlib.ticker import LogFormatterSciNotation, LogLocator, NullFormatter
+
+    # the axes' limits, not the axis' view interval: they apply a pending autoscale
+    view = axis.axes.get_xlim() if axis.axis_name == "x" else axis.axes.get_ylim()
+    low, high = sorted(view)
+    axis.set_minor_locator(LogLocator(base=10.0, subs=(2.0, 5.0)))
+    if low > 0 and np.log10(high / low) <= 2.5:
+        axis.set_minor_formatter(LogFormatterSciNotation(labelOnlyBase=False,
+                                                         minor_thresholds=(np.inf, np.inf)))
+    else:
+        axis.set_minor_formatter(NullFormatter())
+
+
+def wrap_categories(labels, width=14):
+    """Category tick labels wrapped onto lines of at most ``width`` characters [-].
+
+    Horizontal, wrapped labels take no more room than rotated ones and never
+    run into their neighbours.
+    """
+    return [textwrap.fill(str(label), width=width, break_long_words=False) for label in labels]

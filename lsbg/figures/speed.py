@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from lsbg.design import TRACE_LABELS
-from lsbg.figures.base import new_figure, type_color
+from lsbg.figures.base import figure_legend, new_figure, sparse_log_ticks, type_color, wrap_label
 
 #: Curve variables plotted against pinion speed, with their axis labels.
 CURVE_PANELS = (
@@ -13,6 +13,9 @@ CURVE_PANELS = (
     ("dynamic_factor", "dynamic factor [-]"),
     ("gear_speed_fluctuation", "gear-speed fluctuation [% of mean]"),
 )
+#: Characters per line of the y labels: a label longer than its panel (2.4 inch)
+#: would run along the next one.
+LABEL_WRAP = 26
 #: Line style of the resonance marker of each order (f_mesh = f_n / order).
 ORDER_STYLES = {1: "--", 2: ":", 3: "-."}
 
@@ -43,7 +46,8 @@ def plot_speed_curve(curve):
         One panel per quantity, both traces, log speed axis; vertical lines
         where the mesh frequency meets the natural frequency (dashed) and its
         half (dotted) and third (dash-dotted), per trace; the top axis in
-        mesh frequency over the natural frequency of the first trace.
+        mesh frequency over the natural frequency of the first trace; the
+        legend above the panels.
     """
     fig, axes = new_figure(len(CURVE_PANELS), 1, width=7.0, height=2.4, sharex=True)
     speeds = curve["pinion_speed"].values
@@ -53,19 +57,20 @@ def plot_speed_curve(curve):
             ax.plot(speeds, curve[name].sel(trace=trace).values, "o-", ms=2.5, lw=1.0,
                     color=type_color(str(trace)), label=TRACE_LABELS.get(str(trace), trace))
         _mark_resonances(ax, curve, label=row == 0)
-        ax.set_ylabel(label)
+        ax.set_ylabel(wrap_label(label, LABEL_WRAP))
         ax.set_xscale("log")
         if name != "dynamic_factor":
             ax.set_yscale("log")
         ax.grid(True, which="both", lw=0.3, alpha=0.5)
-    axes[0, 0].legend(fontsize=6.5, ncol=2, loc="upper left")
+    figure_legend(fig, [axes[0, 0]], ncols=4, fontsize="x-small")
     axes[-1, 0].set_xlabel("pinion speed [deg/s]")
     natural = float(curve["natural_frequency"].values[0])
     teeth = int(curve.attrs["design_pinion_teeth"])
     top = axes[0, 0].secondary_xaxis(
         "top", functions=(lambda s: s / 360.0 * teeth / natural,
                           lambda r: r * natural * 360.0 / teeth))
-    top.set_xlabel(f"mesh frequency / f_n ({TRACE_LABELS.get(str(curve['trace'].values[0]))}, "
+    sparse_log_ticks(axes[-1, 0].xaxis)   # the panels share it
+    top.set_xlabel(f"mesh frequency / f_n [-] ({TRACE_LABELS.get(str(curve['trace'].values[0]))}, "
                    f"f_n = {natural:.4g} Hz)")
     return fig
 
@@ -102,6 +107,7 @@ def plot_campbell(curve, floor_db=-20.0):
         natural = float(curve["natural_frequency"].sel(trace=trace))
         ax.axhline(natural, color="red", ls="--", lw=0.8)
         ax.set_xscale("log")
+        sparse_log_ticks(ax.xaxis)
         ax.set_ylim(frequency[0], frequency[-1])
         ax.set_title(f"{TRACE_LABELS.get(trace, trace)}: f_n = {natural:.4g} Hz", fontsize=9)
         ax.set_xlabel("pinion speed [deg/s]")

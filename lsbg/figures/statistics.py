@@ -17,7 +17,8 @@ import numpy as np
 from matplotlib.figure import Figure
 from scipy import special, stats as sps
 
-from lsbg.figures.base import new_figure
+from lsbg.figures.base import (MAX_WIDTH, axis_label, display_unit, legend_above, new_figure,
+                               scientific)
 from lsbg.runs import runs_by_type, quantity_label, steady
 from lsbg.stats.control import xbar_r_ylims
 from lsbg.stats.normality import anderson_darling, normal_probability
@@ -29,9 +30,8 @@ __all__ = ["plot_normal_probability", "plot_histogram", "plot_boxplot", "plot_xb
 
 
 def _axis_label(label, units):
-    """'label [units]', or whichever part is given."""
-    label = label or "value"
-    return f"{label} [{units}]" if units else label
+    """'label [units]' with the units as printed (µrad, N·m), or whichever part is given."""
+    return axis_label(label or "value", units or "")
 
 
 def _new_axes(ax, nrows=1, ncols=1, **subplot_kw):
@@ -42,7 +42,7 @@ def _new_axes(ax, nrows=1, ncols=1, **subplot_kw):
     """
     if ax is not None:
         return ax.figure, ax
-    fig = Figure(figsize=(4.0 * ncols + 1.0, 3.5 * nrows + 0.5),
+    fig = Figure(figsize=(min(4.0 * ncols + 1.0, MAX_WIDTH), 3.5 * nrows + 0.5),
                  layout="constrained")
     axes = fig.subplots(nrows, ncols, squeeze=False, **subplot_kw)
     return fig, (axes[0, 0] if axes.size == 1 else axes.ravel())
@@ -87,7 +87,7 @@ def plot_normal_probability(values, ax=None, label="", units="",
     ax.set_ylabel("probability [%]")
     if xlim is not None:
         ax.set_xlim(xlim)
-    unit = f" {units}" if units else ""
+    unit = f" {display_unit(units)}" if units else ""
     ax.text(0.03, 0.97,
             f"mean {format_number(npp.mean)}{unit}\nstd {format_number(npp.std)}{unit}\n"
             f"N {ad.n}\nA² {ad.statistic:.3f}\np {ad.pvalue:.3f}",
@@ -127,20 +127,32 @@ def plot_histogram(series, label="", units="", bins="auto", overlay=False,
     ncols = 1 if overlay else len(series)
     fig, axes = _new_axes(None, 1, ncols, sharex=True, sharey=True)
     axes = np.atleast_1d(axes)
-    unit = f" {units}" if units else ""
+    unit = f" {display_unit(units)}" if units else ""
+    fits = {name: describe(values) for name, values in series.items()}
+    # A density of 7e-5 per N would print its 1e-5 as an offset above the
+    # axes, apart from the unit: fold that power of ten into the unit instead.
+    peak = max(sps.norm.pdf(0.0, 0.0, d.std) if d.std > 0 else 0.0 for d in fits.values())
+    exponent = int(np.floor(np.log10(peak))) if peak > 0 else 0
+    power = exponent if exponent < -2 or exponent > 3 else 0
+    scale = 10.0 ** -power
     for i, (name, values) in enumerate(series.items()):
         ax = axes[0 if overlay else i]
-        d = describe(values)
-        ax.hist(as_1d(values), bins=bins, density=True, alpha=0.5,
-                color=f"C{i}", label=name)
+        d = fits[name]
+        density, edges = np.histogram(as_1d(values), bins=bins, density=True)
+        ax.stairs(density * scale, edges, fill=True, alpha=0.5, color=f"C{i}", label=name)
         grid = np.linspace(d.mean - 4.0 * d.std, d.mean + 4.0 * d.std, 200)
-        ax.plot(grid, sps.norm.pdf(grid, d.mean, d.std), color=f"C{i}",
-                label=f"normal: mean {format_number(d.mean)}{unit}, "
+        ax.plot(grid, sps.norm.pdf(grid, d.mean, d.std) * scale, color=f"C{i}",
+                label=f"{name}: normal, mean {format_number(d.mean)}{unit}, "
                       f"std {format_number(d.std)}{unit}")
         ax.set_xlabel(_axis_label(label, units))
-        ax.legend(fontsize="small")
+    for ax in axes:
+        # above the panel: the normal curve fills the middle, the tails the corners
+        legend_above(ax)
     # 1/deg/s would read as (1/deg)/s
-    inverse = f"1/({units})" if set("/ ·*") & set(units) else f"1/{units}"
+    shown = display_unit(units)
+    inverse = f"1/({shown})" if set("/ ·*") & set(shown) else f"1/{shown}"
+    if power:
+        inverse = f"{scientific(10.0 ** power)}{inverse[1:]}"
     for ax in axes:
         ax.set_ylabel(f"density [{inverse}]" if units else "density")
         if xlim is not None:
@@ -148,7 +160,8 @@ def plot_histogram(series, label="", units="", bins="auto", overlay=False,
     return fig
 
 
-def plot_boxplot(series, label="", units="", ax=None, ylim=None, whis=1.5):
+def plot_boxplot(series, label="", units="", ax=None, ylim=None, whis=1.5,
+                 category="gear type"):
     """Box plots of several series side by side (Fig. 16).
 
     Boxes span the quartiles with the median inside, whiskers reach the
@@ -169,6 +182,8 @@ def plot_boxplot(series, label="", units="", ax=None, ylim=None, whis=1.5):
         y-axis limits, to share scales between plots [``units``].
     whis : float, default 1.5
         Whisker reach in multiples of the IQR [-].
+    category : str, default 'gear type'
+        What the series' names are, for the x axis.
 
     Returns
     -------
@@ -181,6 +196,7 @@ def plot_boxplot(series, label="", units="", ax=None, ylim=None, whis=1.5):
     ax.boxplot([as_1d(v) for v in series.values()], whis=whis,
                tick_labels=list(series))
     ax.set_ylabel(_axis_label(label, units))
+    ax.set_xlabel(category)
     if ylim is not None:
         ax.set_ylim(ylim)
     ax.grid(True, axis="y", alpha=0.3)

@@ -4,14 +4,22 @@ from __future__ import annotations
 
 import numpy as np
 
-from lsbg.figures.base import new_figure, type_color
-from lsbg.runs import QUANTITY_LABELS
+from lsbg.figures.base import (QUANTITY_UNITS, axis_label, figure_legend, new_figure, type_color,
+                               type_entries, wrap_categories)
+from lsbg.runs import QUANTITY_LABELS, TYPE_ORDER
 
 
 def _angles(ax, values):
     values = np.unique(values)
     ax.set_xticks(values, [f"{v:g}" for v in values], fontsize="small")
     ax.set_xlabel("mean spiral angle βm [deg]")
+
+
+def _by_type(table):
+    """The table's rows per gear type, SBG first (the paper's order)."""
+    groups = dict(list(table.groupby("gear_type", sort=False)))
+    order = [t for t in TYPE_ORDER if t in groups] + [t for t in groups if t not in TYPE_ORDER]
+    return [(label, groups[label]) for label in order]
 
 
 def plot_mesh_trends(table):
@@ -26,36 +34,49 @@ def plot_mesh_trends(table):
     Returns
     -------
     matplotlib.figure.Figure
-        2 x 2: static transmission error peak to peak and its first harmonic,
-        mesh stiffness variation, mean mesh stiffness per face width, total
-        contact ratio.
+        2 x 2, each panel titled: static transmission error peak to peak
+        and its first harmonic [µrad], mesh stiffness variation [% of mean],
+        mean mesh stiffness per face width [N/(mm·µm)], total contact ratio
+        [-]; the legend above the panels.
     """
     part = table.drop_duplicates(["gear_type", "spiral_angle_deg"])
     fig, axes = new_figure(2, 2, sharex=True)
     panels = ((axes[0, 0], "static_transmission_error_peak_to_peak",
-               "static TE, peak to peak [urad]"),
-              (axes[0, 1], "mesh_stiffness_variation", "mesh stiffness, peak to peak [% of mean]"),
-              (axes[1, 0], "mesh_stiffness_per_face_width", "mean mesh stiffness [N/(mm um)]"),
-              (axes[1, 1], "contact_ratio", "total contact ratio [-]"))
-    for label, rows in part.groupby("gear_type", sort=False):
+               axis_label("static transmission error", "urad")),
+              (axes[0, 1], "mesh_stiffness_variation",
+               axis_label("mesh stiffness, peak to peak", "% of mean")),
+              (axes[1, 0], "mesh_stiffness_per_face_width",
+               axis_label("mean mesh stiffness per face width", "N/(mm um)", wrap=36)),
+              (axes[1, 1], "contact_ratio", axis_label("total contact ratio", "1")))
+    types = []
+    for label, rows in _by_type(part):
+        types.append(label)
         rows = rows.sort_values("spiral_angle_deg")
         for ax, column, _ in panels:
             if column in rows:
                 ax.plot(rows["spiral_angle_deg"], rows[column], "o-", ms=4,
-                        color=type_color(label), label=label)
+                        color=type_color(label))
         if "static_transmission_error_harmonic_1" in rows:
             axes[0, 0].plot(rows["spiral_angle_deg"], rows["static_transmission_error_harmonic_1"],
-                            "s--", ms=3, color=type_color(label), label=f"{label}: 1st harmonic")
+                            "s--", ms=3, color=type_color(label))
     for ax, _, ylabel in panels:
         ax.set_ylabel(ylabel)
         ax.grid(True, alpha=0.3)
-        ax.legend(fontsize="x-small")
+    axes[0, 0].set_title("loaded TCA: static transmission error", fontsize="medium")
+    axes[0, 1].set_title("loaded TCA: mesh stiffness variation", fontsize="medium")
+    axes[1, 0].set_title("loaded TCA: mean mesh stiffness", fontsize="medium")
+    axes[1, 1].set_title("design: total contact ratio", fontsize="medium")
+    figure_legend(fig, handles=type_entries(
+        types, [({"marker": "o", "ls": "-", "ms": 4}, "transmission error: peak to peak"),
+                ({"marker": "s", "ls": "--", "ms": 3},
+                 "transmission error: amplitude of the 1st mesh harmonic")]),
+        ncols=2)
     for ax in axes[1]:
         _angles(ax, part["spiral_angle_deg"])
     return fig
 
 
-def plot_fluctuation_trends(table, quantities=("gear_speed", "tangential_force")):
+def plot_fluctuation_trends(table, quantities=("gear_speed", "tangential_force"), units=None):
     """Fluctuation against spiral angle: the line model at the full rate, the point
     model as the paper samples it.
 
@@ -64,37 +85,52 @@ def plot_fluctuation_trends(table, quantities=("gear_speed", "tangential_force")
     table : pandas.DataFrame
         From :func:`lsbg.tables.line_model.sweep_fluctuation_table`.
     quantities : sequence of str
+    units : dict, optional
+        ``{quantity: unit}`` of the table's values (default
+        :data:`lsbg.figures.base.QUANTITY_UNITS`, the units of the runs).
 
     Returns
     -------
     matplotlib.figure.Figure
         One row per quantity: left the line model's full-rate std with its
-        interval, right the point model's 500-sample std (its zig-zag).
+        95 % interval, right the point model's 500-sample std (its zig-zag)
+        and its full-rate std; every panel titled with its model and
+        sampling, every y axis with the quantity and its unit, the legend
+        above the panels.
     """
+    units = {**QUANTITY_UNITS, **(units or {})}
     fig, axes = new_figure(len(quantities), 2, sharex=True)
+    types = []
     for r, quantity in enumerate(quantities):
         line, point = axes[r]
-        for label, rows in table.groupby("gear_type", sort=False):
+        for label, rows in _by_type(table):
+            if label not in types:
+                types.append(label)
             color = type_color(label)
             model = rows[rows["contact_model"] == "line"].sort_values("spiral_angle_deg")
             if not model.empty:
                 y = model[f"{quantity}_std"].to_numpy()
                 err = np.vstack([y - model[f"{quantity}_std_low"], model[f"{quantity}_std_high"] - y])
-                line.errorbar(model["spiral_angle_deg"], y, yerr=err, fmt="o-", ms=4, capsize=3,
-                              color=color, label=label)
+                line.errorbar(model["spiral_angle_deg"], y, yerr=err, fmt="s-", ms=3.5, capsize=3,
+                              color=color)
             model = rows[rows["contact_model"] == "point"].sort_values("spiral_angle_deg")
             if not model.empty:
                 point.plot(model["spiral_angle_deg"], model[f"{quantity}_sampled_std"], "o-",
-                           ms=4, color=color, label=f"{label}: 500 samples")
-                point.plot(model["spiral_angle_deg"], model[f"{quantity}_std"], "s:", ms=3,
-                           color=color, label=f"{label}: full rate")
-        name = QUANTITY_LABELS.get(quantity, quantity)
-        line.set_ylabel(f"std of the {name}")
-        line.set_title("line model, full rate", fontsize="medium")
-        point.set_title("point model (the paper's)", fontsize="medium")
+                           ms=4, color=color)
+                point.plot(model["spiral_angle_deg"], model[f"{quantity}_std"], "s:", ms=3.5,
+                           color=color)
+        ylabel = axis_label(f"std of the {QUANTITY_LABELS.get(quantity, quantity)}",
+                            units.get(quantity, ""), wrap=44)
+        line.set_title("line model: full-rate std, 95 % interval", fontsize="medium")
+        point.set_title("point model (paper's): 500 samples/s, full rate", fontsize="medium")
         for ax in (line, point):
+            ax.set_ylabel(ylabel)
             ax.grid(True, alpha=0.3)
-            ax.legend(fontsize="x-small")
+    figure_legend(fig, handles=type_entries(
+        types, [({"marker": "s", "ls": "-", "ms": 3.5}, "full-rate std (left: 95 % interval)"),
+                ({"marker": "o", "ls": "-", "ms": 4}, "std of the 500 output samples per second"),
+                ({"marker": "s", "ls": ":", "ms": 3.5}, "full-rate std (point model)")]),
+        ncols=3)
     for ax in axes[-1]:
         _angles(ax, table["spiral_angle_deg"])
     return fig
@@ -111,7 +147,7 @@ def plot_ratio_trends(ratios):
     Returns
     -------
     matplotlib.figure.Figure
-        Above 1: the LSBG fluctuates less.
+        Above 1: the LSBG fluctuates less; the legend above the axes.
     """
     fig, axes = new_figure(1, 1, width=7.5)
     ax = axes[0, 0]
@@ -126,7 +162,7 @@ def plot_ratio_trends(ratios):
     ax.axhline(1.0, color="k", lw=0.8)
     ax.set_ylabel("std(SBG) / std(LSBG) [-]")
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize="small")
+    figure_legend(fig)
     _angles(ax, ratios["spiral_angle_deg"])
     return fig
 
@@ -142,7 +178,8 @@ def plot_sensitivity(table):
     Returns
     -------
     matplotlib.figure.Figure
-        One marker per cell and quantity; filled where the ranking holds.
+        One marker per cell and quantity; filled where the ranking holds;
+        the legend above the axes.
     """
     cells = list(dict.fromkeys(table["cell"]))
     quantities = list(dict.fromkeys(table["quantity"]))
@@ -158,8 +195,15 @@ def plot_sensitivity(table):
             ax.plot(xi, row.ratio, "o", color=f"C{k + 2}", mfc=f"C{k + 2}" if row.holds else "white",
                     label=QUANTITY_LABELS.get(quantity, quantity) if xi == x[0] else None)
     ax.axhline(1.0, color="k", lw=0.8)
-    ax.set_xticks(np.arange(len(cells)), cells, fontsize="small", rotation=15)
+    # horizontal and wrapped: rotated labels of unequal length run into each other
+    # about 100 characters of small print fit across the axes with room between
+    ax.set_xticks(np.arange(len(cells)),
+                  wrap_categories(cells, width=max(8, 100 // max(len(cells), 1))),
+                  fontsize="small")
+    ax.set_xlabel("cell of the sensitivity study")
     ax.set_ylabel("std(SBG) / std(LSBG) [-]")
     ax.grid(True, axis="y", alpha=0.3)
-    ax.legend(fontsize="small")
+    ax.plot([], [], "o", color="0.35", label="ranking holds (interval excludes 1)")
+    ax.plot([], [], "o", color="0.35", mfc="white", label="ranking does not hold")
+    figure_legend(fig, ncols=2)
     return fig
