@@ -25,11 +25,12 @@ from pathlib import Path
 import lsbg
 from lsbg.files import remove_stale_temporaries, temporary_beside
 from lsbg.results import write_atomically
+from lsbg.tables.style import format_table
 
 __all__ = ["NOTEBOOK_DIR", "PATH_PARAMETER_SUFFIXES", "ReportError", "notebook_path",
            "available_reports", "notebook_parameters", "parse_parameter",
            "resolve_parameters", "render_report", "notebook_to_html", "Report",
-           "figure_png", "provenance", "format_table", "COLUMN_HEADERS"]
+           "figure_png", "provenance", "format_table", "REPORT_STYLE"]
 
 log = logging.getLogger(__name__)
 
@@ -43,10 +44,33 @@ PATH_PARAMETER_SUFFIXES = ("run", "runs", "file", "files", "geometry", "dir", "d
 # The lab template without the scripts it loads from a CDN (require.js,
 # MathJax, mermaid): the reports use neither widgets nor LaTeX.
 _TEMPLATE_NAME = "lsbg_report.html.j2"
+#: The reports' own style: tables in one compact style that wraps headers, the
+#: finding box that opens each report. Selectors are more specific than
+#: JupyterLab's, whose stylesheet comes later.
+REPORT_STYLE = """
+.jp-RenderedHTMLCommon table.lsbg-table { font-size: 13px; table-layout: auto; margin: 0.3em 0 1em; }
+.jp-RenderedHTMLCommon table.lsbg-table th { white-space: normal; vertical-align: bottom;
+  text-align: left; border-bottom: 1px solid #888; padding: 0.3em 0.5em; max-width: 11em; }
+.jp-RenderedHTMLCommon table.lsbg-table td { padding: 0.25em 0.5em; }
+.jp-RenderedHTMLCommon table.lsbg-table td.num { text-align: right; font-variant-numeric: tabular-nums;
+  white-space: nowrap; }
+.jp-RenderedHTMLCommon table.lsbg-table td.text { text-align: left; }
+.jp-RenderedHTMLCommon table.lsbg-table tbody tr:nth-child(odd) { background: #f5f6f8; }
+.jp-RenderedHTMLCommon div.lsbg-finding { border-left: 5px solid #2a6fb0; background: #eef4fa;
+  padding: 0.6em 1.1em; margin: 0.4em 0 1em; font-size: 15px; }
+.jp-RenderedHTMLCommon div.lsbg-finding p, .jp-RenderedHTMLCommon div.lsbg-finding li { margin: 0.3em 0; }
+.jp-RenderedHTMLCommon div.lsbg-finding h2 { margin-top: 0.2em; }
+.jp-RenderedHTMLCommon a.lsbg-csv { font-size: 13px; }
+"""
+
+# The lab template without the scripts it loads from a CDN (require.js,
+# MathJax, mermaid): the reports use neither widgets nor LaTeX.
+_TEMPLATE_NAME = "lsbg_report.html.j2"
 _TEMPLATE = """{%- extends 'index.html.j2' -%}
 {%- block html_head_js_requirejs -%}{%- endblock html_head_js_requirejs -%}
 {%- block html_head_js_mathjax -%}{%- endblock html_head_js_mathjax -%}
 {%- block html_head_js_mermaidjs -%}{%- endblock html_head_js_mermaidjs -%}
+{%- block extra_css -%}<style type="text/css">""" + REPORT_STYLE + """</style>{%- endblock extra_css -%}
 """
 
 
@@ -356,49 +380,14 @@ def provenance(files, extra=None) -> str:
     return "\n".join(lines)
 
 
-#: Table headers for column names of lsbg tables (others are shown as they are).
-COLUMN_HEADERS = {
-    "gear_type": "type", "trace": "trace", "quantity": "quantity", "unit": "unit",
-    "origin": "origin", "engine": "engine", "reference": "reference engine",
-    "spiral_angle_deg": "spiral angle [deg]", "statistic": "statistic",
-    "simulated": "simulated mean", "theory": "theory (Eq. 12/13)",
-    "difference": "difference", "error_rate_percent": "error rate [%]",
-    "paper_simulated": "paper: simulated mean",
-    "paper_error_rate_percent": "paper: error rate [%]",
-    "paper": "paper", "this_work": "this work", "ratio": "ratio",
-    "std_SBG": "std SBG", "std_LSBG": "std LSBG", "ci_low": "CI low", "ci_high": "CI high",
-    "confidence": "confidence", "brown_forsythe_p": "Brown–Forsythe p",
-    "ess_SBG": "ess SBG", "ess_LSBG": "ess LSBG", "paper_ratio": "paper ratio",
-    "std": "std", "reference_std": "reference std", "std_ratio": "std ratio",
-    "mean_difference_percent": "mean difference [%]", "within_tolerance": "within 3 %",
-    "mean": "mean", "ad_statistic": "A²", "ad_pvalue": "p (AD)",
-    "out_of_control": "subgroups out of control",
-    "parameter": "parameter", "value": "value", "is_default": "default",
-    "gear_speed_mean_deg_s": "speed mean [deg/s]", "gear_speed_std_deg_s": "speed std [deg/s]",
-    "tangential_force_mean_N": "force mean [N]", "tangential_force_std_N": "force std [N]",
-    "wall_time_s": "wall time [s]", "steps": "steps",
-    "gear_speed_std_rel_diff_percent": "speed std vs tightest scipy [%]",
-    "tangential_force_std_rel_diff_percent": "force std vs tightest scipy [%]",
-    "low": "CI low", "high": "CI high", "excludes_one": "CI excludes 1",
-    "member": "member", "side": "side", "measured_deg": "measured [deg]",
-    "design_deg": "design [deg]", "deviation_deg": "deviation [deg]",
-    "contact_ratio": "contact ratio", "contact_ratio_profile": "profile c. r.",
-    "contact_ratio_face": "face c. r.",
-    "gear_speed_std": "speed std [deg/s]", "tangential_force_mean": "force mean [N]",
-    "tangential_force_std": "force std [N]",
-    "tangential_force_outer_mean": "force at d2/2 mean [N]",
-    "tangential_force_outer_std": "force at d2/2 std [N]",
-    "gear_speed_std_low": "low", "gear_speed_std_high": "high",
-    "tangential_force_std_low": "low", "tangential_force_std_high": "high",
-    "tangential_force_outer_std_low": "low", "tangential_force_outer_std_high": "high",
-}
-
-
 class Report:
     """Numbered figures and tables with captions, for a report notebook.
 
     Parameters
     ----------
+    name : str, optional
+        The report's name; names the CSV files its tables attach
+        (``{name}-table-{n}.csv``).
     dpi : float, default 100
         Resolution of the embedded PNG figures.
 
@@ -406,12 +395,14 @@ class Report:
     --------
     In a notebook cell::
 
-        rep = Report()
+        rep = Report("paper")
+        rep.finding("The SBG fluctuates less ...", table)
         rep.figure(fig, "Gear speed against time.")
         rep.table(df, "Simulated means and Eq. 12-13.", formats={"error": "{:.3f}"})
     """
 
-    def __init__(self, dpi=100):
+    def __init__(self, name="report", dpi=100):
+        self.name = name
         self.dpi = dpi
         self.figures = 0
         self.tables = 0
@@ -434,6 +425,30 @@ class Report:
 
         self._display(Markdown(text))
 
+    def finding(self, text, table=None, caption="", formats=None, digits=4, headers=None):
+        """Show the report's finding: a boxed summary (class ``lsbg-finding``) at its top.
+
+        Parameters
+        ----------
+        text : str
+            Markdown: what was compared, the answer with its numbers, where it holds.
+        table : pandas.DataFrame, optional
+            At most one small table, in the reports' table style
+            (:func:`lsbg.tables.style.format_table`), after the text; not numbered.
+        caption : str
+            Shown above the table.
+        formats, digits, headers
+            As for :meth:`table`.
+        """
+        import mistune
+        from IPython.display import HTML
+
+        body = mistune.html(text)
+        if table is not None:
+            body += (f"<p><i>{_escape(caption)}</i></p>" if caption else "")
+            body += format_table(table, formats, digits=digits, headers=headers)
+        self._display(HTML(f'<div class="lsbg-finding">{body}</div>'))
+
     def figure(self, fig, caption):
         """Show a figure as an embedded PNG with "Figure n." and the caption below."""
         self.figures_side_by_side([fig], caption)
@@ -448,27 +463,44 @@ class Report:
         self._display(HTML(f'<div style="display:flex; flex-wrap:wrap; gap:8px">{images}</div>'),
                       self._caption(caption))
 
-    def table(self, df, caption, formats=None, index=False, digits=6, headers=None):
+    def table(self, df, caption, formats=None, index=False, digits=4, headers=None, full=None):
         """Show a DataFrame as an HTML table with "Table n." and the caption above.
 
         Parameters
         ----------
         df : pandas.DataFrame
+            What the page shows: keep it narrow (a few columns, intervals as
+            one column with :func:`lsbg.tables.style.with_interval`) and short.
         caption : str
         formats : dict, optional
-            ``{column: format string or callable}``; other floats get
-            ``digits`` significant digits.
+            ``{column: format string or callable}``; other numbers get
+            ``digits`` significant figures.
         index : bool, default False
             Show the index.
-        digits : int, default 6
+        digits : int, default 4
         headers : dict, optional
-            Column headers, over :data:`COLUMN_HEADERS`.
+            Column headers, over :data:`lsbg.tables.style.COLUMN_HEADERS`.
+        full : pandas.DataFrame, optional
+            The complete table behind a shortened one: attached to the report
+            as a CSV file (embedded, full precision) linked below the table.
         """
         from IPython.display import HTML
 
         self.tables += 1
         html = format_table(df, formats, index=index, digits=digits, headers=headers)
+        if full is not None:
+            html += _csv_link(full, f"{self.name}-table-{self.tables}.csv")
         self._display(HTML(f"<p><b>Table {self.tables}.</b> {_escape(caption)}</p>{html}"))
+
+
+def _csv_link(df, filename):
+    """A link that downloads ``df`` as a CSV file embedded in the page (no file beside it)."""
+    import base64
+
+    data = base64.b64encode(df.to_csv(index=False).encode("utf-8")).decode()
+    return (f'<p><a class="lsbg-csv" download="{filename}" href="data:text/csv;base64,{data}">'
+            f"The full table ({len(df)} rows × {len(df.columns)} columns) as CSV: "
+            f"{filename}</a></p>")
 
 
 def _img(png, caption, style):
@@ -489,47 +521,3 @@ def _escape(text):
     import html
 
     return html.escape(str(text), quote=False)
-
-
-def format_table(df, formats=None, index=False, digits=6, headers=None) -> str:
-    """A DataFrame as an HTML table with per-column number formats.
-
-    Parameters
-    ----------
-    df : pandas.DataFrame
-    formats : dict, optional
-        ``{column: format string or callable}``; NaN is shown as "—".
-    index : bool, default False
-    digits : int, default 6
-        Significant digits of floats without a format.
-    headers : dict, optional
-        Column headers, over :data:`COLUMN_HEADERS`.
-
-    Returns
-    -------
-    str
-    """
-    import numbers
-
-    formats = dict(formats or {})
-    shown = df.copy()
-    for column in shown.columns:
-        rule = formats.get(column)
-
-        def fmt(value, rule=rule):
-            if value is None or (isinstance(value, float) and value != value):
-                return "—"
-            if rule is not None:
-                return rule(value) if callable(rule) else rule.format(value)
-            if isinstance(value, bool):
-                return "yes" if value else "no"
-            if isinstance(value, numbers.Integral):
-                return str(value)
-            if isinstance(value, numbers.Real):
-                return f"{value:.{digits}g}"
-            return str(value)
-
-        shown[column] = [fmt(v) for v in shown[column].tolist()]
-    names = {**COLUMN_HEADERS, **(headers or {})}
-    shown = shown.rename(columns={c: names.get(c, c) for c in shown.columns})
-    return shown.to_html(index=index, escape=True, border=0, classes="dataframe lsbg-table")

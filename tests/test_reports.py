@@ -5,6 +5,7 @@ import re
 import shutil
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 import pytest
 import xarray as xr
@@ -84,7 +85,7 @@ def paper_parameters(files):
             "mesh_files": list(files["meshes"].values()),
             "geometry_dirs": [files["geometry"][t] for t in ("logarithmic", "circular")],
             "paper_engine": "pybullet",
-            "line_engine": "compiled", **STATISTICS}
+            "line_engine": "compiled", "sweep_file": files["sweep"], **STATISTICS}
 
 
 def check_html(path, headings, images, code_snippets):
@@ -104,7 +105,22 @@ def check_html(path, headings, images, code_snippets):
         assert snippet not in html
     assert "Traceback" not in html
     assert not [p for p in path.parent.iterdir() if p.name.startswith(".")]
+    # the finding comes first, and headers are words, not code
+    assert html.index('class="lsbg-finding"') < html.index("<h2")
+    headers = [re.sub("<[^>]+>", "", h) for h in re.findall(r"<th[^>]*>(.*?)</th>", html, re.S)]
+    assert headers and not [h for h in headers if re.search(r"[A-Za-z]_[A-Za-z]", h)]
+    assert "&lt;NA&gt;" not in html and "urad" not in html
     return html
+
+
+def embedded_csv(html):
+    """The tables a report attaches as CSV links, by file name."""
+    import base64
+    import io
+
+    return {name: pd.read_csv(io.BytesIO(base64.b64decode(data)))
+            for name, data in re.findall(r'download="([^"]+)" href="data:text/csv;base64,([^"]+)"',
+                                         html)}
 
 
 def test_paper_report(study_files, tmp_path):
@@ -116,11 +132,12 @@ def test_paper_report(study_files, tmp_path):
               "7. Xbar-R control charts", "8. Simulated means", "9. The paper", "10. Which gear",
               "11. Agreement", "12. What the paper", "13. The line model",
               "14. Dynamics under the line model", "15. Model-form sensitivity",
-              "16. The summary statistics", "17. Conclusion"],
+              "16. Conclusion", "Appendix A. The summary statistics",
+              "Appendix B. Inputs and settings"],
         # pair picture, Fig. 8, 9-10, 11, 12, 13, 14, 15 (2), 16, 17 (2), 18 (2); sampling
         # luck, spectrum, full-rate stretch; TE and stiffness, load sharing, contact
         # pattern; two spectra, full-rate stretch; sensitivity
-        images=24, code_snippets=["select_runs(all_runs", "import numpy", "rep = Report()"])
+        images=24, code_snippets=["select_runs(all_runs", "import numpy", 'rep = Report("paper")'])
     assert html.count("<b>Figure ") + html.count("<strong>Figure ") == 22
     # numbers are computed from the runs
     runs = open_pair(study_files["runs"][("circular", "point", "pybullet")],
@@ -137,10 +154,17 @@ def test_paper_report(study_files, tmp_path):
     for cell in ("line model (baseline)", "point model", "damping ratio ×2", "500-Hz sampling"):
         assert cell in html
     assert "survives the model form" in html or "no ranking is stated" in html
-    # Section 16 recomputes the summary table's rows of this design point
+    # the finding states the answer with its numbers and scopes it to this spiral angle
+    finding = html[html.index('class="lsbg-finding"'):html.index("<h2", html.index("</div>", html.index('class="lsbg-finding"')))]
+    assert "Answer at 35°" in finding and "std(SBG)/std(LSBG) = " in finding
+    assert "this study ran no other spiral angle" in finding
+    # Appendix A recomputes the summary table's rows of this design point, attached in full
     table = pd.read_csv(study_files["summary"])
+    (attached,) = embedded_csv(html).values()
+    assert len(attached) == len(table)
     for row in table[table.engine != "ltca"].itertuples():
-        assert f"{row.full_rate_std:.6g}" in html, row.run
+        match = attached[(attached.run == row.run) & (attached.quantity == row.quantity)]
+        assert np.isclose(match.full_rate_std.iloc[0], row.full_rate_std, rtol=1e-12), row.run
 
 
 def test_sweep_report(study_files, tmp_path):
@@ -151,12 +175,17 @@ def test_sweep_report(study_files, tmp_path):
                                          "steady_state_after_s": 0.01})
     html = check_html(out, ["Spiral-angle sweep", "1. Loaded tooth contact",
                             "2. Fluctuations against", "3. Which type",
-                            "4. The dynamic-factor curve", "5. Table of the design points",
-                            "6. Conclusion"],
+                            "4. The dynamic-factor curve", "5. The design points",
+                            "6. Conclusion", "Appendix A. The loaded TCA", "Appendix B. Inputs"],
                       # loaded TCA, fluctuations, ratios, speed curve, Campbell map
                       images=5, code_snippets=["tables.sweep_fluctuation_table", "import xarray"])
-    assert "std(SBG)/std(LSBG)" in html and "static_transmission_error_peak_to_peak" in html
-    assert "natural_frequency_hz" in html and "3 speeds" in html
+    assert "std(SBG)/std(LSBG)" in html and "static TE peak to peak [µrad]" in html
+    assert "natural frequency [Hz]" in html and "3 speeds" in html
+    # the point model's dynamic factors get their sentence; the full table is attached
+    assert "Dynamic factors." in html
+    attached = [t for t in embedded_csv(html).values()
+                if {"dynamic_factor", "gear_speed_sampled_std"} <= set(t.columns)]
+    assert len(attached) == 1 and len(attached[0]) == 4   # 2 types x 2 contact models
 
 
 def test_verification_report_via_cli_with_relative_paths(study_files, monkeypatch, capsys):

@@ -232,13 +232,16 @@ def sensitivity_table(cells, start=0.2, quantities=("gear_speed", "tangential_fo
     return pd.DataFrame(rows)
 
 
-def verdict(sensitivity) -> str:
+def verdict(sensitivity, where="") -> str:
     """One paragraph: which type meshes more smoothly, stated only where every cell agrees.
 
     Parameters
     ----------
     sensitivity : pandas.DataFrame
         From :func:`sensitivity_table`.
+    where : str, optional
+        The design point the cells were run at (e.g. "at 35°"); each ranking
+        is stated for it alone.
 
     Returns
     -------
@@ -246,13 +249,14 @@ def verdict(sensitivity) -> str:
         Markdown built from the numbers.
     """
     sentences = []
+    where_text = f" {where.strip()}" if where.strip() else ""
     for quantity, part in sensitivity.groupby("quantity", sort=False):
         label = QUANTITY_LABELS.get(quantity, quantity)
         baseline = part.iloc[0]
         low, high = part["ratio"].min(), part["ratio"].max()
         if part["holds"].all():
             sentences.append(
-                f"**{label}**: the {baseline['calmer']} fluctuates less in every one of the "
+                f"**{label}**: the {baseline['calmer']} fluctuates less{where_text} in every one of the "
                 f"{len(part)} cells (std(SBG)/std(LSBG) {low:.3g}–{high:.3g}, each interval "
                 f"excluding 1): this ranking survives the model form.")
         elif baseline["calmer"] == "neither":
@@ -366,6 +370,67 @@ def sweep_ratio_table(sweep, contact_model="line", quantities=VERDICT_QUANTITIES
                          **{k: result[k] for k in ("ratio", "ratio_low", "ratio_high", "calmer")}})
     return pd.DataFrame(rows, columns=["spiral_angle_deg", "quantity", "ratio", "ratio_low",
                                        "ratio_high", "calmer"])
+
+
+def angle_ranges(angles, grid=None) -> str:
+    """Spiral angles as runs of neighbours on the sweep's grid, "20–25°, 40°".
+
+    Parameters
+    ----------
+    angles : sequence of float
+        The spiral angles to name [deg].
+    grid : sequence of float, optional
+        Every spiral angle of the sweep [deg] (default: ``angles``); two
+        angles are neighbours when no angle of the grid lies between them.
+
+    Returns
+    -------
+    str
+        "" for no angle.
+    """
+    grid = sorted({round(float(a), 9) for a in (angles if grid is None else grid)})
+    chosen = {round(float(a), 9) for a in angles}
+    groups, current = [], []
+    for angle in grid:
+        if angle in chosen:
+            current.append(angle)
+        elif current:
+            groups.append(current)
+            current = []
+    if current:
+        groups.append(current)
+    return ", ".join(f"{g[0]:g}°" if len(g) == 1 else f"{g[0]:g}–{g[-1]:g}°" for g in groups)
+
+
+def calmer_by_angle(ratios, grid=None) -> pd.DataFrame:
+    """Where in a sweep each type is significantly calmer, per quantity.
+
+    Parameters
+    ----------
+    ratios : pandas.DataFrame
+        From :func:`sweep_ratio_table`.
+    grid : sequence of float, optional
+        The sweep's spiral angles [deg], to tell runs of neighbours apart
+        (default: the angles of ``ratios``).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Per quantity: ``LSBG``, ``SBG`` and ``neither``: the spiral angles
+        where that type has the significantly smaller fluctuation (its 95 %
+        interval of std(SBG)/std(LSBG) excluding 1), as :func:`angle_ranges`
+        text, and ``angles``: how many spiral angles were compared.
+    """
+    rows = []
+    everything = list(grid) if grid is not None else list(ratios["spiral_angle_deg"])
+    for quantity, part in ratios.groupby("quantity", sort=False):
+        row = {"quantity": quantity}
+        for calmer in ("LSBG", "SBG", "neither"):
+            chosen = part.loc[part.calmer == calmer, "spiral_angle_deg"]
+            row[calmer] = angle_ranges(chosen, everything) or "none"
+        row["angles"] = int(part["spiral_angle_deg"].nunique())
+        rows.append(row)
+    return pd.DataFrame(rows, columns=["quantity", "LSBG", "SBG", "neither", "angles"])
 
 
 def trend_table(table, columns) -> pd.DataFrame:

@@ -246,7 +246,7 @@ def fluctuation_table(comparisons) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
-def fluctuation_conclusion(comparisons) -> str:
+def fluctuation_conclusion(comparisons, where="") -> str:
     """One paragraph: which type fluctuates less, by what factor, how sure.
 
     Parameters
@@ -254,6 +254,10 @@ def fluctuation_conclusion(comparisons) -> str:
     comparisons : dict
         ``{quantity: lsbg.stats.FluctuationComparison}`` with names
         ('SBG', 'LSBG'), as from :func:`compare_types`.
+    where : str, optional
+        The design point and model the comparison was made at (e.g. "at the
+        paper's design point, spiral angle 35°, under the point model"): the
+        verdict is stated for it alone.
 
     Returns
     -------
@@ -281,19 +285,20 @@ def fluctuation_conclusion(comparisons) -> str:
         if all(paper):
             sentences[-1] += (f" The paper's ratio std(SBG)/std(LSBG) is "
                               f"{paper[0] / paper[1]:.3g}; ours is {c.ratio:.3g}.")
+    where = f" {where.strip()}" if where.strip() else ""
     if calmer == {"LSBG"}:
         verdict = ("The data support the paper's conclusion that the LSBG runs more "
-                   "smoothly than the SBG, for every quantity where the difference is "
+                   f"smoothly than the SBG{where}, for every quantity where the difference is "
                    "significant.")
     elif calmer == {"SBG"}:
-        verdict = ("The data contradict the paper's conclusion: in this model the "
-                   "conventional SBG fluctuates less than the LSBG wherever the difference "
+        verdict = (f"The data contradict the paper's conclusion{where}: the conventional "
+                   "SBG fluctuates less than the LSBG in every quantity where the difference "
                    "is significant.")
     elif not calmer:
-        verdict = ("No difference is significant: the data neither support nor contradict "
+        verdict = (f"No difference is significant{where}: the data neither support nor contradict "
                    "the paper's conclusion that the LSBG runs more smoothly.")
     else:
-        verdict = ("The quantities disagree on which type fluctuates less, so the data do "
+        verdict = (f"The quantities disagree on which type fluctuates less{where}, so the data do "
                    "not support a general claim either way.")
     return " ".join(sentences) + " " + verdict
 

@@ -10,6 +10,7 @@ rule report_paper:
         sensitivity=STUDY.sensitivity_runs(),
         meshes=STUDY.paper_meshes,
         geometry=STUDY.paper_geometry,
+        sweep=FILES["sweep"],
         sources=sources("report"),
     output:
         report(STUDY.reports["paper"], caption="../report/reports.rst", category="Reports",
@@ -44,7 +45,8 @@ rule report_paper:
         " --param steady_state_after_s={params.steady_state_after}"
         " --param chart_window_start_s={params.window_start}"
         " --param chart_window_stop_s={params.window_stop}"
-        " --param subgroup_size={params.subgroup_size} > {log} 2>&1"
+        " --param subgroup_size={params.subgroup_size}"
+        " --param sweep_file={input.sweep} > {log} 2>&1"
 
 
 rule report_sweep:
