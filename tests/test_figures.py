@@ -47,8 +47,6 @@ from lsbg.tables import verification as verification_tables
 MAX_WIDTH_PX = 1340
 #: A unit in square brackets: "[deg/s]", "[-]", "[%]", "[10⁻⁵/N]".
 UNIT = re.compile(r"\[[^\]]+\]")
-#: Labels pinned by tests/test_stats.py that have no unit yet (a subgroup count).
-KNOWN_WITHOUT_UNIT = re.compile(r"^subgroup \(n = \d+\)$")
 START = 0.01   # end of the transient of the fixture's 0.05-s runs [s]
 
 
@@ -100,7 +98,7 @@ def _label_problem(where, axis):
         return None   # no scale shown (a shared axis labelled on its neighbour)
     if not text:
         return f"{where}: no label"
-    if _categorical(axis) or KNOWN_WITHOUT_UNIT.match(text):
+    if _categorical(axis):
         return None
     if not UNIT.search(text):
         return f"{where}: label {text!r} has no unit in [brackets]"

@@ -483,7 +483,7 @@ def test_plot_xbar_r_marks_out_of_control_and_shares_scales():
     ax_x, ax_r = fig.axes
     assert ax_x.get_ylabel() == "subgroup mean of gear speed [deg/s]"
     assert ax_r.get_ylabel() == "subgroup range of gear speed [deg/s]"
-    assert ax_r.get_xlabel() == "subgroup (n = 4)"
+    assert ax_r.get_xlabel() == "subgroup number [-] (n = 4 samples each)"
     assert ax_x.get_ylim() == pytest.approx(xbar_ylim)
     assert ax_r.get_ylim() == pytest.approx(r_ylim)
     assert xbar_ylim[0] < chart.xbar.min() and r_ylim[1] > chart.r_ucl

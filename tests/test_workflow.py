@@ -287,9 +287,11 @@ def test_after_the_run_there_is_nothing_to_do(study):
 def test_a_new_spiral_angle_runs_only_its_points_and_the_aggregates(study, tmp_path):
     extra = write_yaml(tmp_path / "more.yaml", {"sweep": {"spiral_angles_deg": [35, 40]}})
     jobs, output = dry_run(study, extra)
-    # (the paper report reads only the paper's design point, so a new angle leaves it alone)
+    # (the paper report's conclusion says what the sweep finds at the other angles, so it
+    # reads the combined sweep and is rendered again; the verification report is not)
     assert rules_of(jobs) == sorted(["sweep_points"] * 2
-                                    + ["combine", "summary", "report_sweep", "all"]), output
+                                    + ["combine", "summary", "report_sweep", "report_paper",
+                                       "all"]), output
     new = {f for rule, out in jobs if rule == "sweep_points" for f in out.split(", ")}
     assert new == {"results/geometry/logarithmic_beta40", "results/geometry/circular_beta40",
                    "results/mesh/logarithmic_beta40.nc", "results/mesh/circular_beta40.nc",
@@ -406,3 +408,30 @@ def test_conda_environment_pins_match_environment_pip():
     requirements = {line.strip() for line in (REPO / "environment-pip.txt").read_text().splitlines()
                     if "==" in line and not line.startswith("#")}
     assert conda_pins and conda_pins <= requirements
+
+
+@pytest.mark.slow
+def test_reports_show_well_in_a_browser(request, tmp_path):
+    """Each report, opened in headless Chromium 1400 px wide, fits the page, loads nothing
+    but itself, has readable tables and opens with its finding
+    (workflow/scripts/check_reports.py); screenshots go to tmp_path. Without Chromium the
+    test skips, except on CI (CI=true), where it fails."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location(
+        "check_reports", REPO / "workflow" / "scripts" / "check_reports.py")
+    check_reports = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(check_reports)
+    reason = check_reports.browser_unavailable()
+    if reason:
+        if os.environ.get("CI") == "true":
+            pytest.fail(f"CI needs Chromium for the report checks: {reason}")
+        pytest.skip(reason)
+    root, _ = request.getfixturevalue("study")
+    problems = []
+    with check_reports.open_browser() as browser:
+        for name in ("paper", "sweep", "verification"):
+            problems += check_reports.check_report(root / "reports" / f"{name}.html",
+                                                   screenshot_dir=tmp_path, browser=browser)
+    assert not problems, f"{len(problems)} problem(s) (screenshots in {tmp_path}):\n" + \
+        "\n".join(problems)

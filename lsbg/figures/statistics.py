@@ -256,7 +256,7 @@ def plot_xbar_r(chart, label="", units="", title=None, xbar_ylim=None,
     _draw_chart(ax_r, chart.ranges, chart.r_center, chart.r_lcl, chart.r_ucl,
                 chart.out_of_control_r,
                 _axis_label(f"subgroup range of {name}", units), r_ylim)
-    ax_r.set_xlabel(f"subgroup (n = {chart.n})")
+    ax_r.set_xlabel(f"subgroup number [-] (n = {chart.n} samples each)")
     if title:
         fig.suptitle(title)
     return fig
