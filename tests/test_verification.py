@@ -45,3 +45,41 @@ def test_step_cost_breakdown(model):
     assert costs["floor_steady"] > 0.5 * (costs["joint_states"] + costs["apply_torque"]
                                           + costs["step_simulation"])
     assert 0.5 < costs["engine_over_floor"] < 10.0
+
+
+def test_setting_label_reads_as_words():
+    from lsbg.tables.verification import setting_label
+
+    assert setting_label("pybullet", "time_step_s", 1e-6, True) == "pybullet dt = 1 µs (default)"
+    assert setting_label("pybullet", "time_step_s", 4e-6) == "pybullet dt = 4 µs"
+    assert setting_label("compiled", "rtol", 1e-8) == "compiled rtol = 10⁻⁸"
+    assert setting_label("scipy", "rtol", 3e-7) == "scipy rtol = 3×10⁻⁷"
+
+
+def test_convergence_display_is_narrow_and_keeps_the_numbers():
+    import pandas as pd
+
+    from lsbg.tables.verification import (CONVERGENCE_DISPLAY_COLUMNS, by_gear_type,
+                                          convergence_display)
+
+    table = pd.DataFrame({
+        "trace": ["logarithmic", "circular"], "spiral_angle_deg": [35.0, 35.0],
+        "contact_model": ["point", "point"], "engine": ["pybullet", "compiled"],
+        "parameter": ["time_step_s", "rtol"], "value": [2e-6, 1e-8],
+        "is_default": [False, True], "gear_speed_mean_deg_s": [1873.7, 1873.8],
+        "steps": [500000, 103850], "reference": ["compiled rtol 1e-08"] * 2,
+        **{c: [float(i), float(i) + 0.5] for i, c in enumerate(CONVERGENCE_DISPLAY_COLUMNS)}},
+        index=[7, 3])
+    shown = convergence_display(table)
+    assert list(shown.columns) == ["gear_type", "setting", *CONVERGENCE_DISPLAY_COLUMNS]
+    assert list(shown.gear_type) == ["LSBG", "SBG"]
+    assert list(shown.setting) == ["pybullet dt = 2 µs", "compiled rtol = 10⁻⁸ (default)"]
+    for column in CONVERGENCE_DISPLAY_COLUMNS:
+        assert list(shown[column]) == list(table[column])
+
+    checks = pd.DataFrame({"gear_type": ["LSBG", "SBG"], "a_rad": [1.0, 2.0],
+                           "b_percent": [3.0, 4.0]})
+    turned = by_gear_type(checks, [("a_rad", "first", "rad"), ("b_percent", "second", "%")])
+    assert list(turned.columns) == ["check", "unit", "SBG", "LSBG"]
+    assert list(turned.SBG) == [2.0, 4.0] and list(turned.LSBG) == [1.0, 3.0]
+    assert list(turned.unit) == ["rad", "%"]

@@ -8,7 +8,9 @@
   from the contact law and the gear's inertia;
 * :func:`pressure_angle_table` and :func:`conjugacy_errors`: the pressure
   angles along the face and the deviation of the flanks from conjugacy
-  (:mod:`lsbg.geometry`).
+  (:mod:`lsbg.geometry`);
+* :func:`setting_label`, :func:`convergence_display` and :func:`by_gear_type`:
+  the tables as the verification report shows them (narrow; nothing computed).
 """
 
 from __future__ import annotations
@@ -24,7 +26,8 @@ from lsbg.runs import records_by_type, run_spiral_angle, steady
 
 __all__ = [
     "REFERENCE_ENGINES", "engine_agreement", "contact_resonance", "read_convergence",
-    "convergence_table", "pressure_angle_table", "conjugacy_errors"
+    "convergence_table", "pressure_angle_table", "conjugacy_errors", "setting_label",
+    "CONVERGENCE_DISPLAY_COLUMNS", "convergence_display", "by_gear_type"
 ]
 
 
@@ -195,7 +198,7 @@ def convergence_table(table) -> pd.DataFrame:
         tolerance = part[part["parameter"] == "rtol"]
         if tolerance.empty:
             continue
-        tightest = tolerance[np.isclose(tolerance["value"], tolerance["value"].min())]
+        tightest = tolerance[np.isclose(tolerance["value"], tolerance["value"].min(), rtol=1e-9, atol=0)]
         ref = tightest.sort_values("engine", key=lambda e: e != "scipy").iloc[0]
         out.loc[part.index, "reference"] = f"{ref['engine']} rtol {ref['value']:g}"
         for column, source in _CONVERGENCE_DIFFERENCES.items():
@@ -287,3 +290,104 @@ def conjugacy_errors(design, side="drive", phases=25, n=17) -> pd.DataFrame:
                      "normal_mismatch": float(np.max(np.linalg.norm(n1 + n2, axis=1)))})
     return pd.DataFrame(rows, columns=["phase_deg", "pinion_distance_m", "gear_distance_m",
                                        "normal_mismatch"])
+
+
+# ------------------------------------------------------------- as shown
+def setting_label(engine, parameter, value, is_default=False) -> str:
+    """An engine setting of the convergence study as words.
+
+    Parameters
+    ----------
+    engine : str
+    parameter : str
+        ``time_step_s`` or ``rtol`` (others are shown as ``parameter = value``).
+    value : float
+    is_default : bool
+        Whether it is the engine's default (the study's runs); adds "(default)".
+
+    Returns
+    -------
+    str
+        e.g. "pybullet dt = 1 µs (default)", "compiled rtol = 10⁻⁸".
+    """
+    from lsbg.tables.style import format_number
+
+    value = float(value)
+    if parameter == "time_step_s":
+        text = f"dt = {value * 1e6:.4g} µs"
+    else:
+        number = format_number(value, 3)
+        number = number[2:] if number.startswith("1×10") else number
+        text = f"{'rtol' if parameter == 'rtol' else parameter.replace('_', ' ')} = {number}"
+    return f"{engine} {text}" + (" (default)" if is_default else "")
+
+
+#: Columns of :func:`convergence_display` after ``gear_type`` and ``setting``:
+#: each standard deviation followed by its relative difference to the reference run.
+CONVERGENCE_DISPLAY_COLUMNS = (
+    "gear_speed_std_deg_s", "gear_speed_std_rel_diff_percent",
+    "gear_speed_full_std_deg_s", "gear_speed_full_std_rel_diff_percent",
+    "tangential_force_std_N", "tangential_force_std_rel_diff_percent",
+    "tangential_force_full_std_N", "tangential_force_full_std_rel_diff_percent",
+    "wall_time_s",
+)
+
+
+def convergence_display(table) -> pd.DataFrame:
+    """A convergence table (:func:`convergence_table`) narrowed for a page.
+
+    One row per run, in the table's order: ``gear_type`` (LSBG, SBG),
+    ``setting`` (:func:`setting_label`: engine, parameter and value in one
+    cell), the four standard deviations each followed by its relative
+    difference to the reference run, and the wall time
+    (:data:`CONVERGENCE_DISPLAY_COLUMNS`). The columns that are the same in
+    every row of one report table (trace with gear type, spiral angle,
+    contact model, reference) and the means and step counts are left out;
+    the complete table is the one to attach.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        From :func:`convergence_table`, typically one contact model's rows.
+
+    Returns
+    -------
+    pandas.DataFrame
+        A new table; the numbers are the input's.
+    """
+    shown = pd.DataFrame({
+        "gear_type": [TRACE_LABELS.get(t, t) for t in table["trace"]],
+        "setting": [setting_label(e, p, v, d) for e, p, v, d in
+                    zip(table["engine"], table["parameter"], table["value"],
+                        table["is_default"])],
+    }, index=table.index)
+    for column in CONVERGENCE_DISPLAY_COLUMNS:
+        shown[column] = table[column].to_numpy()
+    return shown.reset_index(drop=True)
+
+
+def by_gear_type(table, rows, types=("SBG", "LSBG")) -> pd.DataFrame:
+    """A table with one row per gear type turned to one row per quantity.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        One row per gear type (column ``gear_type``).
+    rows : sequence of (str, str, str)
+        ``(column, label, unit)`` per row of the result, in order.
+    types : sequence of str
+        Gear types as columns, in this order; those absent from ``table`` are
+        left out.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns ``check`` (the label), ``unit`` and one per gear type.
+    """
+    by_type = table.set_index("gear_type")
+    present = [t for t in types if t in by_type.index]
+    out = pd.DataFrame({"check": [label for _, label, _ in rows],
+                        "unit": [unit for _, _, unit in rows]})
+    for gear in present:
+        out[gear] = [float(by_type.at[gear, column]) for column, _, _ in rows]
+    return out
