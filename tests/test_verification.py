@@ -1,5 +1,7 @@
 """Convergence study and per-step cost of the engines (short runs)."""
 
+import numpy as np
+import pandas as pd
 import pytest
 
 from lsbg.design import GearPairDesign
@@ -83,3 +85,18 @@ def test_convergence_display_is_narrow_and_keeps_the_numbers():
     assert list(turned.columns) == ["check", "unit", "SBG", "LSBG"]
     assert list(turned.SBG) == [2.0, 4.0] and list(turned.LSBG) == [1.0, 3.0]
     assert list(turned.unit) == ["rad", "%"]
+
+
+def test_convergence_reference_is_the_tightest_tolerance():
+    """rtol 1e-8 and 1e-10 are different settings (np.isclose's default atol had made them equal)."""
+    from lsbg.tables.verification import convergence_table
+
+    rows = [{"trace": "logarithmic", "spiral_angle_deg": 35.0, "contact_model": "line",
+             "engine": engine, "parameter": "rtol", "value": rtol,
+             "gear_speed_std_deg_s": std, "tangential_force_std_N": 10 * std,
+             "gear_speed_full_std_deg_s": std, "tangential_force_full_std_N": 10 * std}
+            for engine, rtol, std in (("compiled", 1e-6, 1.2), ("compiled", 1e-8, 1.1),
+                                      ("compiled", 1e-10, 1.0), ("scipy", 1e-8, 1.05))]
+    table = convergence_table(pd.DataFrame(rows))
+    assert set(table.reference) == {"compiled rtol 1e-10"}
+    assert np.allclose(table.gear_speed_std_rel_diff_percent, [20, 10, 0, 5])
