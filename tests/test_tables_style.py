@@ -98,3 +98,11 @@ def test_angle_ranges_and_where_each_type_is_calmer():
     assert table.loc["tangential_force", "LSBG"] == "20°, 25°"
     assert table.loc["tangential_force", "neither"] == "22.5°, 32.5°"
     assert table.loc["tangential_force", "angles"] == 7
+
+
+def test_sentences_and_tables_share_the_number_format():
+    from lsbg import stats
+
+    assert stats.format_number(34690.4) == "34690"          # not 3.469e+04
+    assert stats.format_number(1.0736e4) == format_number(1.0736e4) == "10736"
+    assert stats.scientific(3.5527e-15) == "3.55×10⁻¹⁵" and stats.scientific(1e-6) == "10⁻⁶"

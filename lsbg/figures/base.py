@@ -251,24 +251,6 @@ def legend_above(ax, ncols=1, fontsize="small", **kwargs):
                      fontsize=fontsize, frameon=False, borderaxespad=0.2, **kwargs)
 
 
-_SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
-
-
-def scientific(value, digits=3) -> str:
-    """A number as a label prints it: 3.55×10⁻¹⁵ rather than 3.55e-15, 10⁻⁶ for 1e-06.
-
-    Parameters
-    ----------
-    value : float
-    digits : int
-        Significant figures [-].
-    """
-    mantissa, exponent = f"{float(value):.{max(digits - 1, 0)}e}".split("e")
-    mantissa = mantissa.rstrip("0").rstrip(".") if "." in mantissa else mantissa
-    power = f"10{str(int(exponent)).translate(_SUPERSCRIPT)}"
-    return power if mantissa == "1" else f"{mantissa}×{power}"
-
-
 def sparse_log_ticks(axis):
     """Minor ticks of a log axis at 2 and 5 times the powers of ten, labelled over few decades.
 

@@ -12,7 +12,8 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from lsbg.design import TRACE_LABELS
-from lsbg.figures.base import figure_legend, new_figure, scientific, type_color
+from lsbg.figures.base import figure_legend, new_figure, type_color
+from lsbg.stats.samples import scientific
 from lsbg.files import read_record
 from lsbg.results import as_path_list
 from lsbg.runs import TYPE_ORDER, records_by_type

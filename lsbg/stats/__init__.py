@@ -54,7 +54,7 @@ from lsbg import lazy_exports
 #: Submodule -> the names it exports (imported when first used).
 _EXPORTS = {
     "samples": ("as_1d", "steady_state", "subgroups_from_window", "Description", "describe",
-                "format_number", "BoxplotStats", "boxplot_stats"),
+                "format_number", "scientific", "BoxplotStats", "boxplot_stats"),
     "normality": ("AndersonDarling", "ad_pvalue", "anderson_darling", "NormalProbability",
                   "normal_probability"),
     "control": ("ControlChartConstants", "control_chart_constants", "XbarRChart",

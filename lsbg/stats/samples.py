@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 __all__ = ["as_1d", "steady_state", "subgroups_from_window", "Description", "describe",
-           "format_number", "BoxplotStats", "boxplot_stats"]
+           "format_number", "scientific", "BoxplotStats", "boxplot_stats"]
 
 
 # ---------------------------------------------------------------------------
@@ -200,9 +200,47 @@ def describe(values):
                        max=float(x.max()), range=float(np.ptp(x)))
 
 
-def format_number(value):
-    """Four significant digits, as in a report sentence."""
-    return f"{value:.4g}"
+_SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
+def scientific(value, digits=3) -> str:
+    """A number in powers of ten as a reader reads it: 3.55×10⁻¹⁵, not 3.55e-15; 10⁻⁶ for 1e-06.
+
+    Parameters
+    ----------
+    value : float
+    digits : int
+        Significant figures [-].
+    """
+    mantissa, exponent = f"{float(value):.{max(digits - 1, 0)}e}".split("e")
+    mantissa = mantissa.rstrip("0").rstrip(".") if "." in mantissa else mantissa
+    power = f"10{str(int(exponent)).translate(_SUPERSCRIPT)}"
+    return power if mantissa == "1" else f"{mantissa}×{power}"
+
+
+def format_number(value, digits=4) -> str:
+    """A number with ``digits`` significant figures, as in a report sentence or table.
+
+    Whole digits are kept (34690, not 3.469e+04); below 1e-3 and from 1e6 on
+    in powers of ten (:func:`scientific`); NaN as "nan".
+
+    Parameters
+    ----------
+    value : float
+    digits : int
+        Significant figures [-].
+    """
+    value = float(value)
+    if value == 0:
+        return "0"
+    if not np.isfinite(value):
+        return "nan" if np.isnan(value) else ("∞" if value > 0 else "−∞")
+    magnitude = abs(value)
+    if magnitude < 1e-3 or magnitude >= 1e6:
+        return scientific(value, digits)
+    decimals = max(digits - 1 - int(np.floor(np.log10(magnitude))), 0)
+    text = f"{round(value, decimals):.{decimals}f}"
+    return "0" if float(text) == 0 else text
 
 
 # ---------------------------------------------------------------------------

@@ -41,7 +41,7 @@ MESH_FIGURES = {
     "transmission_error_harmonic_3_urad": ("  its 3rd mesh harmonic", "urad"),
     "transmission_error_mean_urad": ("static transmission error, mean", "urad"),
     "mesh_stiffness_mean_N_per_um": ("mesh stiffness, mean", "N/um"),
-    "mesh_stiffness_per_face_width_N_per_mm_um": ("  per unit face width (c_gamma)", "N/(mm um)"),
+    "mesh_stiffness_per_face_width_N_per_mm_um": ("  per unit face width (c_γ)", "N/(mm um)"),
     "mesh_stiffness_peak_to_peak_N_per_um": ("mesh stiffness, peak to peak", "N/um"),
     "mesh_stiffness_variation_percent": ("  over its mean", "%"),
 }

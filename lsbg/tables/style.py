@@ -34,6 +34,7 @@ import pandas as pd
 
 from lsbg.design import TRACE_LABELS
 from lsbg.runs import QUANTITY_LABELS
+from lsbg.stats import samples
 
 __all__ = ["UNIT_DISPLAY", "COLUMN_HEADERS", "CELL_LABELS", "display_unit", "column_header",
            "format_number", "cell_label", "run_label", "with_interval", "format_table",
@@ -116,7 +117,6 @@ _WORDS = {"std": "std", "ess": "effective samples", "te": "TE", "pp": "peak to p
           "x2": "×2", "x4": "×4", "rel": "relative", "diff": "difference", "max": "largest",
           "min": "least", "n": "n", "k": "k"}
 
-_SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
 
 
 def display_unit(unit) -> str:
@@ -195,19 +195,7 @@ def format_number(value, digits=DEFAULT_DIGITS) -> str:
         return str(int(value))
     if not isinstance(value, numbers.Real):
         return str(value)
-    value = float(value)
-    if value == 0:
-        return "0"
-    if not math.isfinite(value):
-        return "∞" if value > 0 else "−∞"
-    magnitude = abs(value)
-    if magnitude < 1e-3 or magnitude >= 1e6:
-        mantissa, exponent = f"{value:.{max(digits - 1, 0)}e}".split("e")
-        mantissa = mantissa.rstrip("0").rstrip(".") if "." in mantissa else mantissa
-        return f"{mantissa}×10{str(int(exponent)).translate(_SUPERSCRIPT)}"
-    decimals = max(digits - 1 - math.floor(math.log10(magnitude)), 0)
-    text = f"{round(value, decimals):.{decimals}f}"
-    return "0" if float(text) == 0 else text
+    return samples.format_number(value, digits)
 
 
 def run_label(run) -> str:
