@@ -106,3 +106,10 @@ def test_sentences_and_tables_share_the_number_format():
     assert stats.format_number(34690.4) == "34690"          # not 3.469e+04
     assert stats.format_number(1.0736e4) == format_number(1.0736e4) == "10736"
     assert stats.scientific(3.5527e-15) == "3.55×10⁻¹⁵" and stats.scientific(1e-6) == "10⁻⁶"
+
+
+def test_int_format_is_significant_figures_and_design_points_read_as_words():
+    df = pd.DataFrame({"ad_pvalue": [1.04e-15, 0.6012], "run": ["circular_beta35", "x"]})
+    html = format_table(df, formats={"ad_pvalue": 2})
+    assert re.findall(r"<td[^>]*>(.*?)</td>", html) == ["10⁻¹⁵", "SBG 35°",
+                                                        "0.60", "x"]

@@ -178,7 +178,7 @@ def compare_fluctuation(a, b, names=("SBG", "LSBG"), units="",
         f"{format_number(std[order[0]])}{unit} against {format_number(std[order[1]])}{unit}, "
         f"a factor {factor:.3g} (block-bootstrap {pct} interval "
         f"{lo:.3g}–{hi:.3g}, which {verdict}). "
-        f"Brown–Forsythe p = {bf.pvalue:.2g}. Effective sample sizes "
+        f"Brown–Forsythe p = {format_number(bf.pvalue, 2)}. Effective sample sizes "
         f"{ess[0]:.0f} of {x.size} ({names[0]}) and {ess[1]:.0f} of "
         f"{y.size} ({names[1]})")
     if min(ess[0] / x.size, ess[1] / y.size) < 0.5:

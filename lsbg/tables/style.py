@@ -204,8 +204,9 @@ def run_label(run) -> str:
     Parameters
     ----------
     run : str
-        File stem of a run, ``{trace}_beta{angle}_{model}_{engine}`` or of a
-        sensitivity run, ``{trace}_beta{angle}_{key}_x{factor}``.
+        File stem of a run, ``{trace}_beta{angle}_{model}_{engine}``, of a
+        sensitivity run, ``{trace}_beta{angle}_{key}_x{factor}``, or of a
+        design point's loaded TCA, ``{trace}_beta{angle}``.
 
     Returns
     -------
@@ -213,11 +214,13 @@ def run_label(run) -> str:
         e.g. "LSBG 35°, line model, compiled" or "LSBG 35°, line stiffness ×0.5";
         the id itself when it has neither form.
     """
-    match = re.fullmatch(r"(?P<trace>[a-z]+)_beta(?P<angle>[0-9.]+)_(?P<rest>.+)", str(run))
+    match = re.fullmatch(r"(?P<trace>[a-z]+)_beta(?P<angle>[0-9.]+)(_(?P<rest>.+))?", str(run))
     if not match or match["trace"] not in TRACE_LABELS:
         return str(run)
     head = f"{TRACE_LABELS[match['trace']]} {match['angle']}°"
     rest = match["rest"]
+    if rest is None:     # a design point's own file (its loaded TCA)
+        return head
     parts = rest.split("_")
     if len(parts) == 2 and parts[0] in ("point", "line"):
         return f"{head}, {parts[0]} model, {parts[1]}"
@@ -279,9 +282,9 @@ def format_table(df, formats=None, index=False, digits=DEFAULT_DIGITS, headers=N
     ----------
     df : pandas.DataFrame
     formats : dict, optional
-        ``{column: format string or callable}``, over
-        :data:`DEFAULT_FORMATS`; other numbers get :func:`format_number`
-        with ``digits``.
+        ``{column: format string, callable or int}``, over
+        :data:`DEFAULT_FORMATS`; an int is that column's significant figures
+        (:func:`format_number`); other numbers get ``digits`` of them.
     index : bool, default False
         Show the index.
     digits : int
@@ -304,6 +307,8 @@ def format_table(df, formats=None, index=False, digits=DEFAULT_DIGITS, headers=N
     def fmt(value, rule):
         if value is None or value is pd.NA or (isinstance(value, float) and math.isnan(value)):
             return "—"
+        if isinstance(rule, int) and not isinstance(rule, bool):
+            return format_number(value, rule)
         if rule is not None:
             return rule(value) if callable(rule) else rule.format(value)
         if isinstance(value, (numbers.Number, bool)):
