@@ -21,11 +21,11 @@ import numpy as np
 import pandas as pd
 
 from lsbg import stats
-from lsbg.results import as_path_list, open_run
+from lsbg.results import VARIABLES, as_path_list, open_run
 from lsbg.runs import QUANTITIES, THEORY_ATTRIBUTES, full_rate_series, open_mesh, run_spiral_angle
 
 __all__ = [
-    "SUMMARY_QUANTITIES", "SUMMARY_COLUMNS", "STATISTICS_KEYS", "statistics_options",
+    "SUMMARY_QUANTITIES", "SUMMARY_UNITS", "SUMMARY_COLUMNS", "STATISTICS_KEYS", "statistics_options",
     "quantity_summary", "mesh_summary", "summary_table"
 ]
 
@@ -33,6 +33,11 @@ __all__ = [
 #: Quantities of the summary table: the paper's, the transmission error and
 #: the contact torque.
 SUMMARY_QUANTITIES = QUANTITIES + ("transmission_error", "contact_torque")
+
+#: Unit of each quantity of the summary table's rows, as the datasets write it: the
+#: runs' (:data:`lsbg.results.VARIABLES`) and the loaded TCA's rows (:mod:`lsbg.ltca`).
+SUMMARY_UNITS = {**{q: VARIABLES[q][0] for q in SUMMARY_QUANTITIES},
+                 "static_transmission_error": "urad", "mesh_stiffness": "N/um"}
 
 
 #: Columns of :func:`summary_table`. Runs: the paper's §4 statistics of the

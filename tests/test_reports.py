@@ -160,6 +160,7 @@ def test_paper_report(study_files, tmp_path):
     assert "this study ran no other spiral angle" in finding
     # Appendix A recomputes the summary table's rows of this design point, attached in full
     table = pd.read_csv(study_files["summary"])
+    assert '<td class="text">contact torque</td><td class="text">N·m</td>' in html
     (attached,) = embedded_csv(html).values()
     assert len(attached) == len(table)
     for row in table[table.engine != "ltca"].itertuples():

@@ -9,7 +9,8 @@ import xarray as xr
 import yaml
 
 from lsbg import cli, stats, theory
-from lsbg.summary import SUMMARY_COLUMNS, SUMMARY_QUANTITIES, statistics_options, summary_table
+from lsbg.summary import (SUMMARY_COLUMNS, SUMMARY_QUANTITIES, SUMMARY_UNITS, statistics_options,
+                          summary_table)
 
 
 def test_summary_table_columns_and_values(runs, pybullet_runs, windows):
@@ -64,6 +65,12 @@ def test_summary_table_loaded_tca_rows(runs, windows):
         assert mesh_rows.iloc[1]["mean"] == pytest.approx(mesh.mesh_stiffness.values.mean())
     assert mesh_rows.out_of_control.isna().all()
     assert table[table.engine != "ltca"].contact_model.unique().tolist() == ["line"]
+    # every row's quantity has the unit its dataset writes (the reports' unit column)
+    with xr.open_dataset(runs["sbg35_mesh"]) as mesh, xr.open_dataset(runs["sbg35_line"]) as run:
+        assert SUMMARY_UNITS["static_transmission_error"] == mesh.transmission_error.attrs["units"]
+        assert SUMMARY_UNITS["mesh_stiffness"] == mesh.mesh_stiffness.attrs["units"]
+        for quantity in table[table.engine != "ltca"].quantity.unique():
+            assert SUMMARY_UNITS[quantity] == run[quantity].attrs["units"], quantity
 
 
 def test_summary_table_default_windows_need_a_long_run(runs):

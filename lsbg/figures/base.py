@@ -15,17 +15,14 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from lsbg.design import TRACE_LABELS
+from lsbg.results import VARIABLES
 from lsbg.tables.style import display_unit  # one unit spelling for tables and axes
 
 #: Widest figure a report shows at full size: 1340 px at 100 dpi [inch].
 MAX_WIDTH = 13.4
 
 #: Units of the run quantities as lsbg writes them, for tables that do not carry them.
-QUANTITY_UNITS = {
-    "pinion_speed": "deg/s", "gear_speed": "deg/s", "tangential_force": "N",
-    "tangential_force_outer": "N", "normal_force": "N", "contact_torque": "N m",
-    "transmission_error": "urad", "max_penetration": "um", "contact_pairs": "1",
-}
+QUANTITY_UNITS = {name: unit for name, (unit, _) in VARIABLES.items()}
 
 #: One colour per gear type in every figure.
 TYPE_COLORS = {"SBG": "C0", "LSBG": "C1"}

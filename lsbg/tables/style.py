@@ -187,7 +187,7 @@ def format_number(value, digits=DEFAULT_DIGITS) -> str:
     -------
     str
     """
-    if value is None or value is pd.NA or (isinstance(value, float) and math.isnan(value)):
+    if _missing(value):
         return "—"
     if isinstance(value, bool):
         return "yes" if value else "no"
@@ -196,6 +196,11 @@ def format_number(value, digits=DEFAULT_DIGITS) -> str:
     if not isinstance(value, numbers.Real):
         return str(value)
     return samples.format_number(value, digits)
+
+
+def _missing(value) -> bool:
+    """None, pandas' NA or a float NaN."""
+    return value is None or value is pd.NA or (isinstance(value, float) and math.isnan(value))
 
 
 def run_label(run) -> str:
@@ -305,7 +310,7 @@ def format_table(df, formats=None, index=False, digits=DEFAULT_DIGITS, headers=N
                for c in columns}
 
     def fmt(value, rule):
-        if value is None or value is pd.NA or (isinstance(value, float) and math.isnan(value)):
+        if _missing(value):      # before a column's own format, which cannot take one
             return "—"
         if isinstance(rule, int) and not isinstance(rule, bool):
             return format_number(value, rule)

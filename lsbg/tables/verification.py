@@ -23,6 +23,7 @@ import pandas as pd
 from lsbg.design import TRACE_LABELS
 from lsbg.results import as_path_list
 from lsbg.runs import records_by_type, run_spiral_angle, steady
+from lsbg.stats.samples import format_number
 
 __all__ = [
     "REFERENCE_ENGINES", "engine_agreement", "contact_resonance", "read_convergence",
@@ -310,15 +311,12 @@ def setting_label(engine, parameter, value, is_default=False) -> str:
     str
         e.g. "pybullet dt = 1 µs (default)", "compiled rtol = 10⁻⁸".
     """
-    from lsbg.tables.style import format_number
-
     value = float(value)
     if parameter == "time_step_s":
         text = f"dt = {value * 1e6:.4g} µs"
     else:
-        number = format_number(value, 3)
-        number = number[2:] if number.startswith("1×10") else number
-        text = f"{'rtol' if parameter == 'rtol' else parameter.replace('_', ' ')} = {number}"
+        text = (f"{'rtol' if parameter == 'rtol' else parameter.replace('_', ' ')} = "
+                f"{format_number(value, 3)}")
     return f"{engine} {text}" + (" (default)" if is_default else "")
 
 
