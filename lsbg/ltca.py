@@ -170,6 +170,7 @@ def loaded_tca(contact: MeshContact, load_torque, phases=PHASES, profile_points=
 
     harmonics = harmonic_amplitudes(te * 1e6)
     mean_stiffness = float(stiffness.mean())
+    extent = loaded_pattern_extent(pattern, rho, table[0, :, kernels.B_D_RHO], profile)
     attrs = {
         "Conventions": "CF-1.11",
         "title": f"Loaded tooth contact analysis of a {design.trace} spiral bevel gear pair "
@@ -187,6 +188,8 @@ def loaded_tca(contact: MeshContact, load_torque, phases=PHASES, profile_points=
         "mesh_stiffness_per_face_width_N_per_mm_um": mean_stiffness / design.face_width * 1e-9,
         "mesh_stiffness_peak_to_peak_N_per_um": float(np.ptp(stiffness) * 1e-6),
         "mesh_stiffness_variation_percent": float(100 * np.ptp(stiffness) / mean_stiffness),
+        **extent,
+        **(contact.separation.attrs if contact.separation is not None else {}),
         "mean_mesh_stiffness_closed_form_N_per_um": contact.mean_mesh_stiffness() * 1e-6,
         "base_radius_gear_mm": contact.base_radius * 1e3,
         "mesh_frequency_per_pinion_rev": z1,
@@ -236,6 +239,50 @@ def loaded_tca(contact: MeshContact, load_torque, phases=PHASES, profile_points=
         attrs={k: (float(v) if isinstance(v, (np.floating, np.integer)) else v)
                for k, v in attrs.items()},
     )
+
+
+def loaded_pattern_extent(pattern, cone_distance, band_width, profile_angle):
+    """Extent of the loaded contact pattern and the share of load at its edges.
+
+    Parameters
+    ----------
+    pattern : numpy.ndarray, shape (bands, profile)
+        Load per unit length over the flank [N/m].
+    cone_distance, band_width : numpy.ndarray, shape (bands,)
+        Band centres and widths [m].
+    profile_angle : numpy.ndarray, shape (profile,)
+        Polar angles in the plane of action across the field [rad].
+
+    Returns
+    -------
+    dict
+        ``loaded_pattern_toe_mm``, ``loaded_pattern_heel_mm`` (cone distances
+        of the loaded band ends), ``loaded_pattern_length_per_face_width``,
+        ``loaded_pattern_profile_share`` (share of the field's profile that
+        carries load) and ``edge_load_share``: the share of the load carried
+        by the outermost band at the toe and at the heel and by the first and
+        last profile samples (the field's edges at tip and root) [-].
+    """
+    loaded = pattern > 0.0
+    total = float(pattern.sum())
+    if not loaded.any() or total <= 0.0:
+        nan = float("nan")
+        return {"loaded_pattern_toe_mm": nan, "loaded_pattern_heel_mm": nan,
+                "loaded_pattern_length_per_face_width": 0.0,
+                "loaded_pattern_profile_share": 0.0, "edge_load_share": nan}
+    rows = np.flatnonzero(loaded.any(axis=1))
+    columns = np.flatnonzero(loaded.any(axis=0))
+    toe = cone_distance[rows[0]] - band_width[rows[0]] / 2
+    heel = cone_distance[rows[-1]] + band_width[rows[-1]] / 2
+    edge = np.zeros_like(loaded)
+    edge[[0, -1], :] = True
+    edge[:, [0, -1]] = True
+    step = profile_angle[1] - profile_angle[0]
+    profile_span = (columns[-1] - columns[0] + 1) * step / (profile_angle[-1] - profile_angle[0] + step)
+    return {"loaded_pattern_toe_mm": float(toe * 1e3), "loaded_pattern_heel_mm": float(heel * 1e3),
+            "loaded_pattern_length_per_face_width": float((heel - toe) / band_width.sum()),
+            "loaded_pattern_profile_share": float(profile_span),
+            "edge_load_share": float(pattern[edge].sum() / total)}
 
 
 def active_polar_range(pair, member, side="drive"):
@@ -331,7 +378,8 @@ def unloaded_transmission_error(pair, pinion_angles, side="drive", n_face=7):
     return np.asarray(out)
 
 
-def ltca_for_geometry(geometry_dir, load_torque, contact_params=None, phases=PHASES):
+def ltca_for_geometry(geometry_dir, load_torque, contact_params=None, phases=PHASES,
+                      flanks=None):
     """:func:`loaded_tca` of a geometry directory (``lsbg geometry``).
 
     Parameters
@@ -342,6 +390,9 @@ def ltca_for_geometry(geometry_dir, load_torque, contact_params=None, phases=PHA
     contact_params : lsbg.contact.ContactParameters, optional
         Its line-model fields are used (the model is set to "line").
     phases : int
+    flanks : lsbg.tca.separation.RealFlanks, optional
+        Flank modification and assembly displacements (default: the
+        conjugate, aligned pair).
 
     Returns
     -------
@@ -351,5 +402,7 @@ def ltca_for_geometry(geometry_dir, load_torque, contact_params=None, phases=PHA
     from lsbg.geometry import GearPair
 
     params = (contact_params or ContactParameters()).replace(model="line")
-    contact = MeshContact(GearPair(read_design(geometry_dir)), params)
+    pair = GearPair(read_design(geometry_dir))
+    separation = flanks.separation(pair) if flanks is not None else None
+    contact = MeshContact(pair, params, separation=separation)
     return loaded_tca(contact, load_torque, phases)

@@ -131,6 +131,9 @@ def run_dataset(record, model, settings, command=""):
         "wall_time_s": record.wall_time,
         "integrator_steps": record.steps,
     }
+    separation = model.contact.separation
+    if separation is not None:  # real flanks: their modification and displacements
+        attrs.update(separation.attrs)
     attrs.update({f"design_{k}": v for k, v in design.to_config().items()})
     attrs.update({f"design_{k}": v for k, v in design.derived().items()})
     ratio = model.pair.contact_ratio()

@@ -25,6 +25,7 @@ LAYERS = (
     ("contact",),
     ("results", "dynamics"),
     ("ltca", "sensitivity", "verification", "spectra", "speed", "stats"),
+    ("tca",),
     ("runs",),
     ("combine",),
     ("summary",),

@@ -58,9 +58,13 @@ MODEL_CODES = {"point": 0.0, "line": 1.0}
 # --- sides[side]: side 0 = drive, 1 = coast
 # U*: components of the rotation axes u_i along the plane's pitch direction p
 # and cross direction q; N*: those of N x u_i (the friction lever, line model)
+# SEP_*: the line model's separation table (rows of line turns from SEP_FIRST,
+# SEP_INV_STEP per radian; SEP_ROWS = 0: conjugate flanks, no table);
+# SEP_LEAD: the least mismatch at which the flanks can touch (0 for conjugate
+# flanks; negative where a displacement makes them interfere)
 (S_FIRST, S_LAST, S_INV_STEP, S_ROWS, S_PSI_LO, S_PSI_HI, S_U1P, S_U1Q, S_U2P, S_U2Q,
- S_N1P, S_N1Q, S_N2P, S_N2Q) = range(14)
-N_SIDE = 14
+ S_N1P, S_N1Q, S_N2P, S_N2Q, S_SEP_FIRST, S_SEP_INV_STEP, S_SEP_ROWS, S_SEP_LEAD) = range(18)
+N_SIDE = 18
 
 # --- table[side, row]: point model, per line turn Psi = first + row / inv_step
 T_LEVER, T_AA, T_AB, T_BB, T_RADIUS, T_RHO = range(6)
@@ -71,6 +75,10 @@ N_PHASE_COLUMNS = 6
 (B_RHO, B_LEVER, B_COS, B_SIN, B_D_RHO, B_D_LEVER, B_D_COS, B_D_SIN, B_LENGTH, B_THETA_IN,
  B_THETA_OUT) = range(11)
 N_COLUMNS = 11
+# ... followed, with a separation table, by two columns per row of line turn:
+# the initial separation of the flanks at the band's centre and its change
+# across the band (outer edge minus inner edge) [m]
+B_SEPARATION = N_COLUMNS
 
 # --- details[pair]: one row per tooth pair whose line meets the field
 (D_SIDE, D_PHASE, D_LEVER, D_PENETRATION, D_RATE, D_NORMAL, D_MU, D_SLIDE, D_GEAR_TORQUE,
@@ -220,8 +228,24 @@ def _point_side(side, eps, eps_rate, sign, phase, phase_rate, w1, w2, params, si
 
 
 @njit(cache=True)
-def _line_side(side, eps, eps_rate, sign, phase, w1, w2, params, sides, table, details, count,
-               slices):
+def _separation(table, side, j, t, sides, here):
+    """Initial separation of the flanks in band j at offset t, for a line at
+    turn ``here``, interpolated linearly in the turn [m]; and its rate per
+    radian of turn [m/rad]."""
+    rows = int(sides[side, S_SEP_ROWS])
+    position = (here - sides[side, S_SEP_FIRST]) * sides[side, S_SEP_INV_STEP]
+    row = int(math.floor(position))
+    row = min(max(row, 0), rows - 2)
+    w = position - row
+    c0 = B_SEPARATION + 2 * row
+    s0 = table[side, j, c0] + t * table[side, j, c0 + 1]
+    s1 = table[side, j, c0 + 2] + t * table[side, j, c0 + 3]
+    return s0 + w * (s1 - s0), (s1 - s0) * sides[side, S_SEP_INV_STEP]
+
+
+@njit(cache=True)
+def _line_side(side, eps, eps_rate, sign, phase, phase_rate, w1, w2, params, sides, table,
+               details, count, slices):
     """Sum over the tooth pairs and slices of one side, line model."""
     pitch = params[P_PITCH]
     first, last = sides[side, S_FIRST], sides[side, S_LAST]
@@ -275,6 +299,12 @@ def _line_side(side, eps, eps_rate, sign, phase, w1, w2, params, sides, table, d
             lever = table[side, j, B_LEVER] + t * table[side, j, B_D_LEVER]
             x = lever * eps
             xdot = lever * eps_rate
+            if sides[side, S_SEP_ROWS] > 0.0:
+                # real flanks: the initial separation (modification and
+                # displacements), which moves with the line
+                gap, gap_rate = _separation(table, side, j, t, sides, here)
+                x -= gap
+                xdot -= gap_rate * phase_rate
             if x > pair_deepest:
                 pair_deepest, pair_lever, pair_rate = x, lever, xdot
             load = line_load_scalar(x, xdot, stiffness, damping)
@@ -350,8 +380,8 @@ def _side(side, eps, eps_rate, sign, phase, phase_rate, w1, w2, params, sides, t
     if params[P_MODEL] == 0.0:
         return _point_side(side, eps, eps_rate, sign, phase, phase_rate, w1, w2, params, sides,
                            table, details, count)
-    return _line_side(side, eps, eps_rate, sign, phase, w1, w2, params, sides, table, details,
-                      count, slices)
+    return _line_side(side, eps, eps_rate, sign, phase, phase_rate, w1, w2, params, sides, table,
+                      details, count, slices)
 
 
 @njit(cache=True)
@@ -374,7 +404,7 @@ def _mesh(phi1, phi2, w1, w2, params, sides, table, details, slices):
     shift = params[P_LINE_SHIFT]
     # both sides' lines turn at the rate of the drive side's phase
     phase_rate = params[P_ORIENTATION] * (w1 * e1 - shift * rate)
-    if drive > 0.0:
+    if drive > sides[0, S_SEP_LEAD]:
         phase = params[P_ORIENTATION] * (phi1 * e1 - shift * drive)
         gear, pinion, deepest, tangential, normal, pairs, count = _side(
             0, drive, rate, 1.0, phase, phase_rate, w1, w2, params, sides, table, details, count,
@@ -514,8 +544,9 @@ def static_mismatch(phi1, base, e2, load, limit, params, sides, table):
     Returns
     -------
     float
-        eps [rad]: the gear rotation is ``base - eps / e2``; -1 if the
-        torque stays below ``load`` up to ``limit``.
+        eps [rad]: the gear rotation is ``base - eps / e2`` (negative where
+        real flanks interfere at the kinematic position); NaN if the torque
+        stays below ``load`` up to ``limit`` (or above it down to -limit).
     """
     a, fa = 0.0, _static_residual(0.0, phi1, base, e2, load, params, sides, table)
     b = 1e-6
@@ -524,10 +555,20 @@ def static_mismatch(phi1, base, e2, load, limit, params, sides, table):
         a, fa = b, fb
         b *= 2.0
         if b > limit:
-            return -1.0
+            return math.nan
         fb = _static_residual(b, phi1, base, e2, load, params, sides, table)
     if fa >= 0.0:
-        return a
+        # Real flanks can interfere at the kinematic position (a displacement
+        # into mesh): bracket below 0 instead.
+        b, fb = a, fa
+        a = -1e-6
+        fa = _static_residual(a, phi1, base, e2, load, params, sides, table)
+        while fa >= 0.0:
+            b, fb = a, fa
+            a *= 2.0
+            if a < -limit:
+                return math.nan
+            fa = _static_residual(a, phi1, base, e2, load, params, sides, table)
     side = 0
     c = b
     for _ in range(200):

@@ -35,6 +35,14 @@ PHASE_SAMPLES_PER_PITCH = 20000
 #: [N/m per m: 20 N/(mm·µm)].
 ISO_MESH_STIFFNESS = 20e9
 
+#: Rows of the line model's separation table per base pitch of line turn: the
+#: relief of a crowned flank changes over a pitch by a parabola, which linear
+#: interpolation at this spacing follows to about 1e-5 of its amplitude.
+SEPARATION_ROWS_PER_PITCH = 128
+
+#: Torque at which real flanks count as just touching in a static solve [N m].
+FIRST_TOUCH_TORQUE = 1e-6
+
 #: Most tooth pairs whose contact lines can meet the field at once, per side.
 MAX_PAIRS = 8
 
@@ -124,6 +132,15 @@ class MeshContact:
         (:mod:`lsbg.ltca`) should use.
     samples_per_pitch : int
         Resolution of the point model's phase tables [-].
+    separation : callable, optional
+        Line model on real flanks: ``separation(turn, cone_distance)``, the
+        initial separation of the drive flanks [m] at the point of the
+        contact line of turn Psi [rad] at distance rho from the apex [m]
+        (arrays broadcast), from the flank modification and the assembly
+        displacements (:func:`lsbg.tca.separation.separation_field`). It is
+        tabulated at ``SEPARATION_ROWS_PER_PITCH`` rows per base pitch and
+        subtracted from each slice's approach. None: conjugate flanks (the
+        coast side always keeps them).
 
     Attributes
     ----------
@@ -139,8 +156,9 @@ class MeshContact:
     """
 
     def __init__(self, pair, params=None, gear_inertia=None,
-                 samples_per_pitch=PHASE_SAMPLES_PER_PITCH):
+                 samples_per_pitch=PHASE_SAMPLES_PER_PITCH, separation=None):
         self.pair = pair
+        self.separation = separation
         self.params = params if params is not None else ContactParameters()
         design = pair.design
         self.e1 = math.sin(design.base_cone_angle(1))
@@ -158,9 +176,13 @@ class MeshContact:
         self.coast_offset = off[(2, "coast")] * self.e2 - off[(1, "coast")] * self.e1
         self.coast_pinion_offset = off[(1, "coast")]
         if self.params.model == "point":
+            if separation is not None:
+                raise ValueError("a separation field (flank modification, misalignment) is "
+                                 "defined for the line model; the point model keeps the "
+                                 "paper's conjugate flanks")
             self._sides, self._table = self._point_tables(samples_per_pitch)
         else:
-            self._sides, self._table = self._line_bands(self.params.slices)
+            self._sides, self._table = self._line_bands(self.params.slices, separation)
         # Stiffness-proportional damping of each slice, c_l = 2 zeta k_l / omega_n,
         # gives the mesh mode the damping ratio zeta at the mean stiffness.
         self.damping_coefficient = 0.0
@@ -242,9 +264,10 @@ class MeshContact:
             table[s, :len(columns)] = columns
         return sides, table
 
-    def _line_bands(self, bands):
+    def _line_bands(self, bands, separation=None):
         """Per side, the bands (slices) of the face width: mid distance, lever,
-        length of the curve inside the band, and the curve's polar angles."""
+        length of the curve inside the band, and the curve's polar angles;
+        with ``separation``, the drive side's separation table after them."""
         design = self.pair.design
         edges = np.linspace(design.inner_cone_distance, design.outer_cone_distance, bands + 1)
         rho = 0.5 * (edges[:-1] + edges[1:])
@@ -264,7 +287,29 @@ class MeshContact:
             table[s, :, k.B_SIN], table[s, :, k.B_D_SIN] = np.sin(theta), np.diff(np.sin(theta_edge))
             table[s, :, k.B_LENGTH] = np.diff(edges) * rho / lever  # d rho / cos(beta_p)
             table[s, :, k.B_THETA_IN], table[s, :, k.B_THETA_OUT] = theta_edge[:-1], theta_edge[1:]
-        return sides, table
+        if separation is None:
+            return sides, table
+        # Drive side: the separation at each band's centre and its change
+        # across the band, on rows of line turn over the lines' whole range.
+        first, last = sides[0, k.S_FIRST], sides[0, k.S_LAST]
+        step_ = self.pitch / SEPARATION_ROWS_PER_PITCH
+        rows = int(math.ceil((last - first) / step_)) + 2
+        turns = first + step_ * np.arange(rows)
+        centre = separation(turns[:, None], rho[None, :])
+        edge = separation(turns[:, None], edges[None, :])
+        if not (np.all(np.isfinite(centre)) and np.all(np.isfinite(edge))):
+            raise ValueError("the separation field is not finite on the contact lines")
+        full = np.zeros((2, bands, k.N_COLUMNS + 2 * rows))
+        full[:, :, :k.N_COLUMNS] = table
+        full[0, :, k.B_SEPARATION::2] = centre.T
+        full[0, :, k.B_SEPARATION + 1::2] = np.diff(edge, axis=1).T
+        sides[0, k.S_SEP_FIRST], sides[0, k.S_SEP_INV_STEP] = first, 1.0 / step_
+        sides[0, k.S_SEP_ROWS] = rows
+        # contact can begin at a negative mismatch where the flanks interfere
+        lever_edge = edges * np.cos(self.pair.planes["drive"].curve.ray_angle(edges))
+        lead = min(float(np.min(centre / lever)), float(np.min(edge / lever_edge)))
+        sides[0, k.S_SEP_LEAD] = min(0.0, 1.1 * lead)
+        return sides, full
 
     # ------------------------------------------------------------ evaluation
     def mismatch(self, pinion_angle, gear_angle):
@@ -347,10 +392,13 @@ class MeshContact:
         """
         base = pinion_angle * self.e1 / self.e2
         if load_torque <= 0.0:
-            return base
+            if self.separation is None:
+                return base
+            # real flanks: first touch, where the torque just rises
+            load_torque = FIRST_TOUCH_TORQUE
         eps = k.static_mismatch(float(pinion_angle), base, self.e2, float(load_torque),
                                 0.1 * self.pitch, *self.arrays)
-        if eps < 0.0:
+        if not math.isfinite(eps):
             raise ValueError(f"load_torque = {load_torque!r}: the contact cannot carry it "
                              f"within a tenth of a base pitch of approach")
         return base - eps / self.e2

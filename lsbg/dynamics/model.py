@@ -246,7 +246,7 @@ class MeshingModel:
         return run_pybullet(self, settings)
 
 
-def load_model(geometry_dir, contact_params=None) -> MeshingModel:
+def load_model(geometry_dir, contact_params=None, flanks=None) -> MeshingModel:
     """The meshing model of a geometry directory written by ``lsbg geometry``.
 
     Parameters
@@ -255,6 +255,11 @@ def load_model(geometry_dir, contact_params=None) -> MeshingModel:
         Directory with ``design.json`` (design and inertias) and ``pair.urdf``.
     contact_params : lsbg.contact.ContactParameters, optional
         Contact model and law; the paper's by default.
+    flanks : lsbg.tca.separation.RealFlanks, optional
+        Flank modification and assembly displacements: the line model's
+        slices start from their separation field (the point model, the
+        paper's reproduction, keeps the conjugate flanks). Default: the
+        conjugate, aligned pair.
 
     Returns
     -------
@@ -269,11 +274,15 @@ def load_model(geometry_dir, contact_params=None) -> MeshingModel:
     record = read_record(geometry_dir)
     pair = GearPair(read_design(geometry_dir))
     gear_inertia = record["axial_inertia_gear_kg_m2"]
-    return MeshingModel(MeshContact(pair, contact_params, gear_inertia=gear_inertia), gear_inertia,
+    line = contact_params is not None and contact_params.model == "line"
+    separation = flanks.separation(pair) if flanks is not None and line else None
+    contact = MeshContact(pair, contact_params, gear_inertia=gear_inertia, separation=separation)
+    return MeshingModel(contact, gear_inertia,
                         record["axial_inertia_pinion_kg_m2"], urdf=geometry_dir / FILE_NAMES["urdf"])
 
 
-def simulate(geometry_dir, settings: SimulationSettings, contact_params=None, command=""):
+def simulate(geometry_dir, settings: SimulationSettings, contact_params=None, command="",
+             flanks=None):
     """Run one meshing simulation and return its CF dataset.
 
     Parameters
@@ -284,6 +293,8 @@ def simulate(geometry_dir, settings: SimulationSettings, contact_params=None, co
     contact_params : lsbg.contact.ContactParameters, optional
     command : str
         Command line, recorded in the dataset's ``history``.
+    flanks : lsbg.tca.separation.RealFlanks, optional
+        As :func:`load_model`.
 
     Returns
     -------
@@ -297,7 +308,7 @@ def simulate(geometry_dir, settings: SimulationSettings, contact_params=None, co
     """
     from lsbg.results import run_dataset
 
-    model = load_model(geometry_dir, contact_params)
+    model = load_model(geometry_dir, contact_params, flanks)
     log.info("%s engine, %s model, %s trace, spiral angle %.4g deg: %.4g s simulated",
              settings.engine, model.contact.params.model, model.pair.design.trace,
              math.degrees(model.pair.design.spiral_angle), settings.duration)

@@ -1,0 +1,320 @@
+"""Flank modification (ease-off) of the pinion's flanks.
+
+Real spiral bevel gears are not conjugate: the pinion's flank is relieved
+(crowned) so that the bearing contact is localized inside the flank and the
+unloaded transmission error is a shallow parabola per mesh cycle (Litvin's
+predesigned parabolic function; docs/model.md, "Flank modification").
+:class:`FlankModification` describes the relief as a normal deviation of the
+pinion's flank, removed from the tooth, in the ease-off coordinates every
+bevel-gear tool plots it in:
+
+* the **lengthwise** coordinate u = (R - R_m) / (b / 2): -1 at the toe,
+  +1 at the heel (R the cone distance, R_m the mean cone distance, b the face
+  width);
+* the **profile** coordinate v = (psi - psi_c) / (Delta psi / 2): -1 and +1
+  at the two ends of the active profile, where psi is the polar angle in the
+  plane of action at which the flank point meets it (a function of the
+  point's polar angle about the pinion axis only), psi_c the middle and
+  Delta psi the width of the field of contact. On the drive side of the
+  paper's pair v = +1 is the pinion's root end of the active profile and
+  v = -1 its tip end; :func:`profile_coordinate` gives the sense for any pair.
+
+The relief is
+
+    delta(u, v) = C_L u^2 + C_P v^2 + B u v + topography(u, v),
+
+with C_L the lengthwise crowning and C_P the profile crowning (reliefs at the
+toe and heel on the middle of the profile, and at the ends of the active
+profile in the middle of the face), B the bias (a twist: +B at the (u, v) =
+(+1, +1) and (-1, -1) corners, -B at the other two) and an optional measured
+or designed topography on a (u, v) grid. The same definition applies to both
+gear types, so their comparison is fair. All amounts are in metres inside and
+in micrometres in the configuration (``flank_modification:``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["FlankModification", "TopographyError", "MODIFICATION_CONFIG_KEYS",
+           "read_topography", "profile_coordinate", "lengthwise_coordinate"]
+
+_UM = 1e-6
+
+#: Configuration keys of ``flank_modification:`` and the field each sets.
+MODIFICATION_CONFIG_KEYS = {
+    "lengthwise_crowning_um": "lengthwise_crowning",
+    "profile_crowning_um": "profile_crowning",
+    "bias_um": "bias",
+    "topography_file": "topography_file",
+}
+
+
+class TopographyError(ValueError):
+    """A topography file that is missing, of the wrong shape or with NaN."""
+
+
+@dataclass(frozen=True)
+class FlankModification:
+    """Relief of the pinion's drive flank, normal to it, in SI units.
+
+    Parameters
+    ----------
+    lengthwise_crowning : float
+        C_L, relief at the toe and heel (u = -1, +1) on the middle of the
+        profile [m], >= 0.
+    profile_crowning : float
+        C_P, relief at the ends of the active profile (v = -1, +1) in the
+        middle of the face [m], >= 0.
+    bias : float
+        B, the twist term B u v [m].
+    topography_file : str or None
+        A CSV (columns ``u``, ``v``, ``relief_um`` on a full rectangular grid)
+        or NetCDF file (variable ``relief`` [um] on dimensions ``u`` and
+        ``v``) whose relief is added, interpolated bilinearly; the grid must
+        cover -1 <= u, v <= 1.
+    topography : tuple or None
+        The file's grid once read: (u [-], v [-], relief [m]); set by
+        :meth:`load`.
+    """
+
+    lengthwise_crowning: float = 0.0
+    profile_crowning: float = 0.0
+    bias: float = 0.0
+    topography_file: str | None = None
+    topography: tuple | None = field(default=None, compare=False, repr=False)
+
+    def __post_init__(self):
+        for name in ("lengthwise_crowning", "profile_crowning"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, float)) \
+                    or not math.isfinite(value) or value < 0:
+                raise ValueError(f"flank_modification.{name}_um = {_um(value)}: must be a "
+                                 f"number >= 0 [um]")
+        if isinstance(self.bias, bool) or not isinstance(self.bias, (int, float)) \
+                or not math.isfinite(self.bias):
+            raise ValueError(f"flank_modification.bias_um = {_um(self.bias)}: must be a "
+                             f"finite number [um]")
+
+    # ------------------------------------------------------------- config
+    @classmethod
+    def from_config(cls, config, base=None):
+        """Build from the ``flank_modification:`` section (micrometres).
+
+        Parameters
+        ----------
+        config : dict or None
+            Keys of :data:`MODIFICATION_CONFIG_KEYS`; missing keys are 0
+            (no topography). None or {}: no modification.
+        base : str or pathlib.Path, optional
+            Directory a relative ``topography_file`` is read from (default:
+            the working directory).
+
+        Returns
+        -------
+        FlankModification
+            With its topography read (:meth:`load`).
+
+        Raises
+        ------
+        ValueError
+            Naming the key and value (``flank_modification.<key>``).
+        """
+        kwargs = {}
+        for key, value in (config or {}).items():
+            if key not in MODIFICATION_CONFIG_KEYS:
+                raise ValueError(f"flank_modification.{key} = {value!r}: unknown key "
+                                 f"(known: {sorted(MODIFICATION_CONFIG_KEYS)})")
+            name = MODIFICATION_CONFIG_KEYS[key]
+            if name == "topography_file":
+                if value is not None and not isinstance(value, str):
+                    raise ValueError(f"flank_modification.{key} = {value!r}: must be a "
+                                     f"file name or null")
+                if value is not None and base is not None and not Path(value).is_absolute():
+                    value = str(Path(base) / value)
+                kwargs[name] = value
+                continue
+            if isinstance(value, bool) or not isinstance(value, (int, float)):
+                raise ValueError(f"flank_modification.{key} = {value!r}: must be a number [um]")
+            kwargs[name] = float(value) * _UM
+        return cls(**kwargs).load()
+
+    def to_config(self):
+        """The ``flank_modification:`` keys in micrometres (inverse of :meth:`from_config`)."""
+        return {"lengthwise_crowning_um": self.lengthwise_crowning / _UM,
+                "profile_crowning_um": self.profile_crowning / _UM,
+                "bias_um": self.bias / _UM,
+                "topography_file": self.topography_file}
+
+    def load(self):
+        """This modification with its topography file read (itself if none)."""
+        if self.topography_file is None or self.topography is not None:
+            return self
+        return FlankModification(self.lengthwise_crowning, self.profile_crowning, self.bias,
+                                 self.topography_file, read_topography(self.topography_file))
+
+    @property
+    def is_zero(self):
+        """True when the flank is the conjugate one (no relief anywhere)."""
+        return (self.lengthwise_crowning == 0.0 and self.profile_crowning == 0.0
+                and self.bias == 0.0 and self.topography_file is None)
+
+    # ---------------------------------------------------------- evaluation
+    def relief(self, u, v):
+        """Relief delta(u, v) of the pinion flank, normal to it [m].
+
+        Parameters
+        ----------
+        u : array_like
+            Lengthwise coordinate, -1 at the toe, +1 at the heel [-].
+        v : array_like
+            Profile coordinate, -1 and +1 at the ends of the active profile [-].
+
+        Returns
+        -------
+        numpy.ndarray
+            Material removed from the conjugate flank [m] (negative: added).
+        """
+        u = np.asarray(u, dtype=float)
+        v = np.asarray(v, dtype=float)
+        out = self.lengthwise_crowning * u**2 + self.profile_crowning * v**2 + self.bias * u * v
+        if self.topography_file is not None:
+            grid_u, grid_v, relief = self.load().topography
+            from scipy.interpolate import RegularGridInterpolator
+
+            table = RegularGridInterpolator((grid_u, grid_v), relief, method="linear",
+                                            bounds_error=False, fill_value=None)
+            points = np.stack(np.broadcast_arrays(u, v), axis=-1)
+            out = out + table(points)
+        return out
+
+    def largest_relief(self, n=41):
+        """Largest |relief| over the flank, -1 <= u, v <= 1 [m] (grid of n x n)."""
+        u, v = np.meshgrid(np.linspace(-1, 1, n), np.linspace(-1, 1, n), indexing="ij")
+        return float(np.abs(self.relief(u, v)).max())
+
+
+def _um(value):
+    try:
+        return f"{float(value) / _UM:g}"
+    except (TypeError, ValueError):
+        return repr(value)
+
+
+# ------------------------------------------------------------------ coordinates
+def lengthwise_coordinate(design, cone_distance):
+    """u = (R - R_m) / (b / 2): -1 at the toe, +1 at the heel [-].
+
+    Parameters
+    ----------
+    design : lsbg.design.GearPairDesign
+    cone_distance : array_like
+        Distance R from the apex [m].
+    """
+    return (np.asarray(cone_distance, dtype=float) - design.mean_cone_distance) \
+        / (0.5 * design.face_width)
+
+
+def profile_coordinate(pair, polar_angle, side="drive"):
+    """v of pinion flank points from their polar angle about the pinion axis [-].
+
+    A pinion flank point at polar angle theta meets the plane of action at
+    psi = psi_g + s chi(theta) (:meth:`lsbg.geometry.GearPair.roll_angle`),
+    at every cone distance; v maps the field of contact psi_lo..psi_hi to
+    -1..+1.
+
+    Parameters
+    ----------
+    pair : lsbg.geometry.GearPair
+    polar_angle : array_like
+        Angle theta between the point and the pinion axis [rad].
+    side : {"drive", "coast"}
+
+    Returns
+    -------
+    numpy.ndarray
+        v [-] (beyond +-1 outside the active profile).
+    """
+    plane = pair.planes[side]
+    psi = plane.tangency_angle[1] + plane.roll_sign[1] * pair.roll_angle(1, polar_angle)
+    return field_profile_coordinate(plane, psi)
+
+
+def field_profile_coordinate(plane, psi):
+    """v of a polar angle psi in the plane of action (-1..+1 over the field) [-]."""
+    psi_lo, psi_hi = plane.field[:2]
+    return (np.asarray(psi, dtype=float) - 0.5 * (psi_lo + psi_hi)) / (0.5 * (psi_hi - psi_lo))
+
+
+# ------------------------------------------------------------------ topography
+def read_topography(path):
+    """Read a designed or measured topography: (u, v, relief [m]).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        CSV with columns ``u``, ``v``, ``relief_um`` (one row per grid point
+        of a full rectangular grid) or NetCDF (``.nc``) with variable
+        ``relief`` [um] on dimensions ``u`` and ``v``.
+
+    Returns
+    -------
+    tuple
+        Increasing u [-], increasing v [-], relief [m] of shape (u, v).
+
+    Raises
+    ------
+    TopographyError
+        Naming the file: missing, unreadable, not a full grid, not covering
+        -1..1 in u and v, or with NaN.
+    """
+    path = Path(path)
+    where = f"flank_modification.topography_file = {str(path)!r}"
+    if not path.is_file():
+        raise TopographyError(f"{where}: no such file")
+    try:
+        if path.suffix == ".nc":
+            import xarray as xr
+
+            with xr.open_dataset(path) as ds:
+                if "relief" not in ds or set(ds["relief"].dims) != {"u", "v"}:
+                    raise TopographyError(f"{where}: needs a variable 'relief' [um] on "
+                                          f"dimensions ('u', 'v')")
+                relief = ds["relief"].transpose("u", "v")
+                u, v, values = (np.asarray(relief["u"], float), np.asarray(relief["v"], float),
+                                np.asarray(relief, float))
+        else:
+            import pandas as pd
+
+            table = pd.read_csv(path)
+            missing = {"u", "v", "relief_um"} - set(table.columns)
+            if missing:
+                raise TopographyError(f"{where}: columns {sorted(missing)} missing "
+                                      f"(needs u, v, relief_um)")
+            u = np.unique(table["u"].to_numpy(float))
+            v = np.unique(table["v"].to_numpy(float))
+            if len(table) != u.size * v.size or table.duplicated(["u", "v"]).any():
+                raise TopographyError(f"{where}: {len(table)} rows are not a full grid of "
+                                      f"{u.size} u x {v.size} v values")
+            table = table.sort_values(["u", "v"])
+            values = table["relief_um"].to_numpy(float).reshape(u.size, v.size)
+    except TopographyError:
+        raise
+    except Exception as err:  # unreadable: name the file, keep the reason
+        raise TopographyError(f"{where}: cannot be read ({err})") from err
+    if u.size < 2 or v.size < 2:
+        raise TopographyError(f"{where}: needs at least 2 values of u and of v "
+                              f"(has {u.size} x {v.size})")
+    if not (np.all(np.isfinite(values)) and np.all(np.isfinite(u)) and np.all(np.isfinite(v))):
+        raise TopographyError(f"{where}: contains NaN or infinite values")
+    order_u, order_v = np.argsort(u), np.argsort(v)
+    u, v, values = u[order_u], v[order_v], values[np.ix_(order_u, order_v)]
+    if u[0] > -1 or u[-1] < 1 or v[0] > -1 or v[-1] < 1:
+        raise TopographyError(f"{where}: the grid covers u {u[0]:g}..{u[-1]:g}, "
+                              f"v {v[0]:g}..{v[-1]:g}; it must cover -1..1 in both")
+    return u, v, values * _UM
+
