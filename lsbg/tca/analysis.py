@@ -273,8 +273,12 @@ def backlash(surface_pair, pinion_angles, drive=None):
     pair = surface_pair.pair
     if drive is None:
         drive, _, _ = search(surface_pair, pinion_angles)
+    # half the grid: the play only has to be told from zero (a few µrad against the
+    # design's 1406), and the conjugate coast flanks touch along lines
+    face, profile = surface_pair.grid_shape
     coast_pair = SurfacePair.build(pair, surface_pair.modification, surface_pair.misalignment,
-                                   *surface_pair.grid_shape, side="coast")
+                                   max(21, face // 2 + 1), max(41, profile // 2 + 1),
+                                   side="coast")
     coast, _, _ = search(coast_pair, pinion_angles)
     # the coast search runs on -phi2: its maximum is the gear's coast contact
     return -coast[:, surface.O_PHI2] - drive[:, surface.O_PHI2]

@@ -244,9 +244,8 @@ def contact_search(pinion_angles, teeth, points, normals, line_turn, order, grid
     m_points = points.shape[0]
     sorted_turn = line_turn[order]
     u1 = g[G_U1:G_U1 + 3]
-    phi_buffer = np.empty(m_points)
-    speed_buffer = np.empty(m_points)
-    coords = np.empty((m_points, 5))
+    # the first pass's points: tooth, index, phi2, normal speed, R, theta, gear-frame point
+    kept = np.empty((teeth.size * m_points, 9))
     r_lo, r_hi, t_lo, t_hi = raster_limits[0], raster_limits[1], raster_limits[2], raster_limits[3]
     ra, rb = raster.shape
     for k in range(pinion_angles.size):
@@ -254,9 +253,11 @@ def contact_search(pinion_angles, teeth, points, normals, line_turn, order, grid
         kinematic = g[G_SIDE] * phi1 * g[G_RATIO]
         half = window
         while True:
+            # first pass: every point of the window, kept for the second
             best = -math.inf
             best_tooth, best_point = -1, -1
             at_edge = False
+            seen = 0
             for tooth in teeth:
                 turn = phi1 + tooth * g[G_PINION_PITCH]
                 psi = g[G_S1] * (turn + g[G_OFFSET1])
@@ -267,8 +268,15 @@ def contact_search(pinion_angles, teeth, points, normals, line_turn, order, grid
                 m = _rotation(u1, turn)
                 for s in range(lo, hi):
                     i = order[s]
-                    phi, _, _, _, _, _, _ = _point_rotation(m, points, normals, i, g, kinematic)
-                    if phi == phi and phi > best:
+                    phi, speed, rho, theta, px, py, pz = _point_rotation(m, points, normals, i, g,
+                                                                         kinematic)
+                    if phi != phi:
+                        continue
+                    kept[seen, 0], kept[seen, 1], kept[seen, 2] = tooth, i, phi
+                    kept[seen, 3], kept[seen, 4], kept[seen, 5] = speed, rho, theta
+                    kept[seen, 6], kept[seen, 7], kept[seen, 8] = px, py, pz
+                    seen += 1
+                    if phi > best:
                         best, best_tooth, best_point = phi, tooth, i
                         at_edge = abs(line_turn[i] - psi) > 0.6 * half
             if best_point < 0 or not at_edge or half > 4.0:
@@ -285,57 +293,47 @@ def contact_search(pinion_angles, teeth, points, normals, line_turn, order, grid
         row[O_PHI2] = best
         # second pass: separations, region moments, edges, raster
         count = 0
-        for tooth in teeth:
-            turn = phi1 + tooth * g[G_PINION_PITCH]
-            psi = g[G_S1] * (turn + g[G_OFFSET1])
-            lo = np.searchsorted(sorted_turn, psi - half)
-            hi = np.searchsorted(sorted_turn, psi + half)
-            if hi <= lo:
+        for j in range(seen):
+            tooth, i, phi = int(kept[j, 0]), int(kept[j, 1]), kept[j, 2]
+            speed, rho, theta = kept[j, 3], kept[j, 4], kept[j, 5]
+            px, py, pz = kept[j, 6], kept[j, 7], kept[j, 8]
+            gap = (best - phi) * speed
+            if tooth == best_tooth and i == best_point:
+                row[O_R2], row[O_THETA2] = rho, theta
+            ia = int((rho - r_lo) / (r_hi - r_lo) * ra)
+            ib = int((theta - t_lo) / (t_hi - t_lo) * rb)
+            if 0 <= ia < ra and 0 <= ib < rb and gap < raster[ia, ib]:
+                raster[ia, ib] = gap
+            if gap > marking:
                 continue
-            m = _rotation(u1, turn)
-            for s in range(lo, hi):
-                i = order[s]
-                phi, speed, rho, theta, px, py, pz = _point_rotation(m, points, normals, i, g,
-                                                                     kinematic)
-                if phi != phi:
-                    continue
-                gap = (best - phi) * speed
-                if tooth == best_tooth and i == best_point:
-                    row[O_R2], row[O_THETA2] = rho, theta
-                ia = int((rho - r_lo) / (r_hi - r_lo) * ra)
-                ib = int((theta - t_lo) / (t_hi - t_lo) * rb)
-                if 0 <= ia < ra and 0 <= ib < rb and gap < raster[ia, ib]:
-                    raster[ia, ib] = gap
-                if gap > marking:
-                    continue
-                face, profile = i // n_profile, i % n_profile
-                if face == 0 or rho - g[G_R_IN] < edge_tolerance[0]:
-                    row[O_TOE] = 1.0
-                if face == n_face - 1 or g[G_R_OUT] - rho < edge_tolerance[0]:
-                    row[O_HEEL] = 1.0
-                # the pinion's profile ends meet the gear's other end
-                if profile == 0 or g[G_THETA_HI2] - theta < edge_tolerance[1]:
-                    row[O_TIP] = 1.0
-                if profile == n_profile - 1 or theta - g[G_THETA_LO2] < edge_tolerance[1]:
-                    row[O_ROOT] = 1.0
-                if tooth != best_tooth:
-                    continue  # the ellipse is the first-contact pair's
-                count += 1
-                row[O_SX] += px
-                row[O_SY] += py
-                row[O_SZ] += pz
-                row[O_SXX] += px * px
-                row[O_SXY] += px * py
-                row[O_SXZ] += px * pz
-                row[O_SYY] += py * py
-                row[O_SYZ] += py * pz
-                row[O_SZZ] += pz * pz
-                h = rho * (theta - g[G_ROOT2])
-                row[O_CR] += rho
-                row[O_CH] += h
-                row[O_CRR] += rho * rho
-                row[O_CRH] += rho * h
-                row[O_CHH] += h * h
+            face, profile = i // n_profile, i % n_profile
+            if face == 0 or rho - g[G_R_IN] < edge_tolerance[0]:
+                row[O_TOE] = 1.0
+            if face == n_face - 1 or g[G_R_OUT] - rho < edge_tolerance[0]:
+                row[O_HEEL] = 1.0
+            # the pinion's profile ends meet the gear's other end
+            if profile == 0 or g[G_THETA_HI2] - theta < edge_tolerance[1]:
+                row[O_TIP] = 1.0
+            if profile == n_profile - 1 or theta - g[G_THETA_LO2] < edge_tolerance[1]:
+                row[O_ROOT] = 1.0
+            if tooth != best_tooth:
+                continue  # the ellipse is the first-contact pair's
+            count += 1
+            row[O_SX] += px
+            row[O_SY] += py
+            row[O_SZ] += pz
+            row[O_SXX] += px * px
+            row[O_SXY] += px * py
+            row[O_SXZ] += px * pz
+            row[O_SYY] += py * py
+            row[O_SYZ] += py * pz
+            row[O_SZZ] += pz * pz
+            h = rho * (theta - g[G_ROOT2])
+            row[O_CR] += rho
+            row[O_CH] += h
+            row[O_CRR] += rho * rho
+            row[O_CRH] += rho * h
+            row[O_CHH] += h * h
         row[O_COUNT] = count
     return out
 
