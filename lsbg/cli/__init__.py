@@ -4,8 +4,9 @@ One module per group of subcommands, in the order the data flows:
 :mod:`lsbg.cli.geometry` (``geometry``, ``points``), :mod:`lsbg.cli.simulate`
 (``simulate``, ``sensitivity``, ``convergence``), :mod:`lsbg.cli.speed`
 (``mesh-mode``, ``speed-run``, ``speed-curve``), :mod:`lsbg.cli.analysis`
-(``ltca``, ``combine``, ``summary``, ``report``); the options they share are
-in :mod:`lsbg.cli.options`.
+(``ltca``, ``combine``, ``summary``, ``report``), :mod:`lsbg.cli.contact_state`
+(``tca``, ``misalignment-map``); the options they share are in
+:mod:`lsbg.cli.options`.
 
 Every subcommand is a function ``add_<name>_parser(subparsers)`` that adds its
 parser and sets ``handler=<function(args) -> exit code>`` as a default. They
@@ -61,6 +62,8 @@ PARSERS = [
     "lsbg.cli.simulate:add_sensitivity_parser",
     "lsbg.cli.simulate:add_convergence_parser",
     "lsbg.cli.analysis:add_ltca_parser",
+    "lsbg.cli.contact_state:add_tca_parser",
+    "lsbg.cli.contact_state:add_misalignment_map_parser",
     "lsbg.cli.speed:add_mesh_mode_parser",
     "lsbg.cli.speed:add_speed_run_parser",
     "lsbg.cli.speed:add_speed_curve_parser",

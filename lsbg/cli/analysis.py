@@ -5,7 +5,7 @@ from __future__ import annotations
 import sys
 
 from lsbg.cli.options import (CommandError, add_contact_options, check_output, contact_from_args,
-                              read_study_sections)
+                              flanks_from_args, read_study_sections)
 
 __all__ = ["add_ltca_parser", "add_combine_parser", "add_summary_parser", "add_report_parser"]
 
@@ -19,7 +19,9 @@ def add_ltca_parser(subparsers):
                     "--phases mesh positions over one base pitch and write the transmission "
                     "error, mesh stiffness, contact length, tooth-pair loads and contact "
                     "pattern to --out (NetCDF, CF-1.11). The line model's stiffness and slices "
-                    "come from the 'contact' section of --config.")
+                    "come from the 'contact' section of --config; the flank modification and "
+                    "the assembly displacements from its 'flank_modification' and "
+                    "'misalignment' sections (without them: the conjugate, aligned pair).")
     parser.add_argument("--geometry", required=True, metavar="DIR",
                         help="geometry directory written by 'lsbg geometry'")
     add_contact_options(parser, model=False)
@@ -47,8 +49,9 @@ def run_ltca(args):
         except ValueError as err:
             raise CommandError(str(err)) from None
     params = contact_from_args(args)
+    flanks = flanks_from_args(args)
     try:
-        ds = ltca_for_geometry(args.geometry, load, params, phases=args.phases)
+        ds = ltca_for_geometry(args.geometry, load, params, phases=args.phases, flanks=flanks)
     except ValueError as err:
         raise CommandError(str(err)) from None
     ds.attrs["history"] += f"; {' '.join(['lsbg', *sys.argv[1:]])}"
@@ -69,11 +72,21 @@ def add_combine_parser(subparsers):
                     "dataset with dims (contact_model, trace, spiral_angle, time) and "
                     "per-point variables such as contact_ratio(trace, spiral_angle) and, from "
                     "loaded TCAs (lsbg ltca), the static transmission error and mesh "
-                    "stiffness; missing points are NaN (NetCDF, CF-1.11).")
+                    "stiffness; from unloaded TCAs (lsbg tca) the transmission error, bearing "
+                    "pattern, edge contact and backlash; from V-H maps (lsbg "
+                    "misalignment-map) the maps on the union of their grids and their "
+                    "sensitivities per 0.1 mm (0.1 deg); missing points are NaN (NetCDF, "
+                    "CF-1.11).")
     parser.add_argument("--runs", nargs="+", required=True, metavar="RUN.nc",
                         help="run files, one per contact model and design point")
     parser.add_argument("--meshes", nargs="+", default=[], metavar="MESH.nc",
                         help="loaded-TCA files (lsbg ltca), one per design point")
+    parser.add_argument("--tca", nargs="+", default=[], metavar="TCA.nc",
+                        help="unloaded-TCA files (lsbg tca, lsbg misalignment-map --tca-out), "
+                             "one per design point")
+    parser.add_argument("--vh", nargs="+", default=[], metavar="MAP.nc",
+                        help="V-H maps (lsbg misalignment-map) on one pair of axes, one per "
+                             "design point")
     parser.add_argument("--out", required=True, metavar="SWEEP.nc", help="output NetCDF file")
     parser.set_defaults(handler=run_combine)
 
@@ -85,7 +98,7 @@ def run_combine(args):
 
     check_output(args.out, "--out")
     try:
-        ds = combine_runs(args.runs, meshes=args.meshes)
+        ds = combine_runs(args.runs, meshes=args.meshes, tca=args.tca, vh_maps=args.vh)
     except (OSError, ValueError) as err:
         raise CommandError(f"--runs: {err}") from None
     write_dataset(ds, args.out)
@@ -107,12 +120,21 @@ def add_summary_parser(subparsers):
                     "subgroups out of control, and from the full-rate record the std, the "
                     "spread of the sampled std over sampling phases and the dynamic factor; "
                     "for every loaded TCA the static transmission error (peak to peak, mesh "
-                    "harmonics) and the mesh stiffness. Settings from the 'statistics' "
-                    "section of --config, overridden by the options.")
+                    "harmonics) and the mesh stiffness; for every unloaded TCA its "
+                    "transmission error (engine 'tca'), and for every V-H map the pattern's "
+                    "movement toe-heel and root-tip and the change of the unloaded and loaded "
+                    "transmission error per 0.1 mm (0.1 deg) of each axis. Settings from the "
+                    "'statistics' section of --config, overridden by the options.")
     parser.add_argument("--runs", nargs="+", required=True, metavar="RUN.nc", help="run files")
     parser.add_argument("--meshes", nargs="+", default=[], metavar="MESH.nc",
                         help="loaded-TCA files (lsbg ltca): two rows each, the static "
                              "transmission error and the mesh stiffness")
+    parser.add_argument("--tca", nargs="+", default=[], metavar="TCA.nc",
+                        help="unloaded-TCA files (lsbg tca): one row each, the unloaded "
+                             "transmission error")
+    parser.add_argument("--vh", nargs="+", default=[], metavar="MAP.nc",
+                        help="V-H maps (lsbg misalignment-map): four rows per axis, the "
+                             "sensitivities per 0.1 mm (0.1 deg)")
     parser.add_argument("--config", metavar="FILE.yaml",
                         help="study configuration; its 'statistics' section is used "
                              "(steady_state_after_s, control_chart_window_s, subgroup_size)")
@@ -143,7 +165,8 @@ def run_summary(args):
         if value is not None:
             options[key] = tuple(value) if option == "window" else value
     try:
-        table = summary_table(args.runs, meshes=args.meshes, **options)
+        table = summary_table(args.runs, meshes=args.meshes, tca=args.tca, vh_maps=args.vh,
+                              **options)
     except (OSError, ValueError) as err:
         raise CommandError(f"--runs: {err}") from None
     write_atomically(args.out, lambda tmp: table.to_csv(tmp, index=False))

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from lsbg.cli.options import add_design_options, check_output, design_from_args
+from lsbg.cli.options import add_design_options, add_flank_options, check_output, design_from_args
 
 __all__ = ["add_geometry_parser", "add_points_parser"]
 
@@ -50,7 +50,8 @@ def add_points_parser(subparsers):
     parser.add_argument("--spiral-angles", type=float, nargs="+", metavar="DEG",
                         help="spiral angles of the design points [deg] (default: the design's)")
     parser.add_argument("--config", metavar="FILE.yaml",
-                        help="study configuration; its 'simulation' and 'contact' sections are used")
+                        help="study configuration; its 'simulation', 'contact', "
+                             "'flank_modification' and 'misalignment' sections are used")
     parser.add_argument("--engine", choices=("pybullet", "scipy", "compiled"), default="compiled",
                         help="integrator of the runs (default: compiled)")
     parser.add_argument("--geometry-out", required=True, metavar="DIR",
@@ -62,6 +63,7 @@ def add_points_parser(subparsers):
     parser.add_argument("--run", action="append", default=[], metavar="MODEL=RUN.nc",
                         help="a run of contact model MODEL (point or line) to write, a "
                              "template; repeatable")
+    add_flank_options(parser)
     parser.set_defaults(handler=run_points)
 
 
@@ -69,7 +71,7 @@ def run_points(args):
     """Handler of ``lsbg points`` [exit code]."""
     import sys
 
-    from lsbg.cli.options import CommandError, read_study_sections
+    from lsbg.cli.options import CommandError, flanks_from_args, read_study_sections
     from lsbg.contact import ContactParameters
     from lsbg.design import GearPairDesign
     from lsbg.dynamics import SimulationError, SimulationSettings, simulate
@@ -87,6 +89,7 @@ def run_points(args):
     for design in designs:
         GearPair(design)
     simulation, contact = read_study_sections(args.config, "simulation", "contact")
+    flanks = flanks_from_args(args)
     runs = {}
     for text in args.run:
         model, sep, path = text.partition("=")
@@ -121,14 +124,15 @@ def run_points(args):
         if point["mesh"]:
             try:
                 mesh = ltca_for_geometry(point["geometry"], settings.load_torque, params["line"],
-                                         phases=args.phases)
+                                         phases=args.phases, flanks=flanks)
             except ValueError as err:
                 raise CommandError(str(err)) from None
             mesh.attrs["history"] += f"; {command}"
             write_dataset(mesh, point["mesh"])
         for model in runs:
             try:
-                ds = simulate(point["geometry"], settings, params[model], command=command)
+                ds = simulate(point["geometry"], settings, params[model], command=command,
+                              flanks=flanks)
             except SimulationError as err:
                 print(f"lsbg points: {design.trace}, {math.degrees(design.spiral_angle):g} deg, "
                       f"{model} model: simulation stopped: {err}", file=sys.stderr)

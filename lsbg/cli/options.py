@@ -219,22 +219,59 @@ def add_contact_options(parser, model=True):
     parser.add_argument("--set-contact", action="append", default=[], metavar="KEY=VALUE",
                         help="override a key of the contact section (paper units), e.g. "
                              "mesh_damping_ratio=0.1; repeatable")
+    add_flank_options(parser)
+
+
+def add_flank_options(parser):
+    """Add ``--modification`` and ``--misalignment`` (over the sections of ``--config``)."""
+    parser.add_argument("--modification", action="append", default=[], metavar="KEY=VALUE",
+                        help="set a key of the flank_modification section (um), e.g. "
+                             "lengthwise_crowning_um=25; repeatable. Without --config and "
+                             "these, the flanks are the conjugate ones")
+    parser.add_argument("--misalignment", action="append", default=[], metavar="KEY=VALUE",
+                        help="set an assembly displacement: a key of the misalignment section "
+                             "or its letter, E, P, G [mm] or Sigma [deg], e.g. P=0.05; "
+                             "repeatable (default: the aligned pair)")
+
+
+def _assignments(texts, option):
+    """{key: value} of KEY=VALUE option texts (values read as YAML)."""
+    import yaml
+
+    out = {}
+    for text in texts:
+        key, sep, value = text.partition("=")
+        if not sep or not key.strip():
+            raise CommandError(f"{option} {text!r}: must be KEY=VALUE")
+        out[key.strip()] = yaml.safe_load(value)
+    return out
+
+
+def flanks_from_args(args):
+    """The real flanks (:class:`lsbg.tca.separation.RealFlanks`) of ``--config``'s
+    ``flank_modification`` and ``misalignment`` sections and the options."""
+    from lsbg.tca.misalignment import DISPLACEMENTS
+    from lsbg.tca.separation import RealFlanks
+
+    modification, misalignment = read_study_sections(getattr(args, "config", None),
+                                                     "flank_modification", "misalignment")
+    modification = {**modification, **_assignments(args.modification, "--modification")}
+    given = _assignments(args.misalignment, "--misalignment")
+    misalignment = {**misalignment, **{DISPLACEMENTS[k][1] if k in DISPLACEMENTS else k: v
+                                       for k, v in given.items()}}
+    try:
+        return RealFlanks.from_config(modification, misalignment)
+    except ValueError as err:
+        raise CommandError(str(err)) from None
 
 
 def contact_from_args(args):
     """Contact parameters from the ``contact`` section of ``--config``, ``--set-contact``
     and ``--contact-model``."""
-    import yaml
-
     from lsbg.contact import ContactParameters
 
     (contact,) = read_study_sections(args.config, "contact")
-    contact = dict(contact)
-    for text in getattr(args, "set_contact", []):
-        key, sep, value = text.partition("=")
-        if not sep or not key.strip():
-            raise CommandError(f"--set-contact {text!r}: must be KEY=VALUE")
-        contact[key.strip()] = yaml.safe_load(value)
+    contact = {**contact, **_assignments(getattr(args, "set_contact", []), "--set-contact")}
     if args.contact_model is not None:
         contact["model"] = args.contact_model
     try:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import sys
 
 from lsbg.cli.options import (CommandError, add_simulation_options, check_output,
-                              simulation_from_args)
+                              flanks_from_args, simulation_from_args)
 
 __all__ = ["add_simulate_parser", "add_sensitivity_parser", "add_convergence_parser"]
 
@@ -29,9 +29,11 @@ def run_simulate(args):
     from lsbg.results import write_dataset
 
     settings, params = simulation_from_args(args)
+    flanks = flanks_from_args(args)
     check_output(args.out, "--out")
     try:
-        ds = simulate(args.geometry, settings, params, command=" ".join(["lsbg", *sys.argv[1:]]))
+        ds = simulate(args.geometry, settings, params, command=" ".join(["lsbg", *sys.argv[1:]]),
+                      flanks=flanks)
     except SimulationError as err:
         print(f"lsbg simulate: simulation stopped: {err}", file=sys.stderr)
         return 3
@@ -70,6 +72,7 @@ def run_sensitivity(args):
     from lsbg.sensitivity import case_name, scaled_contact
 
     settings, base = simulation_from_args(args)
+    flanks = flanks_from_args(args)
     cases = {}
     for text in args.case:
         key, sep, value = text.partition("=")
@@ -89,7 +92,7 @@ def run_sensitivity(args):
     command = " ".join(["lsbg", *sys.argv[1:]])
     for name, (params, path) in cases.items():
         try:
-            ds = simulate(args.geometry, settings, params, command=command)
+            ds = simulate(args.geometry, settings, params, command=command, flanks=flanks)
         except SimulationError as err:
             print(f"lsbg sensitivity: case {name}: simulation stopped: {err}", file=sys.stderr)
             return 3
@@ -140,7 +143,7 @@ def run_convergence(args):
     for path in outputs.values():
         check_output(path, "--default-run")
     check_output(args.out, "--out")
-    model = load_model(args.geometry, params)
+    model = load_model(args.geometry, params, flanks_from_args(args))
     try:
         known = open_runs(args.known)
     except (OSError, ValueError) as err:

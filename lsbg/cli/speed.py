@@ -11,6 +11,7 @@ from lsbg.cli.options import (
     add_simulation_options,
     check_output,
     contact_from_args,
+    flanks_from_args,
     simulation_from_args,
 )
 
@@ -38,7 +39,7 @@ def run_mesh_mode(args):
     from lsbg.dynamics import load_model
     from lsbg.speed import resonance_speeds
 
-    model = load_model(args.geometry, contact_from_args(args))
+    model = load_model(args.geometry, contact_from_args(args), flanks_from_args(args))
     contact, design = model.contact, model.pair.design
     natural = contact.natural_frequency(model.gear_inertia)
     print(f"lsbg mesh-mode: {design.trace}, spiral angle {math.degrees(design.spiral_angle):g} deg")
@@ -111,7 +112,8 @@ def run_speed_run(args):
     except (OSError, ValueError) as err:
         raise CommandError(str(err)) from None
     try:
-        ds = simulate(args.geometry, settings, params, command=" ".join(["lsbg", *sys.argv[1:]]))
+        ds = simulate(args.geometry, settings, params, command=" ".join(["lsbg", *sys.argv[1:]]),
+                      flanks=flanks_from_args(args))
     except SimulationError as err:
         print(f"lsbg speed-run: {args.pinion_speed:g} deg/s: simulation stopped: {err}",
               file=sys.stderr)

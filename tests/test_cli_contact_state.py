@@ -1,0 +1,148 @@
+"""The contact state on the command line and in the dynamics.
+
+``lsbg tca`` and ``lsbg misalignment-map`` write what the library computes;
+``--config``'s ``flank_modification`` and ``misalignment`` sections (and the
+``--modification`` / ``--misalignment`` options) reach every line-model
+command; without them every command gives today's conjugate numbers, bit for
+bit; bad input is named, exit code 2, nothing written.
+"""
+
+import numpy as np
+import pytest
+import xarray as xr
+import yaml
+
+from lsbg import cli
+from lsbg.contact import ContactParameters
+from lsbg.design import GearPairDesign
+from lsbg.dynamics import SimulationSettings, load_model, simulate
+from lsbg.export import write_geometry
+from lsbg.geometry import GearPair
+from lsbg.ltca import ltca_for_geometry
+from lsbg.tca.analysis import tooth_contact_analysis
+from lsbg.tca.modification import FlankModification
+from lsbg.tca.misalignment import Misalignment
+from lsbg.tca.separation import RealFlanks
+
+SHORT = SimulationSettings(duration=0.04, samples=20, ramp_time=0.01, engine="compiled",
+                           full_rate_after=0.01)
+CROWNED = {"lengthwise_crowning_um": 25, "profile_crowning_um": 5}
+
+
+@pytest.fixture(scope="module")
+def world(tmp_path_factory):
+    root = tmp_path_factory.mktemp("contact_state_cli")
+    geometry = root / "logarithmic_beta35"
+    write_geometry(GearPairDesign(), geometry)
+    config = root / "config.yaml"
+    config.write_text(yaml.safe_dump({"flank_modification": CROWNED,
+                                      "misalignment": {"pinion_axial_P_mm": 0.05},
+                                      "tca": {"positions": 40},
+                                      "misalignment_map": {"steps": 3, "positions": 20}}))
+    return {"root": root, "geometry": geometry, "config": config}
+
+
+def run(argv):
+    return cli.main([str(a) for a in argv])
+
+
+def test_tca_command_writes_what_the_library_computes(world, capsys):
+    out = world["root"] / "tca.nc"
+    assert run(["tca", "--geometry", world["geometry"], "--config", world["config"],
+                "--out", out]) == 0
+    written = xr.open_dataset(out)
+    expected = tooth_contact_analysis(GearPair(GearPairDesign()), FlankModification(25e-6, 5e-6),
+                                      Misalignment(pinion_axial=5e-5), positions=40)
+    np.testing.assert_array_equal(written["transmission_error"], expected["transmission_error"])
+    assert written.attrs["misalignment_pinion_axial_P_mm"] == pytest.approx(0.05)
+    assert written.attrs["flank_modification_lengthwise_crowning_um"] == pytest.approx(25)
+    assert "arcsec" in capsys.readouterr().out
+
+
+def test_options_override_the_config(world):
+    out = world["root"] / "tca_options.nc"
+    assert run(["tca", "--geometry", world["geometry"], "--config", world["config"],
+                "--misalignment", "P=0", "--modification", "profile_crowning_um=0",
+                "--positions", "24", "--out", out]) == 0
+    ds = xr.open_dataset(out)
+    assert ds.sizes["mesh_phase"] == 24
+    assert ds.attrs["misalignment_pinion_axial_P_mm"] == 0
+    # pure lengthwise crowning: no unloaded transmission error (docs/model.md)
+    assert ds.attrs["transmission_error_peak_to_peak_urad"] < 1.0
+
+
+def test_misalignment_map_command_and_its_tca(world):
+    out, tca = world["root"] / "vh.nc", world["root"] / "vh_tca.nc"
+    assert run(["misalignment-map", "--geometry", world["geometry"], "--config", world["config"],
+                "--axes", "P", "G", "--range", "0.05", "--out", out, "--tca-out", tca]) == 0
+    vh = xr.open_dataset(out)
+    assert vh["transmission_error_unloaded_pp"].dims == ("P", "G")
+    np.testing.assert_allclose(vh["P"], [-0.05, 0.0, 0.05])
+    # the grid is added to the config's P = 0.05 mm: the map's centre is that assembly
+    direct = tooth_contact_analysis(GearPair(GearPairDesign()), FlankModification(25e-6, 5e-6),
+                                    Misalignment(pinion_axial=5e-5), positions=20,
+                                    grid=(61, 121))
+    assert float(vh["transmission_error_unloaded_pp"].sel(P=0.0, G=0.0)) == pytest.approx(
+        direct.attrs["transmission_error_peak_to_peak_urad"], rel=1e-12)
+    assert xr.open_dataset(tca).sizes["mesh_phase"] == 40
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["tca", "--misalignment", "X=1"], "misalignment.X = 1: unknown key"),
+    (["tca", "--modification", "lengthwise_crowning_um=-3"],
+     "flank_modification.lengthwise_crowning_um = -3: must be a number >= 0"),
+    (["tca", "--misalignment", "G=-0.5"], "the members interfere"),
+    (["tca", "--positions", "4"], "positions = 4"),
+    (["misalignment-map", "--steps", "4"], "misalignment_map.steps = 4"),
+    (["ltca", "--modification", "bias"], "--modification 'bias': must be KEY=VALUE"),
+])
+def test_bad_input_is_named_and_nothing_written(world, capsys, argv, message):
+    out = world["root"] / "never.nc"
+    assert run([argv[0], "--geometry", world["geometry"], *argv[1:], "--out", out]) == 2
+    assert message in capsys.readouterr().err
+    assert not out.exists()
+
+
+def test_line_model_without_modification_is_todays_bit_for_bit(world):
+    line = ContactParameters(model="line")
+    today = simulate(world["geometry"], SHORT, line)
+    aligned = simulate(world["geometry"], SHORT, line, flanks=RealFlanks())
+    for name in ("gear_speed", "tangential_force", "transmission_error"):
+        np.testing.assert_array_equal(today[name], aligned[name])
+    mesh = ltca_for_geometry(world["geometry"], 1964.99, line, phases=32)
+    same = ltca_for_geometry(world["geometry"], 1964.99, line, phases=32, flanks=RealFlanks())
+    np.testing.assert_array_equal(mesh["transmission_error"], same["transmission_error"])
+
+
+def test_dynamics_on_crowned_flanks_carries_their_excitation(world):
+    line = ContactParameters(model="line")
+    crowned = RealFlanks(FlankModification(25e-6, 5e-6))
+    model = load_model(world["geometry"], line, crowned)
+    assert model.contact.separation is not None
+    ds = simulate(world["geometry"], SHORT, line, flanks=crowned)
+    assert ds.attrs["flank_modification_lengthwise_crowning_um"] == pytest.approx(25)
+    today = simulate(world["geometry"], SHORT, line)
+    # in the steady state the run's mean transmission error moves by what the loaded TCA
+    # on the same flanks says the crowning adds at rest
+    steady = ds["time"] > 0.01
+    shift = float(ds["transmission_error"].where(steady).mean()
+                  - today["transmission_error"].where(steady).mean())
+    static = [ltca_for_geometry(world["geometry"], 1964.99, line, phases=64, flanks=f)
+              for f in (crowned, None)]
+    expected = (static[0].attrs["transmission_error_mean_urad"]
+                - static[1].attrs["transmission_error_mean_urad"])
+    assert expected > 50.0
+    assert shift == pytest.approx(expected, rel=0.1)
+    # the point model, the paper's reproduction, keeps the conjugate flanks
+    point = load_model(world["geometry"], ContactParameters(), crowned)
+    assert point.contact.separation is None
+
+
+def test_config_sections_reach_the_line_model_commands(world):
+    out = world["root"] / "mesh.nc"
+    assert run(["ltca", "--geometry", world["geometry"], "--config", world["config"],
+                "--phases", "16", "--load-torque", "100", "--out", out]) == 0
+    ds = xr.open_dataset(out)
+    assert ds.attrs["flank_modification_profile_crowning_um"] == pytest.approx(5)
+    assert ds.attrs["misalignment_pinion_axial_P_mm"] == pytest.approx(0.05)
+    assert ds.attrs["loaded_pattern_length_per_face_width"] < 1.0
