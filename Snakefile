@@ -7,12 +7,12 @@
 #
 # The configuration (workflow/config.yaml, validated against
 # workflow/schemas/config.schema.yaml before any job runs) holds the design, the
-# sweep, the engines, the simulation, contact and statistics settings. Rules
-# live in workflow/rules/*.smk and call the lsbg command line only; the plan
-# (config checks, design points, file names) is lsbg.workflow, glued in by
-# workflow/rules/common.smk. The speed sweep (workflow/rules/speed.smk, e.g.
-# --configfile workflow/config-speed.yaml) and extensions
-# (workflow/extensions/*.smk) are included when their config key is set.
+# sweep, the engines, the simulation, contact, contact-state and statistics
+# settings. Rules live in workflow/rules/*.smk and call the lsbg command line
+# only; the plan (config checks, design points, file names) is lsbg.workflow,
+# glued in by workflow/rules/common.smk. The speed sweep
+# (workflow/rules/speed.smk, e.g. --configfile workflow/config-speed.yaml) and
+# extensions (workflow/extensions/*.smk) are included when their config key is set.
 
 from snakemake.utils import min_version
 
@@ -27,6 +27,7 @@ report: "workflow/report/workflow.rst"
 
 include: "workflow/rules/common.smk"
 include: "workflow/rules/points.smk"
+include: "workflow/rules/contact_state.smk"
 include: "workflow/rules/simulate.smk"
 include: "workflow/rules/aggregate.smk"
 include: "workflow/rules/reports.smk"

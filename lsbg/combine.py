@@ -1,15 +1,19 @@
-"""The sweep dataset: the runs of one engine and the loaded TCAs, stacked (``lsbg combine``).
+"""The sweep dataset: the runs of one engine, the loaded TCAs and the contact state,
+stacked (``lsbg combine``).
 
 :func:`combine_runs` stacks one run per contact model and design point
 (trace x spiral angle) on dims (contact_model, trace, spiral_angle, time), adds
 one value per design point of its design attributes (:data:`POINT_VARIABLES`)
-and of its loaded TCA (:data:`MESH_VARIABLES`), and keeps the attributes
-common to every run (CF-1.11). Units are the runs' (the paper's).
+and of its loaded TCA (:data:`MESH_VARIABLES`), and the contact state
+(:func:`add_contact_state`: the unloaded TCA, :data:`TCA_VARIABLES`, and the
+V-H map with its sensitivities), and keeps the attributes common to every run
+(CF-1.11). Units are the runs' (the paper's).
 """
 
 from __future__ import annotations
 
 import datetime
+import re
 from pathlib import Path
 
 import numpy as np
@@ -18,10 +22,12 @@ import xarray as xr
 import lsbg
 from lsbg.contact.parameters import CONTACT_MODELS
 from lsbg.design import TRACES, TRACE_LABELS
-from lsbg.results import FULL_RATE_VARIABLES, VARIABLES, as_path_list, open_run
+from lsbg.results import FULL_RATE_VARIABLES, VARIABLES, as_path_list, open_dataset, open_run
 from lsbg.runs import open_mesh, run_spiral_angle
 
-__all__ = ["POINT_VARIABLES", "MESH_VARIABLES", "combine_runs"]
+__all__ = ["POINT_VARIABLES", "MESH_VARIABLES", "TCA_VARIABLES", "VH_PREFIX", "combine_runs",
+           "add_contact_state", "open_tca", "open_vh_map", "contact_state_point",
+           "sensitivity_attributes"]
 
 
 #: Run attribute -> (variable of the sweep dataset, units, long_name): one
@@ -84,8 +90,37 @@ MESH_VARIABLES = {
 }
 
 
-def combine_runs(paths, meshes=()) -> xr.Dataset:
-    """Stack the runs of one engine, and the loaded TCAs, into the sweep dataset.
+#: Unloaded-TCA attribute (``lsbg tca``, :func:`lsbg.tca.analysis.tooth_contact_analysis`)
+#: -> (variable of the sweep dataset, units, long_name): one value per design point.
+TCA_VARIABLES = {
+    "transmission_error_peak_to_peak_urad": (
+        "unloaded_transmission_error_peak_to_peak", "urad",
+        "peak-to-peak unloaded transmission error (tooth contact analysis of the real flanks)"),
+    "pattern_centre_cone_distance_mm": (
+        "pattern_centre_cone_distance", "mm",
+        "bearing pattern's centre on the gear flank: distance from the apex"),
+    "pattern_centre_height_mm": (
+        "pattern_centre_height", "mm",
+        "bearing pattern's centre on the gear flank: height above the root cone"),
+    "pattern_length_mm": ("pattern_length", "mm", "bearing pattern's length along the face"),
+    "pattern_length_per_face_width": ("pattern_length_per_face_width", "1",
+                                      "bearing pattern's length over the face width"),
+    "edge_contact_share": ("edge_contact_share", "1",
+                           "share of mesh positions whose contact ellipse reaches an edge of "
+                           "the active flank (unloaded)"),
+    "backlash_min_urad": ("backlash_min", "urad",
+                          "least backlash over the mesh cycle (free play of the gear, gear "
+                          "rotation)"),
+}
+#: Prefix of the V-H map's variables in the sweep dataset (``vh_pattern_length`` ...).
+VH_PREFIX = "vh_"
+#: A V-H map's sensitivity attribute: ``{quantity}_per_0_1_{axis}``.
+_SENSITIVITY = re.compile(r"^(\w+)_per_0_1_(E|P|G|Sigma)$")
+
+
+def combine_runs(paths, meshes=(), tca=(), vh_maps=()) -> xr.Dataset:
+    """Stack the runs of one engine, the loaded TCAs and the contact state into the
+    sweep dataset.
 
     Parameters
     ----------
@@ -94,6 +129,10 @@ def combine_runs(paths, meshes=()) -> xr.Dataset:
         point, all of the same engine and time axes.
     meshes : sequence of str or os.PathLike
         Loaded-TCA files (``lsbg ltca``), at most one per design point.
+    tca, vh_maps : sequence of str or os.PathLike
+        Unloaded-TCA files (``lsbg tca``, ``lsbg misalignment-map --tca-out``) and
+        V-H maps (``lsbg misalignment-map``), at most one of each per design
+        point (:func:`add_contact_state`).
 
     Returns
     -------
@@ -106,7 +145,8 @@ def combine_runs(paths, meshes=()) -> xr.Dataset:
         :data:`lsbg.results.FULL_RATE_VARIABLES` on (..., time_full); per
         design point the variables of :data:`POINT_VARIABLES` and, from the
         loaded TCAs, :data:`MESH_VARIABLES` and the ``static_transmission_error``
-        and ``mesh_stiffness`` curves on (trace, spiral_angle, mesh_phase).
+        and ``mesh_stiffness`` curves on (trace, spiral_angle, mesh_phase);
+        the contact state's variables (:func:`add_contact_state`).
         Missing combinations are NaN. Global attributes: CF-1.11 ``title``,
         ``source``, ``history``, ``Conventions``, and every run attribute
         that all runs share (e.g. ``solver_engine``).
@@ -152,10 +192,13 @@ def combine_runs(paths, meshes=()) -> xr.Dataset:
             raise ValueError(f"{path}: design point {key[0]}, {key[1]:g} deg already given by "
                              f"{mesh_data[key][0]}")
         mesh_data[key] = (path, ds)
+    tcas = [open_tca(path) for path in as_path_list(tca)]
+    maps = [open_vh_map(path) for path in as_path_list(vh_maps)]
+    state = {contact_state_point(ds) for ds in [*tcas, *maps]}
     models = [m for m in CONTACT_MODELS if m in {k[0] for k in points}]
-    present = {k[1] for k in points} | {k[0] for k in mesh_data}
+    present = {k[1] for k in points} | {k[0] for k in mesh_data} | {k[0] for k in state}
     traces = [t for t in TRACES if t in present] + sorted(present - set(TRACES))
-    angles = sorted({k[2] for k in points} | {k[1] for k in mesh_data})
+    angles = sorted({k[2] for k in points} | {k[1] for k in mesh_data} | {k[1] for k in state})
     shape = (len(models), len(traces), len(angles))
     names = {name: "time" for name in VARIABLES if all(name in ds for ds in runs)}
     names.update({name: "time_full" for name in FULL_RATE_VARIABLES if all(name in ds for ds in runs)})
@@ -223,12 +266,212 @@ def combine_runs(paths, meshes=()) -> xr.Dataset:
                  f"{' and '.join(models)} contact model)",
         "source": f"lsbg {lsbg.__version__} (lsbg.combine.combine_runs), engine {engine}",
         "institution": "lsbg reproducible research workflow",
-        "history": f"{now} lsbg.combine.combine_runs of {len(runs)} runs and {len(mesh_data)} "
-                   f"loaded TCAs: " + ", ".join(Path(p).name for p in [*paths, *as_path_list(meshes)]),
+        "history": f"{now} lsbg.combine.combine_runs of {len(runs)} runs, {len(mesh_data)} "
+                   f"loaded TCAs, {len(tcas)} unloaded TCAs and {len(maps)} V-H maps: "
+                   + ", ".join(Path(p).name for p in [*paths, *as_path_list(meshes)])
+                   + "".join(f", {Path(p).parent.name}/{Path(p).name}"
+                             for p in [*as_path_list(tca), *as_path_list(vh_maps)]),
         "lsbg_version": lsbg.__version__,
         **{key: value for key, value in shared.items() if key != "lsbg_version"},
     })
     out.attrs["solver_engine"] = engine
+    return add_contact_state(out, tcas, maps)
+
+
+# ------------------------------------------------------------ contact state
+def open_tca(path) -> xr.Dataset:
+    """Read an unloaded-TCA dataset (``lsbg tca``) into memory.
+
+    Raises
+    ------
+    FileNotFoundError, ValueError
+        Naming the file if it is missing or not an unloaded-TCA dataset.
+    """
+    return open_dataset(path, "TCA", ("transmission_error",),
+                        ("design_trace", "design_spiral_angle_deg", *TCA_VARIABLES),
+                        "an unloaded-TCA dataset of lsbg.tca (lsbg tca)")
+
+
+def open_vh_map(path) -> xr.Dataset:
+    """Read a V-H map (``lsbg misalignment-map``) into memory.
+
+    Raises
+    ------
+    FileNotFoundError, ValueError
+        Naming the file if it is missing or not a V-H map.
+    """
+    ds = open_dataset(path, "V-H map", (), ("design_trace", "design_spiral_angle_deg", "axes"),
+                      "a V-H map of lsbg.tca (lsbg misalignment-map)")
+    axes = str(ds.attrs["axes"]).split()
+    if len(axes) != 2 or not all(a in ds.dims for a in axes):
+        raise ValueError(f"{path}: not a V-H map of lsbg.tca (its axes {axes} are not two of "
+                         f"its dimensions {sorted(ds.dims)})")
+    return ds
+
+
+def contact_state_point(ds):
+    """``(trace, spiral angle [deg])`` of a TCA or V-H map dataset (the angle rounded to
+    1e-9 deg, as the runs')."""
+    return ds.attrs["design_trace"], round(float(ds.attrs["design_spiral_angle_deg"]), 9)
+
+
+def sensitivity_attributes(ds):
+    """A V-H map's sensitivities: ``{attribute: (quantity, axis letter)}`` of its
+    ``{quantity}_per_0_1_{axis}`` attributes (axes of the map), in the map's order."""
+    axes = str(ds.attrs.get("axes", "")).split()
+    out = {}
+    for name in ds.attrs:
+        match = _SENSITIVITY.match(name)
+        if match and match.group(2) in axes:
+            out[name] = (match.group(1), match.group(2))
+    return out
+
+
+def _source(ds):
+    return ds.encoding.get("source", "<dataset>")
+
+
+def _by_point(datasets, what):
+    found = {}
+    for ds in datasets:
+        key = contact_state_point(ds)
+        if key in found:
+            raise ValueError(f"{_source(ds)}: {what} of design point {key[0]}, {key[1]:g} deg "
+                             f"already given by {_source(found[key])}")
+        found[key] = ds
+    return found
+
+
+def _with_points(sweep, keys):
+    """``sweep`` with every design point of ``keys`` on its trace and spiral_angle axes
+    (NaN where nothing was there), traces in lsbg's order, angles ascending."""
+    have_traces = [str(t) for t in sweep["trace"].values] if "trace" in sweep.coords else []
+    have_angles = ([float(a) for a in sweep["spiral_angle"].values]
+                   if "spiral_angle" in sweep.coords else [])
+    present = set(have_traces) | {k[0] for k in keys}
+    traces = [t for t in TRACES if t in present] + sorted(present - set(TRACES))
+    angles = sorted(set(have_angles) | {k[1] for k in keys})
+    if traces == have_traces and angles == have_angles:
+        return sweep
+    attrs = {name: dict(sweep[name].attrs) if name in sweep.coords else default
+             for name, default in (
+                 ("trace", {"long_name": "tooth trace (logarithmic: LSBG, circular: SBG)"}),
+                 ("gear_type", {"long_name": "gear type as named in the paper"}),
+                 ("spiral_angle", {"units": "degree",
+                                   "long_name": "mean spiral angle on the pitch cone"}))}
+    sweep = sweep.drop_vars("gear_type", errors="ignore")
+    sweep = sweep.reindex({name: values for name, values in (("trace", traces),
+                                                            ("spiral_angle", angles))
+                           if name in sweep.dims})
+    return sweep.assign_coords(
+        trace=("trace", traces, attrs["trace"]),
+        gear_type=("trace", [TRACE_LABELS.get(t, t) for t in traces], attrs["gear_type"]),
+        spiral_angle=("spiral_angle", np.asarray(angles, dtype=float), attrs["spiral_angle"]))
+
+
+def add_contact_state(sweep, tcas=(), vh_maps=()) -> xr.Dataset:
+    """The sweep dataset with the contact state of its design points.
+
+    A pure function: datasets in, a new dataset out (``sweep`` is not changed).
+
+    Parameters
+    ----------
+    sweep : xarray.Dataset
+        With coordinates ``trace`` and ``spiral_angle`` (:func:`combine_runs`);
+        design points of ``tcas`` and ``vh_maps`` it lacks are added (NaN for
+        its other variables).
+    tcas : sequence of xarray.Dataset
+        Unloaded TCAs (:func:`lsbg.tca.analysis.tooth_contact_analysis`), at most
+        one per design point (attributes ``design_trace``,
+        ``design_spiral_angle_deg``).
+    vh_maps : sequence of xarray.Dataset
+        V-H maps (:func:`lsbg.tca.vh_map.misalignment_map`) on the same two axes,
+        at most one per design point; their grids may differ (e.g. 9 values
+        per axis at the paper's point, 5 at the others).
+
+    Returns
+    -------
+    xarray.Dataset
+        ``sweep`` and, on (trace, spiral_angle): the variables of
+        :data:`TCA_VARIABLES`, and each sensitivity ``{quantity}_per_0_1_{axis}``
+        of the maps (units e.g. ``mm/(0.1 mm)``, ``urad/(0.1 degree)``); on
+        (trace, spiral_angle, axis 1, axis 2), the axes named by their letters
+        (E, P, G, Sigma; mm or degree): each map variable as ``vh_<name>``
+        on the union of the maps' grids (an outer join: NaN where a point's map
+        has no cell). Every variable has ``units`` (``1`` for a share) and
+        ``long_name``. Missing design points are NaN.
+
+    Raises
+    ------
+    ValueError
+        A design point given twice, or maps on different axes; naming the file.
+    """
+    tcas, vh_maps = list(tcas), list(vh_maps)
+    if not tcas and not vh_maps:
+        return sweep
+    tca_points = _by_point(tcas, "unloaded TCA")
+    map_points = _by_point(vh_maps, "V-H map")
+    out = _with_points(sweep.copy(), set(tca_points) | set(map_points))
+    traces = [str(t) for t in out["trace"].values]
+    angles = [float(a) for a in out["spiral_angle"].values]
+    shape = (len(traces), len(angles))
+
+    def index(key):
+        return traces.index(key[0]), angles.index(key[1])
+
+    if tca_points:
+        for attr, (name, units, long_name) in TCA_VARIABLES.items():
+            values = np.full(shape, np.nan)
+            for key, ds in tca_points.items():
+                values[index(key)] = float(ds.attrs[attr])
+            out[name] = (("trace", "spiral_angle"), values,
+                         {"units": units, "long_name": long_name})
+    if not map_points:
+        return out
+    first = next(iter(map_points.values()))
+    axes = str(first.attrs["axes"]).split()
+    for ds in map_points.values():
+        if str(ds.attrs["axes"]).split() != axes:
+            raise ValueError(f"{_source(ds)}: V-H map on the axes {ds.attrs['axes']}, "
+                             f"{_source(first)} on {' '.join(axes)}; combine maps of one "
+                             f"pair of axes")
+    # the union of the grids (rounded to 1e-9: the 5 values of a sweep point's map are
+    # values of the paper point's 9)
+    grid = {a: np.unique(np.concatenate([np.round(ds[a].values.astype(float), 9)
+                                         for ds in map_points.values()])) for a in axes}
+    names = list(dict.fromkeys(name for ds in map_points.values()
+                               for name, var in ds.data_vars.items()
+                               if set(var.dims) == set(axes)))
+    arrays = {name: np.full(shape + tuple(grid[a].size for a in axes), np.nan) for name in names}
+    sensitivities = {}
+    for key, ds in map_points.items():
+        i, j = index(key)
+        cells = np.ix_(*(np.searchsorted(grid[a], np.round(ds[a].values.astype(float), 9))
+                         for a in axes))
+        for name in names:
+            if name in ds.data_vars:
+                arrays[name][i, j][cells] = ds[name].transpose(*axes).values
+        for attr, (quantity, letter) in sensitivity_attributes(ds).items():
+            if attr not in sensitivities:
+                source = ds[quantity].attrs if quantity in ds else {}
+                per = ds[letter].attrs.get("units", "mm")
+                sensitivities[attr] = (np.full(shape, np.nan), {
+                    "units": f"{source.get('units', '1')}/(0.1 {per})",
+                    "long_name": f"{source.get('long_name', quantity)}: change per 0.1 {per} "
+                                 f"of {ds[letter].attrs.get('long_name', letter)} through the "
+                                 f"aligned pair (V-H map)"})
+            sensitivities[attr][0][i, j] = float(ds.attrs[attr])
+    out = out.assign_coords({a: (a, grid[a], {
+        key: value for key, value in first[a].attrs.items() if key in ("units", "long_name")})
+        for a in axes})
+    for name in names:
+        attrs = {key: value for key, value in first[name].attrs.items()
+                 if key in ("units", "long_name", "standard_name")}
+        attrs.setdefault("units", "1")
+        attrs["long_name"] = f"V-H map: {attrs.get('long_name', name)}"
+        out[f"{VH_PREFIX}{name}"] = (("trace", "spiral_angle", *axes), arrays[name], attrs)
+    for attr, (values, attrs) in sensitivities.items():
+        out[attr] = (("trace", "spiral_angle"), values, attrs)
     return out
 
 

@@ -32,7 +32,12 @@ configuration that returns its problem lines):
    estimated from its mesh size (:func:`geometry_cost`), against
    ``limits.memory_gb`` and ``limits.geometry_minutes``; each run's record
    against ``limits.memory_gb`` and the line model's slices against the
-   runtime the simulation rules request (:func:`run_cost_problems`).
+   runtime the simulation rules request (:func:`run_cost_problems`);
+8. the contact state at each design point that passed 6 and 7 (odd map steps
+   first; :func:`lsbg.tca.checks.contact_state_problems`): the relief within
+   the backlash, the misalignment and the V-H map's corners neither losing
+   contact nor closing the backlash; kept (:func:`contact_state_cache_dir`):
+   its quick TCAs and numba's start cost about 1.2 s once per configuration.
 
 A YAML syntax error in a ``--configfile`` never reaches this module:
 Snakemake 9 reads that file before the Snakefile and stops with
@@ -46,9 +51,12 @@ Snakemake does, names the file and line of such an error, and runs
 from __future__ import annotations
 
 import copy
+import hashlib
 import math
+import os
 import re
 import warnings
+from pathlib import Path
 
 import numpy as np
 
@@ -56,11 +64,11 @@ from lsbg.design import CONFIG_KEYS, DesignError, GearPairDesign
 from lsbg.files import number_label
 from lsbg.resources import (
     engines_run, geometry_cost, memory_limit_gb, run_cost_problems, run_memory_gb)
-from lsbg.workflow import design_points, speed_keywords, speed_labels
+from lsbg.workflow import design_points, map_steps, speed_keywords, speed_labels
 
 __all__ = [
     "key_path", "check_config", "nonfinite_problems", "schema_problems", "fill_defaults",
-    "AD_MIN_SAMPLES"
+    "contact_state_cache_dir", "AD_MIN_SAMPLES"
 ]
 
 
@@ -96,8 +104,10 @@ def check_config(config, schema):
     if problems:
         return problems
     fill_defaults(config, schema)
+    pairs = {}  # the design points that pass the physics and the resource guard
     problems = (_name_problems(config) + _settings_problems(config) + run_cost_problems(config)
-                + _statistics_problems(config) + _design_problems(config))
+                + _statistics_problems(config) + _design_problems(config, pairs))
+    problems += _contact_state_problems(config, pairs)
     return list(dict.fromkeys(problems))
 
 
@@ -478,9 +488,10 @@ def _user_message(error, config, point_keys):
     return (_design_value(config, key) if key else f"design ({name} = {match.group(2)})"), why
 
 
-def _design_problems(config):
+def _design_problems(config, pairs=None):
     """lsbg's physics checks and the resource guard at every design point: one line
-    per key at fault, naming the design points where it fails."""
+    per key at fault, naming the design points where it fails. ``pairs`` is filled in
+    with ``(trace, spiral label) -> lsbg.geometry.GearPair`` of each point that passes."""
     from lsbg.geometry import GearPair
 
     points = design_points(config)
@@ -518,9 +529,92 @@ def _design_problems(config):
             why = (f"the geometry ({sum(cost['vertices'].values()):.3g} mesh vertices) would "
                    f"need about {' and '.join(beyond)}")
             failing.setdefault(head, [why, []])[1].append(where)
-    problems = []
-    for head, (why, where) in failing.items():
-        at = ("every design point" if len(where) == len(points) else
-              ", ".join(where[:4]) + (f" and {len(where) - 4} more" if len(where) > 4 else ""))
-        problems.append(f"{head}: {why} (at {at})")
-    return problems
+        elif pairs is not None:
+            pairs[(trace, spiral)] = pair
+    return [f"{head}: {why} (at {_points_named(where, points)})"
+            for head, (why, where) in failing.items()]
+
+
+def _points_named(where, points):
+    """The design points ``where`` (names) as a message says them."""
+    more = f" and {len(where) - 4} more" if len(where) > 4 else ""
+    return "every design point" if len(where) == len(points) else ", ".join(where[:4]) + more
+
+
+# ------------------------------------------------------------ contact state
+def _contact_state_problems(config, pairs):
+    """The flank modification, the misalignment and the V-H map's corners at each
+    point of ``pairs`` (:func:`lsbg.tca.checks.contact_state_problems`): one line per
+    key at fault, naming the design points where it fails."""
+    section = config["misalignment_map"]
+    odd = [f"misalignment_map.{key} = {section[key]!r}: must be odd (the map's values run "
+           f"evenly from -range to +range through the aligned pair, 0 included)"
+           for key in ("steps", "sweep_steps") if section[key] % 2 == 0]
+    if odd or not pairs:
+        return odd
+    failing = {}  # key path -> [first line, design points]
+    for (trace, spiral), pair in pairs.items():
+        map_config = {"axes": list(section["axes"]), "range": section["range"],
+                      "steps": map_steps(config, spiral)}
+        lines = _point_contact_state(pair, config, trace, spiral, map_config)
+        if any(line.startswith("misalignment.") for line in lines):
+            # the map is taken about the misalignment: that one is the key at fault
+            lines = [line for line in lines if not line.startswith("misalignment_map.")]
+        for line in lines:
+            line = _user_value(line, config)
+            key = line.split(" = ", 1)[0].split(":", 1)[0]
+            where = failing.setdefault(key, [line, []])[1]
+            if f"{trace} {spiral} deg" not in where:  # (one point: several map corners)
+                where.append(f"{trace} {spiral} deg")
+    points = design_points(config)
+    return [f"{line} (at {_points_named(where, points)})" for line, where in failing.values()]
+
+
+def _user_value(line, config):
+    """The line with its flank_modification key's value as the user wrote it (lsbg
+    writes it as read: ``500.0`` for ``500``)."""
+    match = re.match(r"^flank_modification\.(\w+) = (.*?): (.*)$", line, re.DOTALL)
+    if not (match and match.group(1) in config["flank_modification"]):
+        return line
+    return (f"flank_modification.{match.group(1)} = "
+            f"{config['flank_modification'][match.group(1)]!r}: {match.group(3)}")
+
+
+def contact_state_cache_dir():
+    """Where the contact-state check keeps its answers: ``config-checks`` in lsbg's
+    machine-wide cache (:func:`lsbg.numba_cache.numba_cache_root`, beside numba's
+    compiled kernels); None (kept by the process only) if ``LSBG_CHECK_CACHE=off``."""
+    if os.environ.get("LSBG_CHECK_CACHE", "").lower() in ("0", "off", "no", "false"):
+        return None
+    from lsbg.numba_cache import numba_cache_root
+
+    return numba_cache_root() / "config-checks"
+
+
+def _point_contact_state(pair, config, trace, spiral, map_config):
+    """lsbg's contact-state problems at one design point, kept for the next start
+    (:func:`lsbg.stages.cached_answer`: asked again when an input, the topography
+    file's content or the sources of the contact_state stage change)."""
+    from importlib import metadata
+
+    from lsbg.stages import cached_answer
+
+    modification, misalignment = config["flank_modification"], config["misalignment"]
+    name = modification.get("topography_file")
+    try:
+        topography = hashlib.sha256(Path(name).read_bytes()).hexdigest() if name else None
+    except OSError:
+        topography = "missing"
+    inputs = {"design": {**config["design"], "trace": trace, "spiral_angle_deg": float(spiral)},
+              "flank_modification": modification, "misalignment": misalignment,
+              "misalignment_map": map_config, "topography": topography,
+              "versions": [np.__version__, metadata.version("numba")]}
+
+    def compute():
+        from lsbg.tca.checks import contact_state_problems
+
+        with warnings.catch_warnings(), np.errstate(all="ignore"):  # (as _design_problems)
+            warnings.simplefilter("ignore")
+            return contact_state_problems(pair, modification, misalignment, map_config)
+
+    return cached_answer(contact_state_cache_dir(), "contact_state", inputs, compute)

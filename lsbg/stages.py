@@ -5,12 +5,19 @@ lists the lsbg modules its command runs (:data:`STAGE_MODULES`, written out
 here for a reader to see; :func:`stage_sources` turns them into files). A test
 (tests/test_stages.py) checks each list against the real import graph of the
 stage's entry points (:data:`STAGE_ENTRIES`), imports inside functions
-included, so that a new import cannot be forgotten.
+included, so that a new import cannot be forgotten. An answer of a stage's
+code computed while Snakemake starts (the configuration check) is kept on the
+same terms: :func:`cached_answer` asks again when a source of the stage changes.
 """
 
 from __future__ import annotations
 
 import ast
+import copy
+import functools
+import hashlib
+import json
+import os
 from pathlib import Path
 
 #: The lsbg package directory.
@@ -18,25 +25,30 @@ PACKAGE = Path(__file__).resolve().parent
 
 #: Stage -> the lsbg modules (or packages) its command imports, directly or not.
 STAGE_MODULES = {
-    # (contact ... theory: lsbg.cli.options reads contact and simulation options too)
+    # (contact ... theory, ltca and tca: lsbg.cli.options reads the contact and simulation
+    # options and the flanks, lsbg.tca, too)
     "geometry": ("cli", "design", "files", "geometry", "vectors", "polyhedra", "solids", "mass",
-                 "urdf", "render", "export", "contact", "dynamics", "results", "theory"),
+                 "urdf", "render", "export", "contact", "dynamics", "results", "theory", "ltca",
+                 "tca"),
     "ltca": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "ltca",
-             "results", "theory"),
+             "results", "theory", "tca"),
     "points": ("cli", "design", "files", "geometry", "vectors", "polyhedra", "solids", "mass",
-               "urdf", "render", "export", "contact", "dynamics", "ltca", "results", "theory"),
+               "urdf", "render", "export", "contact", "dynamics", "ltca", "results", "theory",
+               "tca"),
     "simulate": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "results",
-                 "theory", "sensitivity"),
+                 "theory", "sensitivity", "ltca", "tca"),
     "convergence": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics",
-                    "results", "theory", "verification"),
+                    "results", "theory", "verification", "ltca", "tca"),
     "speed": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "results",
-              "theory", "spectra", "speed"),
+              "theory", "spectra", "speed", "ltca", "tca"),
+    "contact_state": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics",
+                      "ltca", "results", "theory", "tca"),
     "aggregate": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "results",
-                  "theory", "stats", "spectra", "runs", "combine", "summary"),
+                  "theory", "stats", "spectra", "runs", "combine", "summary", "ltca", "tca"),
     # the notebooks' imports too (tests/test_stages.py reads them)
     "report": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "results",
                "theory", "stats", "spectra", "runs", "combine", "summary", "ltca", "reports",
-               "verification", "tables", "figures", "sensitivity", "speed"),
+               "verification", "tables", "figures", "sensitivity", "speed", "tca"),
 }
 
 #: Stage -> where its command starts: ``"module:function"`` of the lsbg.cli
@@ -47,18 +59,27 @@ STAGE_ENTRIES = {
     "geometry": ("cli.geometry:run_geometry", "cli.options:design_from_args",
                  "cli.options:_read_yaml"),
     "ltca": ("cli.analysis:run_ltca", "cli.options:contact_from_args",
-             "cli.options:read_study_sections", "cli.options:_read_yaml"),
+             "cli.options:flanks_from_args", "cli.options:read_study_sections",
+             "cli.options:_read_yaml"),
     "points": ("cli.geometry:run_points", "cli.options:design_from_args",
-               "cli.options:read_study_sections", "cli.options:_read_yaml"),
+               "cli.options:flanks_from_args", "cli.options:read_study_sections",
+               "cli.options:_read_yaml"),
     "simulate": ("cli.simulate:run_simulate", "cli.simulate:run_sensitivity",
                  "cli.options:simulation_from_args", "cli.options:contact_from_args",
-                 "cli.options:read_study_sections", "cli.options:_read_yaml"),
+                 "cli.options:flanks_from_args", "cli.options:read_study_sections",
+                 "cli.options:_read_yaml"),
     "convergence": ("cli.simulate:run_convergence", "cli.options:simulation_from_args",
-                    "cli.options:contact_from_args", "cli.options:read_study_sections",
-                    "cli.options:_read_yaml"),
+                    "cli.options:contact_from_args", "cli.options:flanks_from_args",
+                    "cli.options:read_study_sections", "cli.options:_read_yaml"),
     "speed": ("cli.speed:run_speed_run", "cli.speed:run_speed_curve",
               "cli.options:simulation_from_args", "cli.options:contact_from_args",
-              "cli.options:read_study_sections", "cli.options:_read_yaml"),
+              "cli.options:flanks_from_args", "cli.options:read_study_sections",
+              "cli.options:_read_yaml"),
+    "contact_state": ("cli.contact_state:run_misalignment_map", "cli.contact_state:run_tca",
+                      "cli.contact_state:_tca", "cli.contact_state:_design_pair",
+                      "cli.contact_state:_section", "cli.options:contact_from_args",
+                      "cli.options:flanks_from_args", "cli.options:read_study_sections",
+                      "cli.options:_read_yaml"),
     "aggregate": ("cli.analysis:run_combine", "cli.analysis:run_summary",
                   "cli.options:read_study_sections", "cli.options:_read_yaml"),
     "report": ("cli.analysis:run_report",),
@@ -191,3 +212,67 @@ def stage_closure(stage, package=PACKAGE):
         module, _, function = entry.partition(":")
         start |= imported_modules(module, functions=(function,), package=package)
     return {"cli"} | module_closure(start, package)
+
+
+# ------------------------------------------------------ answers of a stage
+#: Answers :func:`cached_answer` keeps in a folder (the most recently used).
+CACHE_ENTRIES = 2000
+#: Answers of this process, by key.
+_ANSWERS = {}
+
+
+@functools.lru_cache(maxsize=None)
+def sources_digest(stage):
+    """SHA-256 of the names and content of a stage's source files (:func:`stage_sources`),
+    hexadecimal; computed once per process."""
+    digest = hashlib.sha256()
+    for name in stage_sources(stage):
+        path = Path(name)
+        digest.update(path.relative_to(PACKAGE.parent).as_posix().encode() + b"\0")
+        digest.update(path.read_bytes() + b"\0")
+    return digest.hexdigest()
+
+
+def cached_answer(folder, stage, inputs, compute):
+    """``compute()``, or its answer kept from an earlier call with the same inputs.
+
+    Parameters
+    ----------
+    folder : str or os.PathLike or None
+        Where answers are kept between processes (created if missing; at most
+        :data:`CACHE_ENTRIES` files, the least recently used go); None: only in
+        this process. A folder that cannot be written keeps nothing.
+    stage : str
+        The stage whose code ``compute`` runs: a change of its sources
+        (:func:`sources_digest`) asks again.
+    inputs : JSON-serialisable
+        Everything else the answer depends on.
+    compute : callable
+        Returns the answer, a JSON-serialisable value.
+    """
+    key = hashlib.sha256(json.dumps([inputs, sources_digest(stage)], sort_keys=True,
+                                    default=repr).encode()).hexdigest()[:40]
+    if key not in _ANSWERS:
+        path = Path(folder) / f"{key}.json" if folder is not None else None
+        try:
+            _ANSWERS[key] = json.loads(path.read_text(encoding="utf-8"))["answer"]
+            os.utime(path)
+        except (AttributeError, OSError, ValueError, KeyError, TypeError):
+            _ANSWERS[key] = compute()
+            if path is not None:
+                _keep(path, _ANSWERS[key])
+    return copy.deepcopy(_ANSWERS[key])
+
+
+def _keep(path, answer):
+    """Write an answer atomically and drop the least recently used beyond the limit."""
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        part = path.with_name(f"{path.name}.{os.getpid()}.part")
+        part.write_text(json.dumps({"answer": answer}), encoding="utf-8")
+        part.replace(path)
+        entries = sorted(path.parent.glob("*.json"), key=lambda p: p.stat().st_mtime)
+        for old in entries[:max(0, len(entries) - CACHE_ENTRIES)]:
+            old.unlink(missing_ok=True)
+    except OSError:
+        pass

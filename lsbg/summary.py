@@ -3,9 +3,11 @@
 One row per run and quantity (:data:`SUMMARY_COLUMNS`): mean, std,
 Anderson–Darling A² and p, the theoretical value of Eq. 12–13 and the error
 rate of Table 3, Xbar-R alarms, and from the full-rate record the std, its
-spread over the sampling phases and the dynamic factor. Loaded TCAs add one
-row each (static transmission error and mesh stiffness). All statistics come
-from :mod:`lsbg.stats` and :mod:`lsbg.spectra`.
+spread over the sampling phases and the dynamic factor. Loaded TCAs add two
+rows each (static transmission error and mesh stiffness); the contact state
+(engine "tca") a row per unloaded TCA (its transmission error) and, per V-H
+map, four rows per displacement axis (:data:`CONTACT_STATE_QUANTITIES`). All
+statistics come from :mod:`lsbg.stats` and :mod:`lsbg.spectra`.
 
 References
 ----------
@@ -21,12 +23,14 @@ import numpy as np
 import pandas as pd
 
 from lsbg import stats
+from lsbg.combine import open_tca, open_vh_map
 from lsbg.results import VARIABLES, as_path_list, open_run
 from lsbg.runs import QUANTITIES, THEORY_ATTRIBUTES, full_rate_series, open_mesh, run_spiral_angle
 
 __all__ = [
     "SUMMARY_QUANTITIES", "SUMMARY_UNITS", "SUMMARY_COLUMNS", "STATISTICS_KEYS", "statistics_options",
-    "quantity_summary", "mesh_summary", "summary_table"
+    "CONTACT_STATE_QUANTITIES", "quantity_summary", "mesh_summary", "tca_summary", "vh_summary",
+    "summary_table"
 ]
 
 
@@ -34,17 +38,35 @@ __all__ = [
 #: the contact torque.
 SUMMARY_QUANTITIES = QUANTITIES + ("transmission_error", "contact_torque")
 
+#: The V-H map's sensitivities in the summary table: quantity -> its unit. Each
+#: gives a row ``{quantity}_per_0_1_{axis}`` per axis of the map: the change per
+#: 0.1 mm (0.1 deg for Sigma) through the aligned pair (:mod:`lsbg.tca.vh_map`):
+#: the pattern's movement towards the heel and towards the gear's tip, and the
+#: unloaded and loaded transmission error's peak to peak.
+CONTACT_STATE_QUANTITIES = {"pattern_shift_lengthwise": "mm", "pattern_shift_profile": "mm",
+                            "transmission_error_unloaded_pp": "urad",
+                            "transmission_error_loaded_pp": "urad"}
+#: Unit of each displacement of a V-H map (:data:`lsbg.tca.misalignment.DISPLACEMENTS`).
+_AXIS_UNITS = {"E": "mm", "P": "mm", "G": "mm", "Sigma": "degree"}
+
 #: Unit of each quantity of the summary table's rows, as the datasets write it: the
-#: runs' (:data:`lsbg.results.VARIABLES`) and the loaded TCA's rows (:mod:`lsbg.ltca`).
+#: runs' (:data:`lsbg.results.VARIABLES`), the loaded TCA's rows (:mod:`lsbg.ltca`)
+#: and the contact state's (:mod:`lsbg.tca`; ``mm/(0.1 mm)``: mm per 0.1 mm).
 SUMMARY_UNITS = {**{q: VARIABLES[q][0] for q in SUMMARY_QUANTITIES},
-                 "static_transmission_error": "urad", "mesh_stiffness": "N/um"}
+                 "static_transmission_error": "urad", "mesh_stiffness": "N/um",
+                 "unloaded_transmission_error": "urad",
+                 **{f"{q}_per_0_1_{axis}": f"{unit}/(0.1 {per})"
+                    for q, unit in CONTACT_STATE_QUANTITIES.items()
+                    for axis, per in _AXIS_UNITS.items()}}
 
 
 #: Columns of :func:`summary_table`. Runs: the paper's §4 statistics of the
 #: output samples, then the full-rate ones (std, the spread of the sample
 #: std over sampling phases, the dynamic factor on the contact-torque row).
 #: Loaded TCA (engine "ltca"): the static transmission error's peak to peak
-#: and mesh harmonics, and the mesh stiffness.
+#: and mesh harmonics, and the mesh stiffness. Contact state (engine "tca"): the
+#: unloaded transmission error (mean, std, peak to peak) and the V-H map's
+#: sensitivities (in ``mean``).
 SUMMARY_COLUMNS = ("trace", "spiral_angle_deg", "contact_model", "engine", "run", "quantity",
                    "mean", "std", "ad_statistic", "ad_pvalue", "theory", "error_rate_percent",
                    "out_of_control", "full_rate_std", "sampling_std_min", "sampling_std_max",
@@ -216,8 +238,50 @@ def mesh_summary(ds) -> list:
     ]
 
 
+def _contact_state_base(ds):
+    base = {column: np.nan for column in SUMMARY_COLUMNS}
+    base.update(trace=ds.attrs["design_trace"],
+                spiral_angle_deg=round(float(ds.attrs["design_spiral_angle_deg"]), 9),
+                contact_model=None, engine="tca", run=_run_name(ds), out_of_control=None)
+    return base
+
+
+def tca_summary(ds) -> list:
+    """Summary row of an unloaded TCA (:func:`lsbg.tca.analysis.tooth_contact_analysis`).
+
+    Returns
+    -------
+    list of dict
+        One row, keys :data:`SUMMARY_COLUMNS` (engine "tca", no contact model: the
+        flank surfaces): the unloaded transmission error [urad], its mean and std
+        over the mesh cycle and its peak to peak.
+    """
+    te = ds["transmission_error"].values
+    return [{**_contact_state_base(ds), "quantity": "unloaded_transmission_error",
+             "mean": float(te.mean()), "std": float(te.std(ddof=1)),
+             "peak_to_peak": float(ds.attrs["transmission_error_peak_to_peak_urad"])}]
+
+
+def vh_summary(ds) -> list:
+    """Summary rows of a V-H map (:func:`lsbg.tca.vh_map.misalignment_map`).
+
+    Returns
+    -------
+    list of dict
+        Per axis of the map (its ``axes`` attribute, in order) one row per
+        quantity of :data:`CONTACT_STATE_QUANTITIES`, keys :data:`SUMMARY_COLUMNS`
+        (engine "tca"): quantity ``{quantity}_per_0_1_{axis}``, the change per
+        0.1 mm (0.1 deg) through the aligned pair in ``mean`` (unit:
+        :data:`SUMMARY_UNITS`); NaN where the map lacks it.
+    """
+    base = _contact_state_base(ds)
+    return [{**base, "quantity": f"{q}_per_0_1_{axis}",
+             "mean": float(ds.attrs.get(f"{q}_per_0_1_{axis}", np.nan))}
+            for axis in str(ds.attrs["axes"]).split() for q in CONTACT_STATE_QUANTITIES]
+
+
 def summary_table(paths, steady_state_after=0.2, window=(0.8, 1.0),
-                  subgroup_size=4, meshes=()) -> pd.DataFrame:
+                  subgroup_size=4, meshes=(), tca=(), vh_maps=()) -> pd.DataFrame:
     """The statistics of every run and quantity, and of every loaded TCA.
 
     Parameters
@@ -232,13 +296,17 @@ def summary_table(paths, steady_state_after=0.2, window=(0.8, 1.0),
         Xbar-R subgroup size (paper: 4, 25 subgroups).
     meshes : sequence of str or os.PathLike
         Loaded-TCA files (``lsbg ltca``).
+    tca, vh_maps : sequence of str or os.PathLike
+        Unloaded-TCA files (``lsbg tca``) and V-H maps (``lsbg misalignment-map``).
 
     Returns
     -------
     pandas.DataFrame
         One row per run and quantity of :data:`SUMMARY_QUANTITIES` (see
         :func:`quantity_summary`), then two per loaded TCA (see
-        :func:`mesh_summary`); columns :data:`SUMMARY_COLUMNS`.
+        :func:`mesh_summary`), one per unloaded TCA (:func:`tca_summary`) and
+        four per axis of each V-H map (:func:`vh_summary`); columns
+        :data:`SUMMARY_COLUMNS`.
 
     Raises
     ------
@@ -256,6 +324,10 @@ def summary_table(paths, steady_state_after=0.2, window=(0.8, 1.0),
                 raise ValueError(f"{path}: {quantity}: {err}") from None
     for path in as_path_list(meshes):
         rows.extend(mesh_summary(open_mesh(path)))
+    for path in as_path_list(tca):
+        rows.extend(tca_summary(open_tca(path)))
+    for path in as_path_list(vh_maps):
+        rows.extend(vh_summary(open_vh_map(path)))
     table = pd.DataFrame(rows, columns=list(SUMMARY_COLUMNS))
     table["out_of_control"] = table["out_of_control"].astype("Int64")
     return table

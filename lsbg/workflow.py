@@ -24,15 +24,20 @@ from lsbg.files import number_label
 
 __all__ = ["PAPER_TRACES", "CONTACT_MODELS", "REPORT_NAMES", "STUDY_SECTIONS", "FILES",
            "design_points", "speed_labels", "speed_keywords", "canonical", "yaml_text",
-           "write_study_config", "simulation_params", "simulation_runtime", "JOB_SECONDS",
-           "GATE_RULES", "job_priority", "Study"]
+           "write_study_config", "simulation_params", "simulation_runtime", "map_steps",
+           "CONTACT_STATE_SECTIONS", "contact_state_params", "JOB_SECONDS", "GATE_RULES",
+           "job_priority", "Study"]
 
 #: Both traces run at the paper's design point (the paper compares them).
 PAPER_TRACES = ("logarithmic", "circular")
 CONTACT_MODELS = ("point", "line")
 REPORT_NAMES = ("paper", "sweep", "verification")
+#: The contact state: the flanks every line-model analysis and run reads
+#: (lsbg.cli.options.flanks_from_args), and the settings of `lsbg misalignment-map`.
+FLANK_SECTIONS = ("flank_modification", "misalignment")
+CONTACT_STATE_SECTIONS = (*FLANK_SECTIONS, "tca", "misalignment_map")
 #: Sections of the configuration that lsbg's commands read from results/config.yaml.
-STUDY_SECTIONS = ("design", "simulation", "contact", "statistics")
+STUDY_SECTIONS = ("design", "simulation", "contact", *CONTACT_STATE_SECTIONS, "statistics")
 
 #: File name patterns of every stage (Snakemake wildcards in braces).
 FILES = {
@@ -46,6 +51,8 @@ FILES = {
     "summary": "results/summary.csv",
     "speed_run": "results/speed/{trace}_beta{spiral}_w{speed}.nc",
     "speed_curve": "results/speed_curve.nc",
+    "tca": "results/tca/{trace}_beta{spiral}.nc",
+    "vh_map": "results/vh/{trace}_beta{spiral}.nc",
     "report": "reports/{name}.html",
 }
 
@@ -148,7 +155,8 @@ def write_study_config(path, config, only_if_missing=False):
     path = Path(path)
     if only_if_missing and path.exists():
         return
-    text = yaml_text({s: config[s] for s in STUDY_SECTIONS},
+    sections = {s: config[s] for s in STUDY_SECTIONS}
+    text = yaml_text(sections,
                      "the lsbg study settings as validated (written by the workflow; do not edit)")
     if path.exists() and path.read_text(encoding="utf-8") == text:
         return
@@ -160,12 +168,42 @@ def write_study_config(path, config, only_if_missing=False):
 
 def simulation_params(config, engine, model):
     """The simulation and contact settings a run of ``engine`` and ``model`` depends on
-    (the rules' rerun trigger)."""
+    (the rules' rerun trigger).
+
+    The line model's contact settings include the flanks it runs on: the
+    ``flank_modification`` and ``misalignment`` sections (every line-model
+    command applies them; the point model keeps the conjugate flanks), so
+    that every rule whose trigger holds them (the loaded TCA's too) reruns on
+    a change of the contact state.
+    """
     simulation = {k: v for k, v in config["simulation"].items()
                   if engine in ENGINE_ONLY_KEYS.get(k, (engine,))}
     others = {key for name, keys in MODEL_ONLY_KEYS.items() if name != model for key in keys}
     contact = {k: v for k, v in config["contact"].items() if k not in others and k != "model"}
+    if model == "line":
+        contact.update({section: config.get(section, {}) for section in FLANK_SECTIONS})
     return canonical({"simulation": simulation, "contact": contact})
+
+
+def map_steps(config, spiral):
+    """Values per axis of the V-H map at a design point's spiral angle (its file-name
+    label): ``misalignment_map.steps`` at the paper's, else ``sweep_steps``."""
+    section = config["misalignment_map"]
+    paper = number_label(config["paper_spiral_angle_deg"])
+    return section["steps"] if number_label(spiral) == paper else section["sweep_steps"]
+
+
+def contact_state_params(config, spiral, engine):
+    """What a design point's contact-state job (``lsbg misalignment-map``) depends on
+    (its rule's rerun trigger): the contact-state sections, the map's steps there,
+    the line model's contact settings and the load of the loaded TCAs."""
+    load = config["misalignment_map"].get("load_torque_N_m")
+    return canonical({
+        **{section: config[section] for section in CONTACT_STATE_SECTIONS},
+        "steps": map_steps(config, spiral),
+        "contact": simulation_params(config, engine, "line")["contact"],
+        "load_torque_N_m": config["simulation"]["load_torque_N_m"] if load is None else load,
+    })
 
 
 #: Budgeted wall time per simulated second and run [s] (measured: PyBullet
@@ -181,9 +219,13 @@ def simulation_runtime(config, runs=1):
 #: Wall time [s] of one job of each rule in the default study, measured with
 #: ``snakemake -j2`` on the 2-core reference machine (tests/benchmarks/bench_study.py,
 #: 2026-11-24). Only their order matters: it is the order of :func:`job_priority`.
-JOB_SECONDS = {"sweep_points": 15, "convergence_point": 14, "report_paper": 12,
-               "report_verification": 8, "report_sweep": 8, "convergence_line": 6,
-               "sensitivity": 4, "summary": 3, "combine": 2}
+#: contact_state (``lsbg misalignment-map`` at the paper's point, 9 x 9 cells) about
+#: 6 s; sweep_contact_state (the other ten angles of a trace, 5 x 5 cells each) about
+#: 15 s; they fill the cores before the aggregates and the reports that read them.
+JOB_SECONDS = {"sweep_points": 15, "sweep_contact_state": 15, "convergence_point": 14,
+               "report_paper": 12, "report_verification": 8, "report_sweep": 8,
+               "convergence_line": 6, "contact_state": 6, "sensitivity": 4, "summary": 3,
+               "combine": 2}
 #: Short jobs that every report and aggregate waits for: before all others, in this order.
 GATE_RULES = ("paper_geometry", "paper_ltca")
 
@@ -314,6 +356,42 @@ class Study:
     def paper_geometry(self):
         return [self.geometry(t, self.paper_spiral) for t in PAPER_TRACES]
 
+    # -------------------------------------------------------- contact state
+    @property
+    def points(self):
+        """Every design point of the study, ``(trace, spiral label)``: each trace at each
+        spiral angle of the sweep, then the paper's point of each paper trace."""
+        return list(dict.fromkeys([(t, s) for t in self.traces for s in self.spirals]
+                                  + [(t, self.paper_spiral) for t in PAPER_TRACES]))
+
+    def map_steps(self, spiral):
+        """Values per axis of the V-H map at ``spiral`` (:func:`map_steps`)."""
+        return map_steps(self.config, spiral)
+
+    def tca(self, trace, spiral):
+        return _format(FILES["tca"], trace=trace, spiral=spiral)
+
+    def vh_map(self, trace, spiral):
+        return _format(FILES["vh_map"], trace=trace, spiral=spiral)
+
+    @property
+    def tca_files(self):
+        """Unloaded TCAs: every design point (:attr:`points`)."""
+        return [self.tca(t, s) for t, s in self.points]
+
+    @property
+    def vh_maps(self):
+        """V-H maps: every design point (:attr:`points`)."""
+        return [self.vh_map(t, s) for t, s in self.points]
+
+    @property
+    def paper_tca_files(self):
+        return [self.tca(t, self.paper_spiral) for t in PAPER_TRACES]
+
+    @property
+    def paper_vh_maps(self):
+        return [self.vh_map(t, self.paper_spiral) for t in PAPER_TRACES]
+
     def sensitivity_runs(self, trace=None):
         traces = PAPER_TRACES if trace is None else (trace,)
         return [_format(FILES["sensitivity_run"], trace=t, spiral=self.paper_spiral, case=case)
@@ -386,7 +464,8 @@ class Study:
     def targets(self):
         """What ``rule all`` asks for."""
         extra = [FILES["speed_curve"]] if self.speed_sweep else []
-        return [*self.reports.values(), FILES["sweep"], FILES["summary"], *extra]
+        return [*self.reports.values(), FILES["sweep"], FILES["summary"], *self.tca_files,
+                *self.vh_maps, *extra]
 
     # ------------------------------------------------------------ wildcards
     @property

@@ -20,7 +20,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from lsbg import config_check, resources, workflow as plan
+from lsbg import config_check, resources, stages, workflow as plan
 from lsbg.design import GearPairDesign
 from lsbg.geometry import GearPair
 
@@ -96,6 +96,11 @@ def valid_item(schema):
 def bad_values(schema):
     """(category, value) pairs that ``schema`` (of one value) rejects."""
     kind = schema.get("type")
+    if isinstance(kind, list):  # a type or null: the bad values of the type
+        (kind,) = [k for k in kind if k != "null"]
+        if kind == "string":
+            return [("wrong type", 7), ("wrong type", ["a.csv"])]
+        return bad_values({**schema, "type": kind})
     if "enum" in schema:
         return [("not one of the choices", "no-such-choice"), ("wrong type", 7)]
     if kind in ("number", "integer"):
@@ -250,6 +255,23 @@ BEYOND_SCHEMA = {
                                           "design.module_mm = 1e+300"),
     "a sensitivity case of too many slices": ({"sensitivity": {"slices": [2e4]}},
                                               "sensitivity.slices[0] = 20000.0"),
+    # the contact state at every design point (lsbg.tca.checks)
+    "map steps even": ({"misalignment_map": {"steps": 4}}, "misalignment_map.steps = 4"),
+    "sweep map steps even": ({"misalignment_map": {"sweep_steps": 6}},
+                             "misalignment_map.sweep_steps = 6"),
+    "crowning beyond the backlash": ({"flank_modification": {"lengthwise_crowning_um": 500}},
+                                     "flank_modification.lengthwise_crowning_um = 500"),
+    "bias beyond the backlash": ({"flank_modification": {"bias_um": -200}},
+                                 "flank_modification.bias_um = -200"),
+    "a gear pushed into mesh": ({"misalignment": {"gear_axial_G_mm": -0.5}},
+                                "misalignment.gear_axial_G_mm = -0.5"),
+    "a map whose corners interfere": ({"misalignment_map": {"range": 0.5}},
+                                      "misalignment_map.range = 0.5"),
+    "a map of G closing the backlash": ({"misalignment_map": {"axes": ["G", "P"]}},
+                                        "misalignment_map.range = 0.1 (G = -0.1"),
+    "a topography file that is not there": (
+        {"flank_modification": {"topography_file": "no-such-relief.csv"}},
+        "flank_modification.topography_file = 'no-such-relief.csv': no such file"),
 }
 
 
@@ -263,6 +285,83 @@ def test_checks_beyond_the_schema_name_the_key_and_value(name):
     assert_rejected(problems, key)
     if name.endswith("module"):  # the key at fault, in mm, not lsbg's metres
         assert not re.search(r"\d m\b", " ".join(problems)), problems
+    if key.startswith(("flank_modification.", "misalignment")):
+        # one line for the key, naming the design points (both, here)
+        assert len(problems) == 1 and problems[0].startswith(key), problems
+        assert "(at every design point)" in problems[0] or "steps" in key, problems
+
+
+def test_contact_state_is_checked_at_each_point_with_its_steps(monkeypatch):
+    """lsbg.tca.checks runs once per design point that passed the physics, with the map
+    section and the steps of that point; identical lines are one line naming the points."""
+    import lsbg.tca.checks
+
+    calls = []
+
+    def fake(pair, modification, misalignment, map_config):
+        calls.append((pair.design.trace, round(math.degrees(pair.design.spiral_angle), 6),
+                      map_config["steps"]))
+        if pair.design.trace == "circular":
+            return ["misalignment_map.range = 0.1 (E = 0.1, P = 0.1): the members interfere"]
+        return []
+
+    monkeypatch.setattr(lsbg.tca.checks, "contact_state_problems", fake)
+    monkeypatch.setattr(config_check, "contact_state_cache_dir", lambda: None)
+    monkeypatch.setattr(stages, "_ANSWERS", {})
+    config = base()
+    config["sweep"]["spiral_angles_deg"] = [30, 35]
+    del config["speed_sweep"]
+    problems = config_check.check_config(config, SCHEMA)
+    assert sorted(calls) == [("circular", 30.0, 3), ("circular", 35.0, 3),
+                             ("logarithmic", 30.0, 3), ("logarithmic", 35.0, 3)]
+    assert problems == ["misalignment_map.range = 0.1 (E = 0.1, P = 0.1): the members interfere "
+                        "(at circular 30 deg, circular 35 deg)"]
+    config = base()
+    config["sweep"]["spiral_angles_deg"] = [30, 35]
+    config["misalignment_map"] = {**config["misalignment_map"], "steps": 7, "sweep_steps": 5}
+    calls.clear()
+    config_check.check_config(config, SCHEMA)
+    assert {(spiral, steps) for _, spiral, steps in calls} == {(30.0, 5), (35.0, 7)}
+    # a design point that fails the physics is not asked
+    config = base()
+    config["design"]["face_width_mm"] = 500
+    calls.clear()
+    assert_rejected(config_check.check_config(config, SCHEMA), "design.face_width_mm = 500")
+    assert calls == []
+
+
+def test_contact_state_answers_are_kept_on_disk(monkeypatch, tmp_path):
+    """Each design point's answer is kept (the quick TCAs and numba's start cost about
+    a second at every snakemake start otherwise) and asked again when an input changes."""
+    import lsbg.tca.checks
+
+    monkeypatch.setattr(config_check, "contact_state_cache_dir", lambda: tmp_path)
+    monkeypatch.setattr(stages, "_ANSWERS", {})
+    config = base()
+    config["misalignment"] = {"gear_axial_G_mm": -0.5}
+    first = config_check.check_config(copy.deepcopy(config), SCHEMA)
+    assert_rejected(first, "misalignment.gear_axial_G_mm = -0.5")
+    assert len(list(tmp_path.glob("*.json"))) == 2                  # one per design point
+
+    def never(*args):
+        raise AssertionError("asked again")
+
+    monkeypatch.setattr(lsbg.tca.checks, "contact_state_problems", never)
+    monkeypatch.setattr(stages, "_ANSWERS", {})                # a new snakemake
+    assert config_check.check_config(copy.deepcopy(config), SCHEMA) == first
+    config["misalignment"] = {"gear_axial_G_mm": -0.4}
+    with pytest.raises(AssertionError, match="asked again"):
+        config_check.check_config(copy.deepcopy(config), SCHEMA)
+    # a cache that cannot be written is no cache
+    (tmp_path / "file").write_text("")
+    monkeypatch.setattr(config_check, "contact_state_cache_dir", lambda: tmp_path / "file")
+    monkeypatch.setattr(lsbg.tca.checks, "contact_state_problems", lambda *args: [])
+    assert config_check.check_config(copy.deepcopy(config), SCHEMA) == []
+    monkeypatch.undo()
+    monkeypatch.delenv("LSBG_CHECK_CACHE", raising=False)
+    assert config_check.contact_state_cache_dir().name == "config-checks"
+    monkeypatch.setenv("LSBG_CHECK_CACHE", "off")
+    assert config_check.contact_state_cache_dir() is None
 
 
 @pytest.mark.parametrize("names", [(), ("config-test.yaml",), ("config-speed.yaml",)])
@@ -317,6 +416,9 @@ END_TO_END = {
     "same file name": ("sweep:\n  traces: [logarithmic]\n  spiral_angles_deg: [35, 35.0000001]\n",
                        "sweep.spiral_angles_deg[1] = 35.0000001"),
     "too few samples": ("simulation:\n  samples: 2\n", "simulation.samples = 2"),
+    "even map steps": ("misalignment_map:\n  steps: 8\n", "misalignment_map.steps = 8"),
+    "interference": ("misalignment:\n  gear_axial_G_mm: -0.5\n",
+                     "misalignment.gear_axial_G_mm = -0.5"),
 }
 
 

@@ -60,3 +60,39 @@ def test_imports_inside_functions_count(tmp_path):
     (package / "d.py").write_text("")
     assert stages.imported_modules("a", package=package) == {"b", "c"}
     assert stages.imported_modules("a", functions=(), package=package) == {"b"}
+
+
+def test_answers_are_kept_until_an_input_or_a_source_changes(tmp_path, monkeypatch):
+    monkeypatch.setattr(stages, "_ANSWERS", {})
+    calls = []
+
+    def compute():
+        calls.append(1)
+        return ["a problem"]
+
+    assert stages.cached_answer(tmp_path, "contact_state", {"x": 1}, compute) == ["a problem"]
+    assert stages.cached_answer(tmp_path, "contact_state", {"x": 1}, compute) == ["a problem"]
+    assert len(calls) == 1 and len(list(tmp_path.glob("*.json"))) == 1
+    monkeypatch.setattr(stages, "_ANSWERS", {})                 # another process: from disk
+    assert stages.cached_answer(tmp_path, "contact_state", {"x": 1}, compute) == ["a problem"]
+    assert len(calls) == 1
+    stages.cached_answer(tmp_path, "contact_state", {"x": 2}, compute)   # another input
+    assert len(calls) == 2
+    # the key holds the stage's sources: their digest changes with any of its files
+    assert stages.sources_digest("contact_state") != stages.sources_digest("aggregate")
+    monkeypatch.setattr(stages, "sources_digest", lambda stage: "edited")
+    stages.cached_answer(tmp_path, "contact_state", {"x": 1}, compute)
+    assert len(calls) == 3
+    # a corrupt entry is computed again; the oldest go beyond CACHE_ENTRIES
+    monkeypatch.setattr(stages, "_ANSWERS", {})
+    for path in tmp_path.glob("*.json"):
+        path.write_text("{not json")
+    monkeypatch.setattr(stages, "CACHE_ENTRIES", 2)
+    stages.cached_answer(tmp_path, "contact_state", {"x": 1}, compute)
+    assert len(calls) == 4 and len(list(tmp_path.glob("*.json"))) == 2
+    # without a folder, or one that cannot be written: kept by the process only
+    assert stages.cached_answer(None, "contact_state", {"x": 9}, compute) == ["a problem"]
+    blocked = tmp_path / "file"
+    blocked.write_text("")
+    assert stages.cached_answer(blocked, "contact_state", {"x": 10}, compute) == ["a problem"]
+    assert len(calls) == 6

@@ -142,3 +142,58 @@ def test_spiral_angle_is_rounded_in_tables(runs, windows):
         assert math.isclose(run.attrs["design_spiral_angle_deg"], 30.0)
     table = summary_table([runs["lsbg30"]], **windows)
     assert set(table.spiral_angle_deg) == {30.0}
+
+
+# ----------------------------------------------------------- contact state
+def test_contact_state_rows_of_tcas_and_maps(runs, tmp_path, windows):
+    from lsbg.results import write_dataset
+    from lsbg.summary import CONTACT_STATE_QUANTITIES, tca_summary, vh_summary
+    from test_combine import synthetic_tca, synthetic_vh_map
+
+    tca = synthetic_tca("circular", 35.0, te_pp=50.0)
+    (row,) = tca_summary(tca)
+    assert (row["engine"], row["quantity"], row["trace"], row["spiral_angle_deg"]) == (
+        "tca", "unloaded_transmission_error", "circular", 35.0)
+    assert row["peak_to_peak"] == pytest.approx(50.0)
+    assert row["mean"] == pytest.approx(tca.transmission_error.values.mean())
+    assert row["std"] == pytest.approx(tca.transmission_error.values.std(ddof=1))
+    assert row["contact_model"] is None and row["out_of_control"] is None
+    vh = synthetic_vh_map("circular", 35.0, axes=("P", "Sigma"))
+    rows = vh_summary(vh)
+    assert [r["quantity"] for r in rows] == [f"{q}_per_0_1_{axis}" for axis in ("P", "Sigma")
+                                             for q in CONTACT_STATE_QUANTITIES]
+    assert rows[0]["quantity"] == "pattern_shift_lengthwise_per_0_1_P"
+    for r in rows:
+        assert r["mean"] == vh.attrs[r["quantity"]] and r["engine"] == "tca"
+        assert np.isnan(r["std"]) and np.isnan(r["peak_to_peak"])
+    # the units the combined dataset writes (lsbg.combine.add_contact_state)
+    from lsbg.combine import add_contact_state
+    from test_combine import _points
+
+    combined = add_contact_state(_points(), [tca], [vh])
+    for quantity in [r["quantity"] for r in rows]:
+        assert SUMMARY_UNITS[quantity] == combined[quantity].attrs["units"], quantity
+    assert SUMMARY_UNITS["unloaded_transmission_error"] == tca.transmission_error.attrs["units"]
+    # the quantities are the map's sensitivities (lsbg.tca.vh_map)
+    from lsbg.tca.vh_map import SENSITIVITY_QUANTITIES
+
+    assert tuple(CONTACT_STATE_QUANTITIES) == SENSITIVITY_QUANTITIES
+    # through summary_table and the CLI: after the runs' and the loaded TCAs' rows
+    files = [tmp_path / "tca" / "circular_beta35.nc", tmp_path / "vh" / "circular_beta35.nc"]
+    write_dataset(tca, files[0])
+    write_dataset(vh, files[1])
+    table = summary_table([runs["sbg35_line"]], meshes=[runs["sbg35_mesh"]], tca=[files[0]],
+                          vh_maps=[files[1]], **windows)
+    state = table[table.engine == "tca"]
+    assert len(state) == 1 + 2 * len(CONTACT_STATE_QUANTITIES)
+    assert list(table.engine.iloc[-len(state):]) == ["tca"] * len(state)
+    assert set(state.run) == {"circular_beta35"} and state.contact_model.isna().all()
+    out = tmp_path / "summary.csv"
+    assert cli.main(["summary", "--runs", str(runs["sbg35_line"]), "--tca", str(files[0]),
+                     "--vh", str(files[1]), "--steady-state-after", "0.01", "--window", "0.01",
+                     "0.05", "--subgroup-size", "5", "--out", str(out)]) == 0
+    written = pd.read_csv(out)
+    assert list(written.columns) == list(SUMMARY_COLUMNS)
+    assert (written.engine == "tca").sum() == len(state)
+    value = written[written.quantity == "transmission_error_loaded_pp_per_0_1_Sigma"]["mean"]
+    assert float(value.iloc[0]) == vh.attrs["transmission_error_loaded_pp_per_0_1_Sigma"]

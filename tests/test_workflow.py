@@ -18,6 +18,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 import pytest
 import xarray as xr
@@ -32,7 +33,7 @@ RULE_STAGES = {"paper_geometry": "geometry", "paper_ltca": "ltca", "sweep_points
                "sensitivity": "simulate", "convergence_point": "convergence",
                "convergence_line": "convergence", "combine": "aggregate",
                "summary": "aggregate", "report_paper": "report", "report_sweep": "report",
-               "report_verification": "report"}
+               "report_verification": "report", "contact_state": "contact_state"}
 
 
 def snakemake(*args, cwd, env=None, check=None):
@@ -107,10 +108,21 @@ def test_default_and_test_configs_are_valid_and_plan_the_study(tmp_path):
     for rule in ("combine", "summary", "report_paper", "report_sweep", "report_verification",
                  "all"):
         assert rule in rules_of(jobs)
+    # the contact state: the paper's point of each trace a job of its own, the other
+    # angles of a trace one job; an unloaded TCA and a V-H map per design point
+    state = {out for rule, out in jobs if rule == "contact_state"}
+    assert state == {f"results/tca/{t}_beta35.nc, results/vh/{t}_beta35.nc" for t in traces}
+    assert rules_of(jobs).count("sweep_contact_state") == len(traces)
+    maps = [f for rule, out in jobs if rule in ("contact_state", "sweep_contact_state")
+            for f in out.split(", ") if f.startswith("results/vh/")]
+    assert len(maps) == len(set(maps)) == len(points)
     # The settings lsbg reads, as validated (schema defaults filled in).
     written = yaml.safe_load((tmp_path / "results" / "config.yaml").read_text(encoding="utf-8"))
-    assert set(written) == {"design", "simulation", "contact", "statistics"}
+    assert set(written) == {"design", "simulation", "contact", "flank_modification",
+                            "misalignment", "tca", "misalignment_map", "statistics"}
     assert written["simulation"]["duration_s"] == config["simulation"]["duration_s"]
+    assert written["flank_modification"]["lengthwise_crowning_um"] == 25
+    assert written["misalignment_map"]["sweep_steps"] == config["misalignment_map"]["sweep_steps"]
 
 
 def test_rules_list_the_lsbg_files_they_run(tmp_path):
@@ -131,7 +143,9 @@ def test_rules_list_the_lsbg_files_they_run(tmp_path):
         expected = set(stage_sources(stage, root=tmp_path))
         assert listed == expected, f"{rule}: {sorted(listed ^ expected)}"
     assert not any(f.endswith("verification.py") for f in inputs["paper_geometry"])
-    assert not any(f.endswith("ltca.py") for f in inputs["paper_geometry"])
+    assert not any(f.endswith("summary.py") for f in inputs["paper_geometry"])
+    # (lsbg.cli.options reads the flanks: every stage lists lsbg/tca and lsbg/ltca.py)
+    assert any(f.endswith("tca/vh_map.py") for f in inputs["contact_state"])
     for name in ("paper", "sweep", "verification"):
         assert any(f.endswith(f"workflow/notebooks/{name}.ipynb")
                    for f in inputs[f"report_{name}"])
@@ -198,7 +212,7 @@ def test_study_writes_the_sweep_dataset_with_units(study):
     root, _ = study
     with xr.open_dataset(root / "results" / "sweep.nc") as ds:
         assert set(ds.dims) == {"contact_model", "trace", "spiral_angle", "time", "time_full",
-                                "mesh_phase"}
+                                "mesh_phase", "E", "P"}
         assert list(ds.contact_model.values) == ["point", "line"]
         assert list(ds.trace.values) == ["logarithmic", "circular"]
         assert list(ds.spiral_angle.values) == [35.0]
@@ -212,6 +226,15 @@ def test_study_writes_the_sweep_dataset_with_units(study):
         assert ds.sizes["time_full"] == 2001  # 50 kHz from 0.01 s to 0.05 s
         assert ds["static_transmission_error_peak_to_peak"].attrs["units"] == "urad"
         assert ds.sizes["mesh_phase"] >= 200
+        # the contact state: the crowned pair's unloaded TCA and its 3 x 3 V-H maps
+        te = ds["unloaded_transmission_error_peak_to_peak"]
+        assert te.attrs["units"] == "urad" and (te > 0).all()
+        assert ((ds["pattern_length_per_face_width"] > 0.3)
+                & (ds["pattern_length_per_face_width"] < 0.9)).all()
+        assert ds.sizes["E"] == ds.sizes["P"] == 3
+        assert ds["vh_transmission_error_loaded_pp"].dims == ("trace", "spiral_angle", "E", "P")
+        assert np.isfinite(ds["vh_pattern_shift_lengthwise"]).all()
+        assert ds["pattern_shift_lengthwise_per_0_1_P"].attrs["units"] == "mm/(0.1 mm)"
 
 
 @pytest.mark.slow
@@ -240,7 +263,7 @@ def test_study_writes_the_summary_table(study):
     from lsbg.summary import SUMMARY_COLUMNS
 
     assert list(table.columns) == list(SUMMARY_COLUMNS)
-    runs = table[table.engine != "ltca"].groupby("run").size()
+    runs = table[~table.engine.isin(["ltca", "tca"])].groupby("run").size()
     # two traces x (point, line) x compiled, the point model on pybullet, the line model
     # on scipy, two sensitivity runs
     assert len(runs) == 10
@@ -249,6 +272,12 @@ def test_study_writes_the_summary_table(study):
     mesh = table[table.engine == "ltca"]
     assert sorted(mesh.quantity) == ["mesh_stiffness"] * 2 + ["static_transmission_error"] * 2
     assert mesh[mesh.quantity == "static_transmission_error"].harmonic_1.notna().all()
+    state = table[table.engine == "tca"]
+    # per design point: the unloaded TE, and four sensitivities per axis (E, P)
+    assert len(state) == 2 * (1 + 2 * 4)
+    assert set(state.run) == {"logarithmic_beta35", "circular_beta35"}
+    assert state[state.quantity == "unloaded_transmission_error"].peak_to_peak.gt(0).all()
+    assert state[state.quantity.str.endswith("_per_0_1_P")]["mean"].notna().all()
 
 
 @pytest.mark.slow
@@ -289,9 +318,12 @@ def test_a_new_spiral_angle_runs_only_its_points_and_the_aggregates(study, tmp_p
     jobs, output = dry_run(study, extra)
     # (the paper report's conclusion says what the sweep finds at the other angles, so it
     # reads the combined sweep and is rendered again; the verification report is not)
-    assert rules_of(jobs) == sorted(["sweep_points"] * 2
+    assert rules_of(jobs) == sorted(["sweep_points"] * 2 + ["sweep_contact_state"] * 2
                                     + ["combine", "summary", "report_sweep", "report_paper",
                                        "all"]), output
+    assert {out for rule, out in jobs if rule == "sweep_contact_state"} == {
+        f"results/tca/{t}_beta40.nc, results/vh/{t}_beta40.nc"
+        for t in ("logarithmic", "circular")}
     new = {f for rule, out in jobs if rule == "sweep_points" for f in out.split(", ")}
     assert new == {"results/geometry/logarithmic_beta40", "results/geometry/circular_beta40",
                    "results/mesh/logarithmic_beta40.nc", "results/mesh/circular_beta40.nc",
@@ -315,10 +347,20 @@ def test_a_changed_setting_reruns_only_the_runs_that_use_it(study, tmp_path):
                      f"runs/{t}_beta35_point_compiled.nc", f"runs/{t}_beta35_point_pybullet.nc")}
     extra = write_yaml(tmp_path / "line.yaml", {"contact": {"mesh_damping_ratio": 0.07}})
     jobs, output = dry_run(study, extra)
-    assert rules_of(jobs) == sorted(["paper_ltca"] * 2 + ["sensitivity"] * 2
-                                    + ["convergence_line"] * 2
-                                    + ["combine", "summary", "report_paper", "report_sweep",
-                                       "report_verification", "all"]), output
+    _line_model = (["paper_ltca"] * 2 + ["sensitivity"] * 2 + ["convergence_line"] * 2
+                   + ["contact_state"] * 2 + ["combine", "summary", "report_paper",
+                                              "report_sweep", "report_verification", "all"])
+    assert rules_of(jobs) == sorted(_line_model), output
+    # The flanks: every line-model job and the contact state, not the point model.
+    extra = write_yaml(tmp_path / "flanks.yaml", {"flank_modification": {"bias_um": 2}})
+    jobs, output = dry_run(study, extra)
+    assert rules_of(jobs) == sorted(_line_model), output
+    # The contact state's own settings: its jobs and what reads them.
+    extra = write_yaml(tmp_path / "tca.yaml", {"tca": {"positions": 50}})
+    jobs, output = dry_run(study, extra)
+    assert rules_of(jobs) == sorted(["contact_state"] * 2 + ["combine", "summary",
+                                                             "report_paper", "report_sweep",
+                                                             "all"]), output
     # Statistics settings rerun the statistics, not the simulations.
     extra = write_yaml(tmp_path / "stats.yaml", {"statistics": {"subgroup_size": 4}})
     jobs, output = dry_run(study, extra)
@@ -328,15 +370,20 @@ def test_a_changed_setting_reruns_only_the_runs_that_use_it(study, tmp_path):
 _CONVERGENCE = ["convergence_point"] * 2 + ["convergence_line"] * 2
 _AGGREGATES = ["combine", "summary", "report_paper", "report_sweep", "report_verification",
                "all"]
+#: Every job of the test study.
+_EVERYTHING = (["paper_geometry"] * 2 + ["paper_ltca"] * 2 + ["sensitivity"] * 2
+               + _CONVERGENCE + ["contact_state"] * 2 + _AGGREGATES)
 CODE_CHANGES = {
     "lsbg/verification.py": _CONVERGENCE + _AGGREGATES,
     "lsbg/stats/samples.py": _AGGREGATES,
-    "lsbg/ltca.py": ["paper_ltca"] * 2 + _AGGREGATES,
+    # lsbg.cli.options reads the flanks (lsbg.tca, which imports lsbg.ltca): every
+    # stage lists both (lsbg.stages), so a change reruns the study
+    "lsbg/ltca.py": _EVERYTHING,
+    "lsbg/tca/vh_map.py": _EVERYTHING,
     "lsbg/sensitivity.py": ["sensitivity"] * 2 + [r for r in _AGGREGATES if r != "combine"],
     # every run at the paper's point reads its geometry; the convergence tables write
     # every engine's run there
-    "lsbg/solids.py": ["paper_geometry"] * 2 + ["paper_ltca"] * 2
-                      + ["sensitivity"] * 2 + _CONVERGENCE + _AGGREGATES,
+    "lsbg/solids.py": _EVERYTHING,
     "workflow/notebooks/sweep.ipynb": ["report_sweep", "all"],
 }
 

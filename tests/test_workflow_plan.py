@@ -71,7 +71,57 @@ def test_every_run_and_file_of_the_default_study_is_planned_once(default):
         "--default-run", "compiled=results/runs/circular_beta35_point_compiled.nc",
         "--default-run", "pybullet=results/runs/circular_beta35_point_pybullet.nc"]
     assert study.targets == [*study.reports.values(), plan.FILES["sweep"],
-                             plan.FILES["summary"]]
+                             plan.FILES["summary"], *study.tca_files, *study.vh_maps]
+
+
+def test_contact_state_files_cover_every_design_point(default):
+    study = plan.Study(default)
+    traces, spirals = default["sweep"]["traces"], default["sweep"]["spiral_angles_deg"]
+    assert len(study.points) == len(set(study.points)) == len(traces) * len(spirals)
+    assert set(study.points) == set(plan.design_points(default))
+    assert len(study.tca_files) == len(set(study.tca_files)) == len(study.points)
+    assert study.tca("circular", "35") == "results/tca/circular_beta35.nc"
+    assert study.vh_map("logarithmic", "22.5") == "results/vh/logarithmic_beta22.5.nc"
+    assert set(study.paper_tca_files) < set(study.tca_files)
+    assert set(study.paper_vh_maps) == {f"results/vh/{t}_beta35.nc" for t in plan.PAPER_TRACES}
+    # the paper's point gets the fine map, the other angles of the sweep the coarse one
+    assert study.map_steps("35") == default["misalignment_map"]["steps"] == 9
+    assert study.map_steps("30") == study.map_steps("22.5") == 5
+    # a paper angle outside the sweep: its points are added (both traces)
+    config = load(paper_spiral_angle_deg=33, sweep={"traces": ["logarithmic"],
+                                                    "spiral_angles_deg": [30]})
+    study = plan.Study(config)
+    assert study.points == [("logarithmic", "30"), ("logarithmic", "33"), ("circular", "33")]
+    assert set(study.points) == set(plan.design_points(config))
+
+
+def test_contact_state_is_a_rerun_trigger_of_every_line_model_job(default):
+    line = plan.simulation_params(default, "compiled", "line")
+    point = plan.simulation_params(default, "pybullet", "point")
+    assert line["contact"]["flank_modification"] == default["flank_modification"]
+    assert line["contact"]["misalignment"] == default["misalignment"]
+    assert "flank_modification" not in point["contact"]     # conjugate flanks
+    crowned = copy.deepcopy(default)
+    crowned["flank_modification"]["bias_um"] = 3
+    assert plan.simulation_params(crowned, "compiled", "line") != line
+    assert plan.simulation_params(crowned, "pybullet", "point") == point
+    # the contact-state job: its sections, its point's steps, the line model, the load
+    paper = plan.contact_state_params(default, "35", "compiled")
+    sweep = plan.contact_state_params(default, "30", "compiled")
+    assert paper["steps"] == 9 and sweep["steps"] == 5
+    assert paper["load_torque_N_m"] == default["simulation"]["load_torque_N_m"]
+    assert paper["contact"] == line["contact"]
+    assert {k: v for k, v in paper.items() if k != "steps"} == \
+        {k: v for k, v in sweep.items() if k != "steps"}
+    for section, key, value in (("tca", "positions", 100), ("misalignment", "offset_E_mm", 0.05),
+                                ("misalignment_map", "range", 0.05),
+                                ("contact", "line_stiffness_N_per_mm_um", 20.0)):
+        changed = copy.deepcopy(default)
+        changed[section][key] = value
+        assert plan.contact_state_params(changed, "35", "compiled") != paper, section
+    changed = copy.deepcopy(default)
+    changed["misalignment_map"]["load_torque_N_m"] = 1000
+    assert plan.contact_state_params(changed, "35", "compiled")["load_torque_N_m"] == 1000
 
 
 def test_the_paper_point_is_not_in_a_batch(default):
@@ -113,6 +163,9 @@ def test_study_config_is_written_only_when_it_changes(default, tmp_path):
     written = yaml.safe_load(path.read_text(encoding="utf-8"))
     assert set(written) == set(plan.STUDY_SECTIONS)
     assert written["design"]["module_mm"] == default["design"]["module_mm"]
+    # the contact state, as lsbg's commands read it
+    assert written["flank_modification"] == default["flank_modification"]
+    assert written["misalignment_map"] == default["misalignment_map"]
     os.utime(path, (1, 1))
     plan.write_study_config(path, default)
     assert path.stat().st_mtime == 1                      # same text: not touched

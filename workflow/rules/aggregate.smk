@@ -1,10 +1,13 @@
-# The stage after the runs: the sweep dataset and the summary table.
+# The stage after the runs: the sweep dataset and the summary table (with the
+# contact state of every design point: workflow/rules/contact_state.smk).
 
 
 rule combine:
     input:
         runs=STUDY.sweep_runs,
         meshes=STUDY.meshes,
+        tca=STUDY.tca_files,
+        vh=STUDY.vh_maps,
         sources=sources("aggregate"),
     output:
         # update(): Snakemake keeps the previous file until the new one is complete
@@ -20,13 +23,16 @@ rule combine:
     conda:
         CONDA_ENV
     shell:
-        "lsbg -v combine --runs {input.runs} --meshes {input.meshes} --out {output} > {log} 2>&1"
+        "lsbg -v combine --runs {input.runs} --meshes {input.meshes} --tca {input.tca}"
+        " --vh {input.vh} --out {output} > {log} 2>&1"
 
 
 rule summary:
     input:
         runs=STUDY.all_runs + STUDY.sensitivity_runs(),
         meshes=STUDY.meshes,
+        tca=STUDY.tca_files,
+        vh=STUDY.vh_maps,
         config=ancient(FILES["study_config"]),
         sources=sources("aggregate"),
     output:
@@ -44,5 +50,5 @@ rule summary:
     conda:
         CONDA_ENV
     shell:
-        "lsbg -v summary --runs {input.runs} --meshes {input.meshes} --config {input.config}"
-        " --out {output} > {log} 2>&1"
+        "lsbg -v summary --runs {input.runs} --meshes {input.meshes} --tca {input.tca}"
+        " --vh {input.vh} --config {input.config} --out {output} > {log} 2>&1"

@@ -11,6 +11,8 @@ rule report_paper:
         meshes=STUDY.paper_meshes,
         geometry=STUDY.paper_geometry,
         sweep=FILES["sweep"],
+        tca=STUDY.paper_tca_files,
+        vh=STUDY.paper_vh_maps,
         sources=sources("report"),
     output:
         report(STUDY.reports["paper"], caption="../report/reports.rst", category="Reports",
@@ -21,6 +23,8 @@ rule report_paper:
         sensitivity=lambda wildcards, input: yaml_list(input.sensitivity),
         meshes=lambda wildcards, input: yaml_list(input.meshes),
         geometry=lambda wildcards, input: yaml_list(input.geometry),
+        tca=lambda wildcards, input: yaml_list(input.tca),
+        vh=lambda wildcards, input: yaml_list(input.vh),
         paper_engine=STUDY.paper_engine,
         line_engine=SWEEP_ENGINE,
         steady_state_after=config["statistics"]["steady_state_after_s"],
@@ -40,6 +44,7 @@ rule report_paper:
         "lsbg -v report paper --notebook-dir {params.notebook_dir} --out {output}"
         " --param 'runs={params.runs}' --param 'sensitivity_runs={params.sensitivity}'"
         " --param 'mesh_files={params.meshes}' --param 'geometry_dirs={params.geometry}'"
+        " --param 'tca_files={params.tca}' --param 'vh_files={params.vh}'"
         " --param paper_engine={params.paper_engine}"
         " --param line_engine={params.line_engine}"
         " --param steady_state_after_s={params.steady_state_after}"
@@ -55,12 +60,14 @@ rule report_sweep:
         sweep=FILES["sweep"],
         summary=FILES["summary"],
         speed_curve=[FILES["speed_curve"]] if STUDY.speed_sweep else [],
+        vh=STUDY.vh_maps,
         sources=sources("report"),
     output:
         report(STUDY.reports["sweep"], caption="../report/reports.rst", category="Reports",
                labels={"report": "sweep"}),
     params:
         notebook_dir=lambda wildcards, input: os.path.dirname(input.notebook),
+        vh=lambda wildcards, input: yaml_list(input.vh),
         steady_state_after=config["statistics"]["steady_state_after_s"],
     priority: plan.job_priority("report_sweep")
     log:
@@ -74,7 +81,7 @@ rule report_sweep:
     shell:
         "lsbg -v report sweep --notebook-dir {params.notebook_dir} --out {output}"
         " --param sweep_file={input.sweep} --param summary_file={input.summary}"
-        " --param 'speed_curve_file={input.speed_curve}'"
+        " --param 'speed_curve_file={input.speed_curve}' --param 'vh_files={params.vh}'"
         " --param steady_state_after_s={params.steady_state_after} > {log} 2>&1"
 
 
