@@ -68,6 +68,18 @@ def study_files(tmp_path_factory):
             speed_runs.append(simulate(files["geometry"][trace], settings, line))
     files["speed_curve"] = root / "results" / "speed_curve.nc"
     write_dataset(speed.speed_curve(speed_runs), files["speed_curve"])
+    # the contact state: crowned flanks, a small V-H map per type (lsbg misalignment-map)
+    files["tca"], files["vh"] = [], []
+    for trace in ("logarithmic", "circular"):
+        tca = root / "results" / "tca" / f"{trace}_beta35.nc"
+        vh = root / "results" / "vh" / f"{trace}_beta35.nc"
+        assert cli.main(["misalignment-map", "--geometry", str(files["geometry"][trace]),
+                         "--modification", "lengthwise_crowning_um=25",
+                         "--modification", "profile_crowning_um=5", "--steps", "3",
+                         "--positions", "24", "--load-torque", "500", "--out", str(vh),
+                         "--tca-out", str(tca)]) == 0
+        files["tca"].append(tca)
+        files["vh"].append(vh)
     files["convergence"] = []
     for model, params in (("point", ContactParameters()), ("line", line)):
         table = convergence_study(load_model(files["geometry"]["logarithmic"], params), SHORT,
@@ -85,7 +97,8 @@ def paper_parameters(files):
             "mesh_files": list(files["meshes"].values()),
             "geometry_dirs": [files["geometry"][t] for t in ("logarithmic", "circular")],
             "paper_engine": "pybullet",
-            "line_engine": "compiled", "sweep_file": files["sweep"], **STATISTICS}
+            "line_engine": "compiled", "sweep_file": files["sweep"], "tca_files": files["tca"],
+            "vh_files": files["vh"], **STATISTICS}
 
 
 def check_html(path, headings, images, code_snippets):
@@ -132,13 +145,27 @@ def test_paper_report(study_files, tmp_path):
               "7. Xbar-R control charts", "8. Simulated means", "9. The paper", "10. Which gear",
               "11. Agreement", "12. What the paper", "13. The line model",
               "14. Dynamics under the line model", "15. Model-form sensitivity",
-              "16. Conclusion", "Appendix A. The summary statistics",
+              "16. The contact state", "17. Conclusion", "Appendix A. The summary statistics",
               "Appendix B. Inputs and settings"],
         # pair picture, Fig. 8, 9-10, 11, 12, 13, 14, 15 (2), 16, 17 (2), 18 (2); sampling
         # luck, spectrum, full-rate stretch; TE and stiffness, load sharing, contact
-        # pattern; two spectra, full-rate stretch; sensitivity
-        images=24, code_snippets=["select_runs(all_runs", "import numpy", 'rep = Report("paper")'])
-    assert html.count("<b>Figure ") + html.count("<strong>Figure ") == 22
+        # pattern; two spectra, full-rate stretch; sensitivity; bearing pattern,
+        # unloaded TE, two V-H maps
+        images=28, code_snippets=["select_runs(all_runs", "import numpy", 'rep = Report("paper")'])
+    assert html.count("<b>Figure ") + html.count("<strong>Figure ") == 26
+    # the contact state: its statement names the type whose pattern moves less, in the
+    # finding and in Section 16, from the maps' own figures
+    from lsbg.tables import contact_state
+
+    maps = {}
+    for path in study_files["vh"]:
+        with xr.open_dataset(path) as ds:
+            maps[contact_state.gear_type_of(ds)] = ds.load()
+    totals = {t: contact_state.pattern_movement(ds)["total"] for t, ds in maps.items()}
+    steadier = min(totals, key=totals.get)
+    # the finding, Section 16 and the conclusion
+    assert html.count(f"the <strong>{steadier}</strong>'s bearing pattern moves less") == 3
+    assert "Contact state</strong> (the paper's second claim" in html
     # numbers are computed from the runs
     runs = open_pair(study_files["runs"][("circular", "point", "pybullet")],
                            study_files["runs"][("logarithmic", "point", "pybullet")])
@@ -173,13 +200,15 @@ def test_sweep_report(study_files, tmp_path):
     reports.render_report("sweep", out, {"sweep_file": study_files["sweep"],
                                          "summary_file": study_files["summary"],
                                          "speed_curve_file": study_files["speed_curve"],
+                                         "vh_files": study_files["vh"],
                                          "steady_state_after_s": 0.01})
     html = check_html(out, ["Spiral-angle sweep", "1. Loaded tooth contact",
                             "2. Fluctuations against", "3. Which type",
                             "4. The dynamic-factor curve", "5. The design points",
-                            "6. Conclusion", "Appendix A. The loaded TCA", "Appendix B. Inputs"],
-                      # loaded TCA, fluctuations, ratios, speed curve, Campbell map
-                      images=5, code_snippets=["tables.sweep_fluctuation_table", "import xarray"])
+                            "6. The contact state against spiral angle", "7. Conclusion", "Appendix A. The loaded TCA", "Appendix B. Inputs"],
+                      # loaded TCA, fluctuations, ratios, speed curve, Campbell map, the
+                      # contact state against spiral angle
+                      images=6, code_snippets=["tables.sweep_fluctuation_table", "import xarray"])
     assert "std(SBG)/std(LSBG)" in html and "static TE peak to peak [µrad]" in html
     assert "natural frequency [Hz]" in html and "3 speeds" in html
     # the point model's dynamic factors get their sentence; the full table is attached
@@ -245,8 +274,9 @@ def test_notebooks_declare_the_interface_parameters():
     expected = {
         "paper": {"runs", "sensitivity_runs", "mesh_files", "geometry_dirs", "paper_engine",
                   "line_engine", "steady_state_after_s", "chart_window_start_s",
-                  "chart_window_stop_s", "subgroup_size", "sweep_file"},
-        "sweep": {"sweep_file", "summary_file", "speed_curve_file", "steady_state_after_s"},
+                  "chart_window_stop_s", "subgroup_size", "sweep_file", "tca_files", "vh_files"},
+        "sweep": {"sweep_file", "summary_file", "speed_curve_file", "steady_state_after_s",
+                  "vh_files"},
         "verification": {"convergence_files", "geometry_dirs", "runs", "mesh_files",
                          "steady_state_after_s"},
     }
