@@ -5,7 +5,8 @@ Run as a script (pytest does not collect it: no ``test_`` prefix)::
     python tests/benchmarks/bench_all.py [--no-j1] [--no-speed]
 
 Runs bench_dynamics.py (kernels, engines per simulated second, the PyBullet
-step against its floor, compile and cache-load times) and bench_study.py (the
+step against its floor, compile and cache-load times), bench_tca.py (the
+surface TCA and the V-H map of a design point) and bench_study.py (the
 start-up costs, the full study with -j2 and -j1, the speed sweep), then prints
 one table: figure, value, target, verdict. About 10 minutes on two cores.
 """
@@ -17,11 +18,12 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import bench_dynamics  # noqa: E402
 import bench_study  # noqa: E402
+import bench_tca  # noqa: E402
 
 
 def main(argv=None):
     argv = list(sys.argv[1:] if argv is None else argv)
-    rows = bench_dynamics.main([]) + bench_study.main(argv)
+    rows = bench_dynamics.main([]) + bench_tca.main([]) + bench_study.main(argv)
     print("\n== lsbg benchmark: every figure against its target ==")
     for row in rows:
         print(f"  {row['figure']:62s} {row['value']:9.3g} {row['unit']:3s} "
