@@ -9,7 +9,7 @@ Copies the repository's files (``git ls-files``) into a temporary directory and
 runs the workflow there (``PYTHONPATH`` pointing at the copy, so the jobs run
 the copied lsbg):
 
-1. the default study with ``-j2`` from scratch (target <= 90 s), with the job
+1. the default study with ``-j2`` from scratch (target <= 120 s), with the job
    time per rule from Snakemake's job records (``.snakemake/metadata``);
 2. the same with ``-j1`` from scratch; -j1 over -j2 is the parallel
    efficiency (target >= 1.8);
@@ -35,7 +35,8 @@ from collections import defaultdict
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[2]
-STUDY_TARGET_S = 90.0
+#: issue 23: the full default study with the contact-state stages, warm cache.
+STUDY_TARGET_S = 120.0
 SPEED_TARGET_S = 300.0
 PARALLEL_TARGET = 1.8
 
