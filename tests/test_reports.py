@@ -236,14 +236,19 @@ def test_verification_report_via_cli_with_relative_paths(study_files, monkeypatc
                       ["Verification", "1. Convergence", "2. The engines",
                        "3. Geometry checks", "3.1 Spiral angle", "3.2 Normal pressure angle",
                        "3.3 Conjugacy", "4. The loaded tooth contact analysis",
-                       "Appendix. Inputs and settings"],
+                       "5. The contact state", "Appendix. Inputs and settings"],
                       # convergence (two models), engine agreement, spiral angle, pressure
                       # angle, conjugacy
                       images=6, code_snippets=["verification_tables.conjugacy_errors(read_design"])
     # the finding: how many checks pass, and the checks that must pass even on short runs
     assert re.search(r"<strong>(All )?\d+ of \d+ checks pass</strong>", html)
     for check in ("LSBG spiral angle constant along the face", "flanks conjugate",
-                  "no transmission error without load", "loaded TCA linear in load"):
+                  "no transmission error without load", "loaded TCA linear in load",
+                  "contact state: conjugate, aligned pair without transmission error",
+                  "contact state: backlash from the coast flanks equals the design",
+                  "crowned pair's transmission error against its closed-form parabola",
+                  "line model on the separation field against the surface TCA",
+                  "an offset E of ±0.1 mm moves the bearing pattern either way"):
         assert re.search(r'<td class="text">' + re.escape(check) + r'[^<]*</td>'
                          r'<td class="text">[^<]*</td><td class="text">PASS</td>', html), check
     # paths stay relative to the study's directory: the report does not name it
