@@ -45,8 +45,8 @@ import numpy as np
 import lsbg
 from lsbg import mass, render, solids, urdf
 from lsbg.design import GearPairDesign
-from lsbg.files import (FILE_NAMES, MANIFEST, read_design, remove_stale_temporaries,
-                        temporary_beside, write_manifest)
+from lsbg.files import (FILE_NAMES, MANIFEST, OPTIONAL_FILE_NAMES, read_design,
+                        remove_stale_temporaries, temporary_beside, write_manifest)
 from lsbg.geometry import MEMBER_NAMES, MEMBERS, SIDES, GearPair
 
 __all__ = ["GeometryFiles", "write_geometry", "read_design", "design_record",
@@ -244,7 +244,8 @@ def flank_dataset(pair: GearPair, n_cone=21, n_profile=31):
 
 
 # --------------------------------------------------------------- the stage
-def write_geometry(design: GearPairDesign, out_dir, resolution=solids.DEFAULT_RESOLUTION):
+def write_geometry(design: GearPairDesign, out_dir, resolution=solids.DEFAULT_RESOLUTION,
+                   step=False):
     """Write the geometry of one design point into ``out_dir``.
 
     The design is checked (:class:`lsbg.geometry.GearPair` raises
@@ -259,6 +260,9 @@ def write_geometry(design: GearPairDesign, out_dir, resolution=solids.DEFAULT_RE
     out_dir : str or os.PathLike
         Output directory; replaced if it exists.
     resolution : lsbg.solids.MeshResolution
+    step : bool
+        Also write the exact solids as STEP (``pinion.step``, ``gear.step``;
+        :mod:`lsbg.step`, a few seconds per design point).
 
     Returns
     -------
@@ -302,6 +306,13 @@ def write_geometry(design: GearPairDesign, out_dir, resolution=solids.DEFAULT_RE
         lap("urdf")
         render.render_pair(paths["picture"], pair, meshes)
         lap("picture")
+        if step:
+            from lsbg import step as step_files
+
+            for member in MEMBERS:
+                name = OPTIONAL_FILE_NAMES[f"{MEMBER_NAMES[member]}_step"]
+                step_files.write_step(pair, member, work / name)
+            lap("step")
         write_manifest(work)           # last: it vouches for the files above
         _replace_dir(work, out_dir)
     except BaseException:
@@ -309,7 +320,7 @@ def write_geometry(design: GearPairDesign, out_dir, resolution=solids.DEFAULT_RE
         raise
     timings["total"] = time.perf_counter() - start
     log.info("geometry total: %.2f s -> %s", timings["total"], out_dir)
-    names = {**FILE_NAMES, "manifest": MANIFEST}
+    names = {**FILE_NAMES, **(OPTIONAL_FILE_NAMES if step else {}), "manifest": MANIFEST}
     return GeometryFiles(out_dir, {key: out_dir / name for key, name in names.items()}, timings)
 
 

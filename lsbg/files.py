@@ -29,7 +29,7 @@ from pathlib import Path
 
 from lsbg.design import CONFIG_KEYS, TRACES, DesignError, GearPairDesign
 
-__all__ = ["FILE_NAMES", "MANIFEST", "InputError", "InputFileNotFoundError", "read_record",
+__all__ = ["FILE_NAMES", "OPTIONAL_FILE_NAMES", "MANIFEST", "InputError", "InputFileNotFoundError", "read_record",
            "read_design", "geometry_directory", "write_manifest", "design_digest",
            "file_digest", "number_label", "fill_template", "temporary_beside",
            "remove_stale_temporaries"]
@@ -40,6 +40,10 @@ FILE_NAMES = {
     "pinion_stl": "pinion.stl", "gear_stl": "gear.stl",
     "urdf": "pair.urdf", "picture": "pair.png",
 }
+#: Files a geometry directory may hold besides :data:`FILE_NAMES` (``lsbg geometry``
+#: writes them unless told not to; ``lsbg points`` only when asked): the exact solids
+#: as STEP (:mod:`lsbg.step`). The manifest lists them when they are there.
+OPTIONAL_FILE_NAMES = {"pinion_step": "pinion.step", "gear_step": "gear.step"}
 #: The manifest of a geometry directory, written last (:func:`write_manifest`).
 MANIFEST = "manifest.json"
 #: Value of the manifest's ``format`` key.
@@ -135,7 +139,8 @@ def write_manifest(directory) -> Path:
         "design_sha256": design_digest(record),
         "files": {name: {"bytes": (directory / name).stat().st_size,
                          "sha256": file_digest(directory / name)}
-                  for name in sorted(FILE_NAMES.values())},
+                  for name in sorted(FILE_NAMES.values())
+                  + sorted(n for n in OPTIONAL_FILE_NAMES.values() if (directory / n).is_file())},
     }
     path = directory / MANIFEST
     with open(path, "w", encoding="utf-8") as handle:
@@ -166,7 +171,8 @@ def _checked(geometry_dir):
         manifest = {}
     files = manifest.get("files")
     if manifest.get("format") != MANIFEST_FORMAT or not isinstance(files, dict) \
-            or set(files) != set(FILE_NAMES.values()) \
+            or not set(FILE_NAMES.values()) <= set(files) \
+            or not set(files) <= {*FILE_NAMES.values(), *OPTIONAL_FILE_NAMES.values()} \
             or not all(isinstance(entry, dict) for entry in files.values()):
         raise InputError(f"{manifest_path}: not a manifest of 'lsbg geometry' (format "
                          f"{MANIFEST_FORMAT!r}, every file of {sorted(FILE_NAMES.values())}); "

@@ -28,13 +28,13 @@ STAGE_MODULES = {
     # (contact ... theory, ltca and tca: lsbg.cli.options reads the contact and simulation
     # options and the flanks, lsbg.tca, too)
     "geometry": ("cli", "design", "files", "geometry", "vectors", "polyhedra", "solids", "mass",
-                 "urdf", "render", "export", "contact", "dynamics", "results", "theory", "ltca",
-                 "tca"),
+                 "urdf", "render", "step", "export", "contact", "dynamics", "results", "theory",
+                 "ltca", "tca"),
     "ltca": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "ltca",
              "results", "theory", "tca"),
     "points": ("cli", "design", "files", "geometry", "vectors", "polyhedra", "solids", "mass",
-               "urdf", "render", "export", "contact", "dynamics", "ltca", "results", "theory",
-               "tca"),
+               "urdf", "render", "step", "export", "contact", "dynamics", "ltca", "results",
+               "theory", "tca"),
     "simulate": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "results",
                  "theory", "sensitivity", "ltca", "tca"),
     "convergence": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics",

@@ -12,7 +12,7 @@ from lsbg.geometry import GearPair
 from lsbg.polyhedra import read_stl
 
 FILES = ("design.json", "flanks.nc", "pinion.stl", "gear.stl",
-         "pair.urdf", "pair.png", "manifest.json")
+         "pair.urdf", "pair.png", "manifest.json", "pinion.step", "gear.step")
 UNIT_SUFFIXES = ("_mm", "_mm3", "_deg", "_kg", "_kg_m2", "_kg_m3")
 UNITLESS = {"pinion_teeth", "gear_teeth", "pinion_hand", "trace", "base_cone_rule",
             "base_cone_constant", "gear_ratio", "contact_ratio", "contact_ratio_profile",

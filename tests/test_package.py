@@ -20,7 +20,7 @@ LAYERS = (
     ("design",),
     ("vectors",),
     ("geometry", "polyhedra", "theory"),
-    ("solids", "render", "files", "mass", "urdf"),
+    ("solids", "render", "files", "mass", "urdf", "step"),
     ("export",),
     ("contact",),
     ("results", "dynamics"),

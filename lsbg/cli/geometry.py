@@ -14,10 +14,13 @@ def add_geometry_parser(subparsers):
     """``lsbg geometry``: design.json, flanks, meshes, URDF and picture of one design."""
     parser = subparsers.add_parser(
         "geometry", help="write the geometry of one design point",
-        description="Write design.json, flanks.nc, pinion/gear STL and OBJ, pair.urdf and "
-                    "pair.png of one design point into --out (replaced atomically).")
+        description="Write design.json, flanks.nc, pinion/gear STL, the exact solids as "
+                    "STEP (pinion.step, gear.step), pair.urdf and pair.png of one design "
+                    "point into --out (replaced atomically).")
     add_design_options(parser)
     parser.add_argument("--out", required=True, metavar="DIR", help="output directory")
+    parser.add_argument("--no-step", dest="step", action="store_false",
+                        help="leave out the STEP solids (a few seconds per design point)")
     parser.set_defaults(handler=run_geometry)
 
 
@@ -27,8 +30,9 @@ def run_geometry(args):
 
     design = design_from_args(args)
     check_output(args.out, "--out", directory=True)
-    result = write_geometry(design, args.out)
-    times = ", ".join(f"{stage} {result.timings[stage]:.2f}" for stage in STAGES)
+    result = write_geometry(design, args.out, step=args.step)
+    times = ", ".join(f"{stage} {result.timings[stage]:.2f}" for stage in (*STAGES, "step")
+                      if stage in result.timings)
     print(f"lsbg geometry: {design.trace}, spiral angle {math.degrees(design.spiral_angle):g} deg "
           f"-> {result.directory} ({times}; total {result.timings['total']:.2f} s)")
     return 0
@@ -63,6 +67,9 @@ def add_points_parser(subparsers):
     parser.add_argument("--run", action="append", default=[], metavar="MODEL=RUN.nc",
                         help="a run of contact model MODEL (point or line) to write, a "
                              "template; repeatable")
+    parser.add_argument("--step", action="store_true",
+                        help="also write the exact solids as STEP into each geometry directory "
+                             "(as 'lsbg geometry' does; a few seconds per design point)")
     add_flank_options(parser)
     parser.set_defaults(handler=run_points)
 
@@ -120,7 +127,7 @@ def run_points(args):
                 check_output(path, options[key], directory=key == "geometry")
     command = " ".join(["lsbg", *sys.argv[1:]])
     for design, point in zip(designs, files):
-        write_geometry(design, point["geometry"])
+        write_geometry(design, point["geometry"], step=args.step)
         if point["mesh"]:
             try:
                 mesh = ltca_for_geometry(point["geometry"], settings.load_torque, params["line"],
