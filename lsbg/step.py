@@ -182,13 +182,7 @@ def read_step(path):
         boundary used by one face only: 0 for a closed solid) and
         ``faces`` (surface tags), read in metres.
     """
-    gmsh, started = _gmsh()
-    try:
-        gmsh.model.add("lsbg_read")
-        gmsh.option.setString("Geometry.OCCTargetUnit", "M")
-        with _quiet():
-            shapes = gmsh.model.occ.importShapes(str(path))
-        gmsh.model.occ.synchronize()
+    with _imported(path) as (gmsh, shapes):
         volumes = [t for dim, t in shapes if dim == 3]
         faces = gmsh.model.getBoundary([(3, t) for t in volumes], oriented=False)
         uses = {}
@@ -199,6 +193,19 @@ def read_step(path):
                 "volume": float(sum(gmsh.model.occ.getMass(3, t) for t in volumes)),
                 "open_edges": sum(1 for n in uses.values() if n < 2),
                 "faces": [t for _, t in faces]}
+
+
+@contextlib.contextmanager
+def _imported(path):
+    """(gmsh, shapes) of a STEP file read into a model of its own, in metres."""
+    gmsh, started = _gmsh()
+    try:
+        gmsh.model.add("lsbg_import")
+        gmsh.option.setString("Geometry.OCCTargetUnit", "M")
+        with _quiet():
+            shapes = gmsh.model.occ.importShapes(str(path))
+        gmsh.model.occ.synchronize()
+        yield gmsh, shapes
     finally:
         gmsh.model.remove()
         if started:
@@ -223,7 +230,6 @@ def flank_deviation(pair, member, path, points=200, seed=0):
     numpy.ndarray, shape (2 * points,)
         Least distance of each point from the solid's faces [m].
     """
-    gmsh, started = _gmsh()
     rng = np.random.default_rng(seed)
     d = pair.design
     margin = 0.02 * d.face_width
@@ -232,21 +238,10 @@ def flank_deviation(pair, member, path, points=200, seed=0):
     polar = rng.uniform(low + 0.02 * (d.tip_angle(member) - low),
                         d.tip_angle(member) - 0.02 * (d.tip_angle(member) - low), points)
     exact = np.concatenate([pair.flank(member, side, rho, polar)[0] for side in ("drive", "coast")])
-    try:
-        gmsh.model.add("lsbg_deviation")
-        gmsh.option.setString("Geometry.OCCTargetUnit", "M")
-        with _quiet():
-            shapes = gmsh.model.occ.importShapes(str(path))
-        gmsh.model.occ.synchronize()
+    with _imported(path) as (gmsh, shapes):
         faces = gmsh.model.getBoundary([s for s in shapes if s[0] == 3], oriented=False)
         least = np.full(len(exact), np.inf)
         for _, face in faces:
             closest, _ = gmsh.model.getClosestPoint(2, face, exact.ravel())
             least = np.minimum(least, np.linalg.norm(np.reshape(closest, (-1, 3)) - exact, axis=1))
         return least
-    finally:
-        gmsh.model.remove()
-        if started:
-            gmsh.finalize()
-
-
