@@ -245,7 +245,7 @@ def flank_dataset(pair: GearPair, n_cone=21, n_profile=31):
 
 # --------------------------------------------------------------- the stage
 def write_geometry(design: GearPairDesign, out_dir, resolution=solids.DEFAULT_RESOLUTION,
-                   step=False):
+                   step=False, relief=None):
     """Write the geometry of one design point into ``out_dir``.
 
     The design is checked (:class:`lsbg.geometry.GearPair` raises
@@ -263,6 +263,11 @@ def write_geometry(design: GearPairDesign, out_dir, resolution=solids.DEFAULT_RE
     step : bool
         Also write the exact solids as STEP (``pinion.step``, ``gear.step``;
         :mod:`lsbg.step`, a few seconds per design point).
+    relief : callable, optional
+        The pinion's flank modification for its STEP solid,
+        ``relief(cone_distance [m], polar_angle [rad])`` [m]
+        (:func:`lsbg.step.relieved_outline`); the other files keep the
+        conjugate flanks.
 
     Returns
     -------
@@ -311,7 +316,7 @@ def write_geometry(design: GearPairDesign, out_dir, resolution=solids.DEFAULT_RE
 
             for member in MEMBERS:
                 name = OPTIONAL_FILE_NAMES[f"{MEMBER_NAMES[member]}_step"]
-                step_files.write_step(pair, member, work / name)
+                step_files.write_step(pair, member, work / name, relief=relief)
             lap("step")
         write_manifest(work)           # last: it vouches for the files above
         _replace_dir(work, out_dir)

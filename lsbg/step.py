@@ -85,7 +85,49 @@ def _tooth_edges(outline, n_top, n_root):
     return runs
 
 
-def build_solid(pair, member, sections=STEP_SECTIONS):
+def relieved_outline(pair, outline, relief):
+    """The pinion's section outline with its drive flanks relieved [m].
+
+    Parameters
+    ----------
+    pair : lsbg.geometry.GearPair
+    outline : lsbg.solids.SectionOutline
+        The pinion's (member 1).
+    relief : callable
+        ``relief(cone_distance, polar_angle)``: material removed normal to the
+        drive flank [m] at flank points (R [m], theta [rad]), e.g. a
+        :class:`lsbg.tca.modification.FlankModification` through its
+        coordinates. Below the involute (the radial continuation) the relief
+        at its start is kept.
+
+    Returns
+    -------
+    numpy.ndarray, shape of ``outline.points``
+    """
+    from lsbg.solids import side_order
+    from lsbg.vectors import rotate
+
+    n = outline.per_tooth
+    n_top = np.sum(np.isclose(outline.polar_angle[0, :n], pair.design.tip_angle(1)))
+    n_root = np.sum(np.isclose(outline.polar_angle[0, :n], pair.design.root_angle(1)))
+    side = (n - n_top - n_root) // 2
+    low, _ = side_order(pair, 1)
+    first = 0 if low == "drive" else side + n_top
+    columns = np.concatenate([np.arange(first, first + side) + j * n
+                              for j in range(outline.points.shape[1] // n)])
+    start = pair.flank_polar_range(1)[0]
+    radius = np.broadcast_to(outline.cone_distance[:, None], outline.polar_angle.shape)[:, columns]
+    polar = np.maximum(outline.polar_angle[:, columns], start)
+    # the flank of tooth 0 there, turned onto the outline's tooth about the axis
+    flank, normal = pair.flank(1, "drive", radius, polar)
+    turn = pair.azimuth(1, outline.points[:, columns]) - pair.azimuth(1, flank)
+    normal = rotate(normal, pair.rotation_axis[1], turn)
+    points = outline.points.copy()
+    points[:, columns] -= np.asarray(relief(radius, polar))[..., None] * normal
+    return points
+
+
+def build_solid(pair, member, sections=STEP_SECTIONS, relief=None):
     """Build one member's solid in the current gmsh model [volume tag].
 
     Parameters
@@ -94,6 +136,9 @@ def build_solid(pair, member, sections=STEP_SECTIONS):
     member : {1, 2}
     sections : int
         Sections of the loft [-].
+    relief : callable, optional
+        The pinion's flank modification (:func:`relieved_outline`); ignored
+        for the gear.
 
     Returns
     -------
@@ -109,9 +154,11 @@ def build_solid(pair, member, sections=STEP_SECTIONS):
     outline = section_outline(pair, member, radii)
     _, n_top, n_root = _outline_counts(pair, member, DEFAULT_RESOLUTION)
     runs = _tooth_edges(outline, n_top, n_root)
+    points = (relieved_outline(pair, outline, relief) if relief is not None and member == 1
+              else outline.points)
     wires = []
     for k in range(radii.size):
-        tags = [occ.addPoint(*p) for p in outline.points[k]]
+        tags = [occ.addPoint(*p) for p in points[k]]
         wires.append(occ.addWire([occ.addSpline([tags[i] for i in run]) for run in runs]))
     body = occ.addThruSections(wires, makeSolid=True, makeRuled=False)
     # the sections' points and curves would go into the file as shapes of their own
@@ -129,7 +176,7 @@ def build_solid(pair, member, sections=STEP_SECTIONS):
     return solid[0][1]
 
 
-def write_step(pair, member, path):
+def write_step(pair, member, path, relief=None):
     """Write one member as a STEP file (millimetres) [path].
 
     Parameters
@@ -137,6 +184,8 @@ def write_step(pair, member, path):
     pair : lsbg.geometry.GearPair
     member : {1, 2}
     path : str or os.PathLike
+    relief : callable, optional
+        The pinion's flank modification (:func:`relieved_outline`).
 
     Returns
     -------
@@ -146,7 +195,7 @@ def write_step(pair, member, path):
     path = Path(path)
     try:
         gmsh.model.add(f"lsbg_{MEMBER_NAMES[member]}")
-        build_solid(pair, member)
+        build_solid(pair, member, relief=relief)
         # the model is in metres; OCC's writer converts to the file's millimetres
         gmsh.option.setString("Geometry.OCCTargetUnit", "M")
         part = path.with_name(path.name + ".part.step")
@@ -212,7 +261,7 @@ def _imported(path):
             gmsh.finalize()
 
 
-def flank_deviation(pair, member, path, points=200, seed=0):
+def flank_deviation(pair, member, path, points=200, seed=0, relief=None):
     """Distance of exact flank points from a STEP solid's surface [m].
 
     Parameters
@@ -224,6 +273,9 @@ def flank_deviation(pair, member, path, points=200, seed=0):
     points : int
         Random points per flank side, inside the face and the flank [-].
     seed : int
+    relief : callable, optional
+        The pinion's drive-flank modification the file was written with
+        (:func:`relieved_outline`): the points are taken on the relieved flank.
 
     Returns
     -------
@@ -237,7 +289,13 @@ def flank_deviation(pair, member, path, points=200, seed=0):
     low, _ = pair.flank_polar_range(member)
     polar = rng.uniform(low + 0.02 * (d.tip_angle(member) - low),
                         d.tip_angle(member) - 0.02 * (d.tip_angle(member) - low), points)
-    exact = np.concatenate([pair.flank(member, side, rho, polar)[0] for side in ("drive", "coast")])
+    sides = []
+    for side in ("drive", "coast"):
+        flank, normal = pair.flank(member, side, rho, polar)
+        if relief is not None and member == 1 and side == "drive":
+            flank = flank - np.asarray(relief(rho, polar))[:, None] * normal
+        sides.append(flank)
+    exact = np.concatenate(sides)
     with _imported(path) as (gmsh, shapes):
         faces = gmsh.model.getBoundary([s for s in shapes if s[0] == 3], oriented=False)
         least = np.full(len(exact), np.inf)

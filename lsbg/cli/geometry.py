@@ -21,6 +21,11 @@ def add_geometry_parser(subparsers):
     parser.add_argument("--out", required=True, metavar="DIR", help="output directory")
     parser.add_argument("--no-step", dest="step", action="store_false",
                         help="leave out the STEP solids (a few seconds per design point)")
+    parser.add_argument("--config", metavar="FILE.yaml",
+                        help="study configuration; its 'flank_modification' section relieves "
+                             "the pinion's STEP solid (the other files keep the conjugate "
+                             "flanks)")
+    add_flank_options(parser)
     parser.set_defaults(handler=run_geometry)
 
 
@@ -29,8 +34,9 @@ def run_geometry(args):
     from lsbg.export import STAGES, write_geometry
 
     design = design_from_args(args)
+    relief = _step_relief(args, design)
     check_output(args.out, "--out", directory=True)
-    result = write_geometry(design, args.out, step=args.step)
+    result = write_geometry(design, args.out, step=args.step, relief=relief)
     times = ", ".join(f"{stage} {result.timings[stage]:.2f}" for stage in (*STAGES, "step")
                       if stage in result.timings)
     print(f"lsbg geometry: {design.trace}, spiral angle {math.degrees(design.spiral_angle):g} deg "
@@ -38,6 +44,20 @@ def run_geometry(args):
     return 0
 
 
+
+
+def _step_relief(args, design):
+    """The pinion's flank modification as the STEP solid takes it, or None."""
+    from lsbg.cli.options import flanks_from_args
+    from lsbg.geometry import GearPair
+    from lsbg.tca.modification import lengthwise_coordinate, profile_coordinate
+
+    modification = flanks_from_args(args).modification
+    if modification.is_zero:
+        return None
+    pair = GearPair(design)
+    return lambda rho, polar: modification.relief(lengthwise_coordinate(design, rho),
+                                                  profile_coordinate(pair, polar))
 
 
 def add_points_parser(subparsers):
@@ -127,7 +147,8 @@ def run_points(args):
                 check_output(path, options[key], directory=key == "geometry")
     command = " ".join(["lsbg", *sys.argv[1:]])
     for design, point in zip(designs, files):
-        write_geometry(design, point["geometry"], step=args.step)
+        write_geometry(design, point["geometry"], step=args.step,
+                       relief=_step_relief(args, design) if args.step else None)
         if point["mesh"]:
             try:
                 mesh = ltca_for_geometry(point["geometry"], settings.load_torque, params["line"],
