@@ -84,7 +84,7 @@ def test_the_manifest_lists_and_guards_the_step_files(geometry, tmp_path):
 
 
 def test_geometry_relieves_the_pinion_step_solid_by_the_modification(geometry, tmp_path):
-    from lsbg.tca.modification import FlankModification, lengthwise_coordinate, profile_coordinate
+    from lsbg.tca.modification import FlankModification, pinion_relief
 
     out = tmp_path / "logarithmic_beta35"
     assert cli.main(["geometry", "--trace", "logarithmic", "--spiral-angle", "35",
@@ -94,8 +94,7 @@ def test_geometry_relieves_the_pinion_step_solid_by_the_modification(geometry, t
     modification = FlankModification(25e-6, 5e-6)
 
     def relief(rho, polar):
-        return modification.relief(lengthwise_coordinate(pair.design, rho),
-                                   profile_coordinate(pair, polar))
+        return pinion_relief(pair, modification, rho, polar)
 
     relieved = flank_deviation(pair, 1, out / "pinion.step", points=100, relief=relief)
     assert relieved.max() < 1e-6

@@ -50,14 +50,13 @@ def _step_relief(args, design):
     """The pinion's flank modification as the STEP solid takes it, or None."""
     from lsbg.cli.options import flanks_from_args
     from lsbg.geometry import GearPair
-    from lsbg.tca.modification import lengthwise_coordinate, profile_coordinate
+    from lsbg.tca.modification import pinion_relief
 
     modification = flanks_from_args(args).modification
     if modification.is_zero:
         return None
     pair = GearPair(design)
-    return lambda rho, polar: modification.relief(lengthwise_coordinate(design, rho),
-                                                  profile_coordinate(pair, polar))
+    return lambda rho, polar: pinion_relief(pair, modification, rho, polar)
 
 
 def add_points_parser(subparsers):

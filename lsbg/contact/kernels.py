@@ -255,6 +255,8 @@ def _line_side(side, eps, eps_rate, sign, phase, phase_rate, w1, w2, params, sid
     n1p, n1q = sides[side, S_N1P], sides[side, S_N1Q]
     n2p, n2q = sides[side, S_N2P], sides[side, S_N2Q]
     stiffness, damping = params[P_LINE_K], params[P_LINE_C]
+    # real flanks: a separation table (conjugate flanks have none)
+    real_flanks = sides[side, S_SEP_ROWS] > 0.0
     mu_s, mu_d, v_s, v_d = params[P_MU_S], params[P_MU_D], params[P_V_S], params[P_V_D]
     e1, e2 = params[P_E1], params[P_E2]
     # Friction acts across the contact line, along the plane's normal N: the
@@ -299,9 +301,9 @@ def _line_side(side, eps, eps_rate, sign, phase, phase_rate, w1, w2, params, sid
             lever = table[side, j, B_LEVER] + t * table[side, j, B_D_LEVER]
             x = lever * eps
             xdot = lever * eps_rate
-            if sides[side, S_SEP_ROWS] > 0.0:
-                # real flanks: the initial separation (modification and
-                # displacements), which moves with the line
+            if real_flanks:
+                # the initial separation (modification and displacements),
+                # which moves with the line
                 gap, gap_rate = _separation(table, side, j, t, sides, here)
                 x -= gap
                 xdot -= gap_rate * phase_rate

@@ -37,7 +37,7 @@ from lsbg.tca import surface
 from lsbg.tca.pattern import (MARKING_COMPOUND, bearing_pattern, chart_ellipses,
                                contact_ellipses, profile_height, raster_centres)
 from lsbg.tca.misalignment import Misalignment, member_frames
-from lsbg.tca.modification import FlankModification, field_profile_coordinate, lengthwise_coordinate
+from lsbg.tca.modification import FlankModification, flank_attributes, relieved_flank
 from lsbg.vectors import unit
 
 #: Mesh positions over one mesh cycle.
@@ -105,21 +105,13 @@ class SurfacePair:
         # pinion flank grid: cone distance x plane-of-action polar angle psi
         # (uniform in psi is uniform along the path of contact)
         rho = np.linspace(design.inner_cone_distance, design.outer_cone_distance, face_points)
-        start, tip = pair.flank_polar_range(1)
-        psi_g, sign = plane.tangency_angle[1], plane.roll_sign[1]
-        psi_ends = psi_g + sign * pair.roll_angle(1, np.array([start, tip]))
+        polar_range = pair.flank_polar_range(1)
+        psi_ends = (plane.tangency_angle[1]
+                    + plane.roll_sign[1] * pair.roll_angle(1, np.array(polar_range)))
         psi = np.linspace(psi_ends[0], psi_ends[1], profile_points)
-        chi = np.maximum(sign * (psi - psi_g), 0.0)
-        theta = np.arccos(math.cos(design.base_cone_angle(1)) * np.cos(chi))
-        theta = np.clip(theta, start, tip)
-        big_rho, big_theta = np.meshgrid(rho, theta, indexing="ij")
-        points, normals = pair.flank(1, side, big_rho, big_theta)
-        big_psi = np.broadcast_to(psi, big_rho.shape)
-        relief = modification.relief(lengthwise_coordinate(design, big_rho),
-                                     field_profile_coordinate(plane, big_psi))
-        if side != "drive":
-            relief = np.zeros_like(relief)
-        points = points - relief[..., None] * normals
+        big_rho, big_psi = np.meshgrid(rho, psi, indexing="ij")
+        points, normals, relief = relieved_flank(pair, modification, big_rho, big_psi, side,
+                                                 polar_range)
         line_turn = big_psi - curve.polar_angle(big_rho)
 
         pinion_shift, gear_turn, gear_shift = member_frames(pair, misalignment)
@@ -348,10 +340,11 @@ def tooth_contact_analysis(pair, modification=None, misalignment=None, positions
                          f"{int(lost.sum())} of {positions} mesh positions")
     te = angles * z1 / z2 - out[:, surface.O_PHI2]
     play = backlash(surface_pair, angles, out)
+    design_play = design.backlash / design.mean_pitch_radius(2)   # j_t / r_m2
     if play.min() <= 0.0:
         raise ValueError(f"misalignment {_shown(misalignment)}: the members interfere (the coast "
                          f"flanks close the backlash: {play.min() * 1e6:.4g} urad of free play "
-                         f"left of {design.backlash / design.mean_pitch_radius(2) * 1e6:.4g})")
+                         f"left of {design_play * 1e6:.4g})")
     centre, semi_major, semi_minor, major = contact_ellipses(out)
     generator = centre / np.maximum(np.linalg.norm(centre, axis=1), 1e-300)[:, None]
     angle = np.degrees(np.arccos(np.clip(np.abs(np.sum(major * generator, 1)), 0, 1)))
@@ -375,7 +368,7 @@ def tooth_contact_analysis(pair, modification=None, misalignment=None, positions
         "transmission_error_peak_to_peak_arcsec": float(np.ptp(te) * 180 / math.pi * 3600),
         "transmission_error_mean_urad": float(te.mean() * 1e6),
         "backlash_min_urad": float(play.min() * 1e6),
-        "backlash_design_urad": design.backlash / design.mean_pitch_radius(2) * 1e6,
+        "backlash_design_urad": design_play * 1e6,
         "designed_transmission_error_peak_to_peak_urad":
             designed_transmission_error(pair, modification) * 1e6,
         "pattern_centre_cone_distance_mm": pattern["centre_cone_distance"] * 1e3,
@@ -390,9 +383,7 @@ def tooth_contact_analysis(pair, modification=None, misalignment=None, positions
         "edge_contact_share": float(edges.any(axis=1).mean()),
         "mean_cone_distance_mm": design.mean_cone_distance * 1e3,
         "face_width_mm": design.face_width * 1e3,
-        **{f"flank_modification_{k}": ("" if v is None else v)
-           for k, v in modification.to_config().items()},
-        **{f"misalignment_{k}": v for k, v in misalignment.to_config().items()},
+        **flank_attributes(modification, misalignment),
         **{f"design_{k}": v for k, v in design.to_config().items()},
     }
     phase = ("mesh_phase",)

@@ -41,7 +41,8 @@ from pathlib import Path
 import numpy as np
 
 __all__ = ["FlankModification", "TopographyError", "MODIFICATION_CONFIG_KEYS",
-           "read_topography", "profile_coordinate", "lengthwise_coordinate"]
+           "read_topography", "profile_coordinate", "lengthwise_coordinate", "pinion_relief",
+           "relieved_flank", "flank_attributes"]
 
 _UM = 1e-6
 
@@ -248,6 +249,69 @@ def field_profile_coordinate(plane, psi):
     """v of a polar angle psi in the plane of action (-1..+1 over the field) [-]."""
     psi_lo, psi_hi = plane.field[:2]
     return (np.asarray(psi, dtype=float) - 0.5 * (psi_lo + psi_hi)) / (0.5 * (psi_hi - psi_lo))
+
+
+# ------------------------------------------------------------ the relieved flank
+def pinion_relief(pair, modification, cone_distance, polar_angle):
+    """The modification at pinion flank points given as (R, theta) [m].
+
+    Parameters
+    ----------
+    pair : lsbg.geometry.GearPair
+    modification : FlankModification
+    cone_distance : array_like
+        R [m].
+    polar_angle : array_like
+        theta, about the pinion axis [rad].
+    """
+    return modification.relief(lengthwise_coordinate(pair.design, cone_distance),
+                               profile_coordinate(pair, polar_angle))
+
+
+def relieved_flank(pair, modification, cone_distance, psi, side="drive", polar_range=None):
+    """Points and outward normals of the pinion's flank of tooth 0 at (R, psi).
+
+    The flank point at cone distance R that meets the plane of action at the
+    polar angle psi (the roll inverted: cos(theta) = cos(delta_b1) cos(chi)),
+    moved into the tooth by the modification on the drive side; the coast
+    flank stays conjugate.
+
+    Parameters
+    ----------
+    pair : lsbg.geometry.GearPair
+    modification : FlankModification
+    cone_distance, psi : array_like
+        R [m] and the polar angle in the plane of action [rad], broadcast.
+    side : {"drive", "coast"}
+    polar_range : (float, float), optional
+        Bounds theta is clipped to [rad] (against rounding at the flank's ends).
+
+    Returns
+    -------
+    points, normals : numpy.ndarray, shape (..., 3)
+        In the pinion's body frame [m] and outward unit normals [-].
+    relief : numpy.ndarray
+        The material removed [m] (0 on the coast side).
+    """
+    plane = pair.planes[side]
+    rho, psi = np.broadcast_arrays(np.asarray(cone_distance, float), np.asarray(psi, float))
+    chi = np.maximum(plane.roll_sign[1] * (psi - plane.tangency_angle[1]), 0.0)
+    theta = np.arccos(math.cos(pair.design.base_cone_angle(1)) * np.cos(chi))
+    if polar_range is not None:
+        theta = np.clip(theta, *polar_range)
+    points, normals = pair.flank(1, side, rho, theta)
+    relief = (modification.relief(lengthwise_coordinate(pair.design, rho),
+                                  field_profile_coordinate(plane, psi))
+              if side == "drive" else np.zeros(rho.shape))
+    return points - relief[..., None] * normals, normals, relief
+
+
+def flank_attributes(modification, misalignment):
+    """Dataset attributes of the flanks: the ``flank_modification`` and
+    ``misalignment`` keys (configuration units), prefixed with their section."""
+    return {**{f"flank_modification_{k}": ("" if v is None else v)
+               for k, v in modification.to_config().items()},
+            **{f"misalignment_{k}": v for k, v in misalignment.to_config().items()}}
 
 
 # ------------------------------------------------------------------ topography

@@ -21,7 +21,7 @@ import numpy as np
 from lsbg.tca import surface
 from lsbg.tca.analysis import SurfacePair
 from lsbg.tca.misalignment import Misalignment
-from lsbg.tca.modification import FlankModification, field_profile_coordinate, lengthwise_coordinate
+from lsbg.tca.modification import FlankModification, flank_attributes, relieved_flank
 
 
 @dataclass(frozen=True)
@@ -65,9 +65,7 @@ class RealFlanks:
     @property
     def attrs(self):
         """Dataset attributes: the two sections' keys, prefixed."""
-        return {**{f"flank_modification_{k}": ("" if v is None else v)
-                   for k, v in self.modification.to_config().items()},
-                **{f"misalignment_{k}": v for k, v in self.misalignment.to_config().items()}}
+        return flank_attributes(self.modification, self.misalignment)
 
 
 class SeparationField:
@@ -87,7 +85,7 @@ class SeparationField:
 
     def __init__(self, pair, modification, misalignment):
         self.pair, self.modification, self.misalignment = pair, modification, misalignment
-        self.attrs = RealFlanks(modification, misalignment).attrs
+        self.attrs = flank_attributes(modification, misalignment)
         constants = SurfacePair.build(pair, modification, misalignment, face_points=2,
                                       profile_points=2).constants.copy()
         constants[surface.G_THETA_LO2], constants[surface.G_THETA_HI2] = 0.0, math.pi
@@ -95,17 +93,10 @@ class SeparationField:
         self._constants = constants
 
     def __call__(self, turn, cone_distance):
-        pair, design = self.pair, self.pair.design
-        plane = pair.planes["drive"]
-        psi_g, sign = plane.tangency_angle[1], plane.roll_sign[1]
+        pair = self.pair
         turn, rho = np.broadcast_arrays(np.asarray(turn, float), np.asarray(cone_distance, float))
-        psi = turn + plane.curve.polar_angle(rho)
-        chi = np.maximum(sign * (psi - psi_g), 0.0)
-        theta = np.arccos(math.cos(design.base_cone_angle(1)) * np.cos(chi))
-        points, normals = pair.flank(1, "drive", rho, theta)
-        relief = self.modification.relief(lengthwise_coordinate(design, rho),
-                                          field_profile_coordinate(plane, psi))
-        points = points - relief[..., None] * normals
+        psi = turn + pair.planes["drive"].curve.polar_angle(rho)
+        points, normals, _ = relieved_flank(pair, self.modification, rho, psi)
         # tooth 0 carries the line of turn Psi at pinion rotation Psi / s1
         angles = np.ascontiguousarray((turn / pair.axis_normal_component(1, "drive")).ravel())
         gap = surface.point_separations(angles, np.ascontiguousarray(points.reshape(-1, 3)),

@@ -22,6 +22,7 @@ from lsbg.contact import ContactParameters, MeshContact
 from lsbg.ltca import loaded_tca
 from lsbg.tca.analysis import MARKING_COMPOUND, tooth_contact_analysis
 from lsbg.tca.misalignment import DISPLACEMENTS, Misalignment
+from lsbg.tca.modification import FlankModification, flank_attributes
 from lsbg.tca.separation import separation_field
 
 #: Default axes of a map (Gleason's V and H: offset and pinion axial) and
@@ -166,9 +167,7 @@ def misalignment_map(pair, modification=None, axes=DEFAULT_AXES, values=None, lo
         "load_torque_N_m": float(load_torque),
         "marking_compound_um": marking * 1e6,
         **sensitivities(result, axes, values, centre),
-        **{f"flank_modification_{k}": ("" if v is None else v)
-           for k, v in (modification.to_config() if modification else {}).items()},
-        **{f"misalignment_{k}": v for k, v in base.to_config().items()},
+        **flank_attributes(modification or FlankModification(), base),
         **{f"design_{k}": v for k, v in pair.design.to_config().items()},
     }
     dims = tuple(axes)
