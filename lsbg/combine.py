@@ -23,7 +23,7 @@ import lsbg
 from lsbg.contact.parameters import CONTACT_MODELS
 from lsbg.design import TRACES, TRACE_LABELS
 from lsbg.results import FULL_RATE_VARIABLES, VARIABLES, as_path_list, open_dataset, open_run
-from lsbg.runs import open_mesh, run_spiral_angle
+from lsbg.runs import open_mesh, run_source, run_spiral_angle
 
 __all__ = ["POINT_VARIABLES", "MESH_VARIABLES", "TCA_VARIABLES", "VH_PREFIX", "combine_runs",
            "add_contact_state", "open_tca", "open_vh_map", "contact_state_point",
@@ -312,7 +312,7 @@ def open_vh_map(path) -> xr.Dataset:
 def contact_state_point(ds):
     """``(trace, spiral angle [deg])`` of a TCA or V-H map dataset (the angle rounded to
     1e-9 deg, as the runs')."""
-    return ds.attrs["design_trace"], round(float(ds.attrs["design_spiral_angle_deg"]), 9)
+    return ds.attrs["design_trace"], run_spiral_angle(ds)
 
 
 def sensitivity_attributes(ds):
@@ -327,17 +327,13 @@ def sensitivity_attributes(ds):
     return out
 
 
-def _source(ds):
-    return ds.encoding.get("source", "<dataset>")
-
-
 def _by_point(datasets, what):
     found = {}
     for ds in datasets:
         key = contact_state_point(ds)
         if key in found:
-            raise ValueError(f"{_source(ds)}: {what} of design point {key[0]}, {key[1]:g} deg "
-                             f"already given by {_source(found[key])}")
+            raise ValueError(f"{run_source(ds)}: {what} of design point {key[0]}, {key[1]:g} deg "
+                             f"already given by {run_source(found[key])}")
         found[key] = ds
     return found
 
@@ -432,8 +428,8 @@ def add_contact_state(sweep, tcas=(), vh_maps=()) -> xr.Dataset:
     axes = str(first.attrs["axes"]).split()
     for ds in map_points.values():
         if str(ds.attrs["axes"]).split() != axes:
-            raise ValueError(f"{_source(ds)}: V-H map on the axes {ds.attrs['axes']}, "
-                             f"{_source(first)} on {' '.join(axes)}; combine maps of one "
+            raise ValueError(f"{run_source(ds)}: V-H map on the axes {ds.attrs['axes']}, "
+                             f"{run_source(first)} on {' '.join(axes)}; combine maps of one "
                              f"pair of axes")
     # the union of the grids (rounded to 1e-9: the 5 values of a sweep point's map are
     # values of the paper point's 9)

@@ -155,12 +155,13 @@ def test_paper_report(study_files, tmp_path):
     assert html.count("<b>Figure ") + html.count("<strong>Figure ") == 26
     # the contact state: its statement names the type whose pattern moves less, in the
     # finding and in Section 16, from the maps' own figures
+    from lsbg.runs import gear_type
     from lsbg.tables import contact_state
 
     maps = {}
     for path in study_files["vh"]:
         with xr.open_dataset(path) as ds:
-            maps[contact_state.gear_type_of(ds)] = ds.load()
+            maps[gear_type(ds)] = ds.load()
     totals = {t: contact_state.pattern_movement(ds)["total"] for t, ds in maps.items()}
     steadier = min(totals, key=totals.get)
     # the finding, Section 16 and the conclusion

@@ -14,9 +14,9 @@ import math
 import numpy as np
 import pandas as pd
 
-from lsbg.design import TRACE_LABELS
+from lsbg.runs import gear_type
 
-__all__ = ["gear_type_of", "tca_table", "sensitivity_table", "pattern_movement",
+__all__ = ["tca_table", "sensitivity_table", "pattern_movement",
            "movement_statement", "sensitivity_by_angle", "steadier_by_angle",
            "contact_state_checks"]
 
@@ -28,11 +28,6 @@ SENSITIVITIES = {
     "transmission_error_unloaded_pp": ("unloaded TE peak to peak changes", "µrad"),
     "transmission_error_loaded_pp": ("loaded TE peak to peak changes", "µrad"),
 }
-
-
-def gear_type_of(ds):
-    """"SBG" or "LSBG" of a TCA or V-H map dataset (its ``design_trace``)."""
-    return TRACE_LABELS[ds.attrs["design_trace"]]
 
 
 def tca_table(tcas):
@@ -176,7 +171,7 @@ def sensitivity_by_angle(maps):
     """
     rows = []
     for ds in maps:
-        base = {"gear_type": gear_type_of(ds),
+        base = {"gear_type": gear_type(ds),
                 "spiral_angle": float(ds.attrs["design_spiral_angle_deg"])}
         for axis in _axes(ds):
             for name in SENSITIVITIES:
