@@ -26,6 +26,7 @@ LAYERS = (
     ("results", "dynamics"),
     ("ltca", "sensitivity", "verification", "spectra", "speed", "stats"),
     ("tca",),
+    ("tooth",),
     ("runs",),
     ("combine",),
     ("summary",),
