@@ -70,6 +70,39 @@ def harmonic_amplitudes(values, count=HARMONICS):
     return 2.0 * np.abs(spectrum[1:count + 1]) / values.size
 
 
+def transmission_error_summary(transmission_error, mesh_stiffness, face_width):
+    """Summary figures of a loaded TCA's transmission error and mesh stiffness.
+
+    Parameters
+    ----------
+    transmission_error : numpy.ndarray
+        One mesh cycle, evenly sampled [rad].
+    mesh_stiffness : numpy.ndarray
+        Mesh stiffness at the same positions [N/m].
+    face_width : float
+        [m].
+
+    Returns
+    -------
+    dict
+        Dataset attributes: TE peak to peak, mean and harmonics [urad]; mean
+        mesh stiffness [N/um], per unit face width [N/(mm um)], its peak to
+        peak [N/um] and variation [%].
+    """
+    te, stiffness = np.asarray(transmission_error), np.asarray(mesh_stiffness)
+    harmonics = harmonic_amplitudes(te * 1e6)
+    mean_stiffness = float(stiffness.mean())
+    return {
+        "transmission_error_peak_to_peak_urad": float(np.ptp(te) * 1e6),
+        "transmission_error_mean_urad": float(te.mean() * 1e6),
+        **{f"transmission_error_harmonic_{h + 1}_urad": float(a) for h, a in enumerate(harmonics)},
+        "mesh_stiffness_mean_N_per_um": mean_stiffness * 1e-6,
+        "mesh_stiffness_per_face_width_N_per_mm_um": mean_stiffness / face_width * 1e-9,
+        "mesh_stiffness_peak_to_peak_N_per_um": float(np.ptp(stiffness) * 1e-6),
+        "mesh_stiffness_variation_percent": float(100 * np.ptp(stiffness) / mean_stiffness),
+    }
+
+
 def loaded_tca(contact: MeshContact, load_torque, phases=PHASES, profile_points=PROFILE_POINTS):
     """Loaded tooth contact analysis over one mesh cycle.
 
@@ -168,8 +201,6 @@ def loaded_tca(contact: MeshContact, load_torque, phases=PHASES, profile_points=
     passage_load = np.asarray(passage_load)[order]
     rho = table[0, :, kernels.B_RHO]
 
-    harmonics = harmonic_amplitudes(te * 1e6)
-    mean_stiffness = float(stiffness.mean())
     extent = loaded_pattern_extent(pattern, rho, table[0, :, kernels.B_D_RHO], profile)
     attrs = {
         "Conventions": "CF-1.11",
@@ -181,13 +212,7 @@ def loaded_tca(contact: MeshContact, load_torque, phases=PHASES, profile_points=
         "lsbg_version": lsbg.__version__,
         "load_torque_N_m": float(load_torque),
         "phases": int(phases),
-        "transmission_error_peak_to_peak_urad": float(np.ptp(te) * 1e6),
-        "transmission_error_mean_urad": float(te.mean() * 1e6),
-        **{f"transmission_error_harmonic_{h + 1}_urad": float(a) for h, a in enumerate(harmonics)},
-        "mesh_stiffness_mean_N_per_um": mean_stiffness * 1e-6,
-        "mesh_stiffness_per_face_width_N_per_mm_um": mean_stiffness / design.face_width * 1e-9,
-        "mesh_stiffness_peak_to_peak_N_per_um": float(np.ptp(stiffness) * 1e-6),
-        "mesh_stiffness_variation_percent": float(100 * np.ptp(stiffness) / mean_stiffness),
+        **transmission_error_summary(te, stiffness, design.face_width),
         **extent,
         **(contact.separation.attrs if contact.separation is not None else {}),
         "mean_mesh_stiffness_closed_form_N_per_um": contact.mean_mesh_stiffness() * 1e-6,

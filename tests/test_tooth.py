@@ -106,8 +106,9 @@ def test_contact_problem_is_complementary_and_balanced(pair, compliance, contact
     fe = FECompliance(compliance, pair, contact.orientation,
                       contact.arrays[2][0, :contact.params.slices, 0])
     points = contact_points(contact, 0.3 * contact.pitch)
-    matrix = fe.matrix(points)
-    curvature, h1, h2 = fe.point_values(points)
+    weights = fe.weights(points)
+    matrix = fe.matrix(points, weights)
+    curvature, h1, h2 = fe.point_values(points, weights)
 
     def local(forces):
         return local_approach(forces / points.length, curvature, h1, h2, fe.young, fe.poisson)

@@ -40,7 +40,7 @@ import numpy as np
 
 import lsbg
 
-__all__ = ["ToothMaterial", "FEMeshSettings", "FlankGrid", "flank_grid",
+__all__ = ["ToothMaterial", "FEMeshSettings", "FlankGrid", "drive_flank", "flank_grid",
            "member_compliance", "tooth_compliance", "compliance_hash"]
 
 #: Tooth offsets of the segment's teeth from the loaded one [-].
@@ -170,6 +170,29 @@ def member_polar_angle(pair, member, cone_distance, profile_angle):
     return np.arccos(np.clip(unit @ pair.axis[member], -1.0, 1.0))
 
 
+def drive_flank(pair, member, cone_distance, polar_angle):
+    """Tooth 0's drive flank, its normal out of the tooth, and its coast flank [m, -, m].
+
+    The tooth lies between its drive and coast flanks at the same cone
+    distance and polar angle, which fixes the normal's sense.
+
+    Parameters
+    ----------
+    pair : lsbg.geometry.GearPair
+    member : {1, 2}
+    cone_distance, polar_angle : array_like
+        [m], [rad] from the member's axis.
+
+    Returns
+    -------
+    flank, outward, coast : numpy.ndarray, shape (..., 3)
+    """
+    flank, normal = pair.flank(member, "drive", cone_distance, polar_angle)
+    coast, _ = pair.flank(member, "coast", cone_distance, polar_angle)
+    outward = -np.sign(np.sum(normal * (coast - flank), axis=-1))[..., None] * normal
+    return flank, outward, coast
+
+
 def flank_grid(pair, member, settings):
     """The flank grid of one member (tooth 0, drive side).
 
@@ -186,13 +209,9 @@ def flank_grid(pair, member, settings):
     rho, psi = grid_axes(pair, settings)
     radius, angle = np.meshgrid(rho, psi, indexing="ij")
     polar = member_polar_angle(pair, member, radius, angle)
-    flank, normal = pair.flank(member, "drive", radius, polar)
-    coast, _ = pair.flank(member, "coast", radius, polar)
-    # the tooth lies between its drive and coast flanks at the same (R, theta)
-    inward = coast - flank
-    outward = -np.sign(np.sum(normal * inward, axis=-1))[..., None] * normal
-    middle = 0.5 * (flank + coast)
-    return FlankGrid(rho, psi, flank, outward, middle, 0.5 * np.linalg.norm(inward, axis=-1))
+    flank, outward, coast = drive_flank(pair, member, radius, polar)
+    return FlankGrid(rho, psi, flank, outward, 0.5 * (flank + coast),
+                     0.5 * np.linalg.norm(coast - flank, axis=-1))
 
 
 def _fillet_points(pair, member, segment_mesh, fillet_radius):

@@ -49,7 +49,7 @@ def normal_curvature_across(pair, member, cone_distance, profile_angle, step=1e-
         Curvature, positive where the flank is convex (seen from outside the
         tooth) [1/m].
     """
-    from lsbg.tooth.compliance import member_polar_angle
+    from lsbg.tooth.compliance import drive_flank, member_polar_angle
 
     plane = pair.planes["drive"]
     rho = np.atleast_1d(np.asarray(cone_distance, float))
@@ -60,9 +60,8 @@ def normal_curvature_across(pair, member, cone_distance, profile_angle, step=1e-
 
     h_r = step * rho
     h_t = step * np.ones_like(rho)
-    x, n = surface(rho, psi)
-    coast, _ = pair.flank(member, "coast", rho, member_polar_angle(pair, member, rho, psi))
-    outward = -np.sign(np.sum(n * (coast - x), axis=-1))[..., None] * n
+    _, n = surface(rho, psi)
+    _, outward, _ = drive_flank(pair, member, rho, member_polar_angle(pair, member, rho, psi))
     xr1, nr1 = surface(rho + h_r, psi)
     xr0, nr0 = surface(rho - h_r, psi)
     xt1, nt1 = surface(rho, psi + h_t)

@@ -183,9 +183,13 @@ class FECompliance:
         self.stress = {name: dataset[f"fillet_stress_{name}"].values.reshape(
             -1, 3, 3, f * p) for name in ("pinion", "gear")}
 
-    def matrix(self, points):
-        """Symmetric compliance of contact points, both members [m/N]."""
-        w = _weights(self.dataset, points.rho, points.psi)
+    def weights(self, points):
+        """Bilinear weights of the points on the flank grid, shape (n, f * p)."""
+        return _weights(self.dataset, points.rho, points.psi)
+
+    def matrix(self, points, w):
+        """Symmetric compliance of contact points, both members [m/N]; ``w`` their
+        :meth:`weights`."""
         offset = self.orientation * (points.pair[:, None] - points.pair[None, :])
         out = np.zeros((points.rho.size, points.rho.size))
         for o, tooth in enumerate((-1, 0, 1)):
@@ -196,9 +200,9 @@ class FECompliance:
             out[mask] = (w @ total @ w.T)[mask]
         return 0.5 * (out + out.T)
 
-    def point_values(self, points):
-        """Relative curvature [1/m] and both half thicknesses [m] at the points."""
-        w = _weights(self.dataset, points.rho, points.psi)
+    def point_values(self, points, w):
+        """Relative curvature [1/m] and both half thicknesses [m] at the points; ``w``
+        their :meth:`weights`."""
         band = np.argmin(np.abs(points.rho[:, None] - self.curvature_rho[None]), axis=1)
         # the radius of curvature runs nearly linearly along the profile
         radius = np.array([np.interp(s, self.curvature_psi, self.radius[b])
@@ -239,8 +243,7 @@ def solve_contact(compliance, points, torque, e2, local):
     active = s / lever <= np.min(s / lever) + 1e-12
     loads = np.zeros(n)
     guess = torque / (e2 * lever.sum())
-    secant = np.full(n, 0.0)
-    secant[:] = local(np.full(n, guess)) / guess
+    secant = local(np.full(n, guess)) / guess
     for _ in range(MAX_ITERATIONS):
         index = np.flatnonzero(active)
         m = compliance[np.ix_(index, index)] + np.diag(secant[index])
@@ -270,10 +273,6 @@ def solve_contact(compliance, points, torque, e2, local):
             return loads, mismatch
     raise RuntimeError(f"the contact problem did not settle in {MAX_ITERATIONS} iterations "
                        f"(torque {torque!r} N m)")
-
-
-def _principal(stress):
-    return np.linalg.eigvalsh(stress)[..., -1]
 
 
 def fe_loaded_tca(contact, compliance, load_torque, phases=200):
@@ -306,7 +305,9 @@ def fe_loaded_tca(contact, compliance, load_torque, phases=200):
     """
     import xarray as xr
 
-    from lsbg.ltca import harmonic_amplitudes, mesh_phase_pinion_angle
+    from lsbg.contact.mesh import MAX_PAIRS
+    from lsbg.ltca import mesh_phase_pinion_angle, transmission_error_summary
+    from lsbg.tooth.elasticity import largest_principal
     from lsbg.tooth.local import local_approach, peak_pressure
 
     if not (math.isfinite(load_torque) and load_torque > 0):
@@ -335,12 +336,13 @@ def fe_loaded_tca(contact, compliance, load_torque, phases=200):
     stiffness = np.zeros(phases)
     pressure_max = np.zeros(phases)
     root = {"pinion": np.zeros(phases), "gear": np.zeros(phases)}
-    lines = 8
+    lines = MAX_PAIRS
     pair_load = np.zeros((phases, lines))
     for n, phi1 in enumerate(pinion):
         points = contact_points(contact, contact.orientation * phi1 * contact.e1)
-        matrix = fe.matrix(points)
-        curvature, h1, h2 = fe.point_values(points)
+        w = fe.weights(points)
+        matrix = fe.matrix(points, w)
+        curvature, h1, h2 = fe.point_values(points, w)
 
         def local(forces):
             return local_approach(forces / points.length, curvature, h1, h2, fe.young, fe.poisson)
@@ -356,19 +358,16 @@ def fe_loaded_tca(contact, compliance, load_torque, phases=200):
         q = loads / points.length
         pressure = peak_pressure(q, curvature, fe.young, fe.poisson)
         pressure_max[n] = pressure.max()
-        w = _weights(compliance, points.rho, points.psi)
         for line in np.unique(points.pair):
             on = points.pair == line
             if line < lines:
                 pair_load[n, line] = loads[on].sum()
             for name in ("pinion", "gear"):
                 stress = fe.stress[name] @ (w[on].T @ loads[on])  # (q, 3, 3)
-                root[name][n] = max(root[name][n], float(_principal(stress).max()))
+                root[name][n] = max(root[name][n], float(largest_principal(stress).max()))
             band = np.argmin(np.abs(points.rho[on][:, None] - band_rho[None]), axis=1)
             column = np.clip(np.searchsorted(pattern_psi, points.psi[on]), 0, pattern_psi.size - 1)
             np.maximum.at(pattern, (band, column), pressure[on])
-    harmonics = harmonic_amplitudes(te * 1e6)
-    mean_stiffness = float(stiffness.mean())
     attrs = {
         "title": f"Loaded TCA with the tooth's FE compliance of a {design.trace} spiral bevel "
                  f"gear pair ({z1}:{z2}, spiral angle {math.degrees(design.spiral_angle):g} deg)",
@@ -378,12 +377,7 @@ def fe_loaded_tca(contact, compliance, load_torque, phases=200):
         "compliance_inputs_hash": str(hash_),
         "load_torque_N_m": float(load_torque),
         "phases": int(phases),
-        "transmission_error_peak_to_peak_urad": float(np.ptp(te) * 1e6),
-        "transmission_error_mean_urad": float(te.mean() * 1e6),
-        **{f"transmission_error_harmonic_{h + 1}_urad": float(a) for h, a in enumerate(harmonics)},
-        "mesh_stiffness_mean_N_per_um": mean_stiffness * 1e-6,
-        "mesh_stiffness_per_face_width_N_per_mm_um": mean_stiffness / design.face_width * 1e-9,
-        "mesh_stiffness_variation_percent": float(100 * np.ptp(stiffness) / mean_stiffness),
+        **transmission_error_summary(te, stiffness, design.face_width),
         "max_contact_pressure_MPa": float(pressure_max.max() * 1e-6),
         "max_root_stress_pinion_MPa": float(root["pinion"].max() * 1e-6),
         "max_root_stress_gear_MPa": float(root["gear"].max() * 1e-6),
