@@ -127,6 +127,29 @@ def relieved_outline(pair, outline, relief):
     return points
 
 
+def loft_sections(pair, member, sections):
+    """Section outlines of a loft across the face width and ``LOFT_MARGIN`` beyond it.
+
+    Parameters
+    ----------
+    pair : lsbg.geometry.GearPair
+    member : {1, 2}
+    sections : int
+        Spheres, evenly spaced in cone distance [-].
+
+    Returns
+    -------
+    outline : lsbg.solids.SectionOutline
+    n_top, n_root : int
+        Interior points of each top land and root arc [-].
+    """
+    d = pair.design
+    radii = np.linspace(d.inner_cone_distance - LOFT_MARGIN, d.outer_cone_distance + LOFT_MARGIN,
+                        int(sections))
+    _, n_top, n_root = _outline_counts(pair, member, DEFAULT_RESOLUTION)
+    return section_outline(pair, member, radii), n_top, n_root
+
+
 def build_solid(pair, member, sections=STEP_SECTIONS, relief=None):
     """Build one member's solid in the current gmsh model [volume tag].
 
@@ -150,9 +173,8 @@ def build_solid(pair, member, sections=STEP_SECTIONS, relief=None):
     occ = gmsh.model.occ
     d = pair.design
     r_in, r_out = d.inner_cone_distance, d.outer_cone_distance
-    radii = np.linspace(r_in - LOFT_MARGIN, r_out + LOFT_MARGIN, int(sections))
-    outline = section_outline(pair, member, radii)
-    _, n_top, n_root = _outline_counts(pair, member, DEFAULT_RESOLUTION)
+    outline, n_top, n_root = loft_sections(pair, member, sections)
+    radii = outline.cone_distance
     runs = _tooth_edges(outline, n_top, n_root)
     points = (relieved_outline(pair, outline, relief) if relief is not None and member == 1
               else outline.points)

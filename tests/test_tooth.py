@@ -149,3 +149,10 @@ def test_material_out_of_range_is_named(kwargs, key):
 def test_mesh_settings_out_of_range_are_named(kwargs, key):
     with pytest.raises(ValueError, match=key):
         FEMeshSettings(**kwargs)
+
+
+def test_compliance_of_another_design_is_refused(compliance):
+    other = GearPair(GearPairDesign(trace="circular"))
+    with pytest.raises(ValueError, match="design trace"):
+        fe_loaded_tca(MeshContact(other, ContactParameters(model="line")), compliance, TORQUE,
+                      phases=8)

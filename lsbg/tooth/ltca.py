@@ -316,9 +316,13 @@ def fe_loaded_tca(contact, compliance, load_torque, phases=200):
         raise ValueError(f"phases = {phases!r}: must be a whole number >= 8")
     design = contact.pair.design
     hash_ = compliance.attrs.get("inputs_hash")
-    if compliance.attrs.get("design_spiral_angle_deg") is not None and not math.isclose(
-            compliance.attrs["design_spiral_angle_deg"], math.degrees(design.spiral_angle)):
-        raise ValueError("the compliance dataset belongs to another design point")
+    # the compliance holds only for the design it was computed for: every key
+    for key, value in design.to_config().items():
+        stored = compliance.attrs.get(f"design_{key}")
+        if stored is None or (stored != value if isinstance(value, str)
+                              else not math.isclose(float(stored), float(value), rel_tol=1e-12)):
+            raise ValueError(f"the compliance dataset has design {key} = {stored!r}, the "
+                             f"contact's design {value!r}: compute it for this design point")
     bands = contact.params.slices
     band_rho = contact.arrays[2][0, :bands, k.B_RHO]
     fe = FECompliance(compliance, contact.pair, contact.orientation, band_rho)

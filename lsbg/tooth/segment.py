@@ -29,14 +29,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lsbg.solids import DEFAULT_RESOLUTION, _outline_counts, section_outline
-
 __all__ = ["SegmentMesh", "segment_mesh", "tooth_zero_column"]
 
 #: Sections of the loft across the face width (and beyond it) [-].
 SEGMENT_SECTIONS = 7
-#: How far the loft reaches beyond the toe and the heel before the cut [m].
-LOFT_MARGIN = 1e-3
 
 
 @dataclass(frozen=True)
@@ -143,14 +139,14 @@ def _build_segment(pair, member, teeth, fillet_radius, sections):
     """
     import gmsh
 
+    from lsbg.step import loft_sections
     from lsbg.vectors import rotate
 
     occ = gmsh.model.occ
     d = pair.design
     r_in, r_out = d.inner_cone_distance, d.outer_cone_distance
-    radii = np.linspace(r_in - LOFT_MARGIN, r_out + LOFT_MARGIN, int(sections))
-    outline = section_outline(pair, member, radii)
-    _, n_top, n_root = _outline_counts(pair, member, DEFAULT_RESOLUTION)
+    outline, n_top, n_root = loft_sections(pair, member, sections)
+    radii = outline.cone_distance
     tooth = tooth_zero_column(pair, member, outline, sections // 2)
     runs, corners = _segment_runs(outline, tooth, teeth, n_top, n_root)
     segment_columns = [c for run in runs for c in run[:-1]] + [runs[-1][-1]]
