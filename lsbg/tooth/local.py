@@ -160,7 +160,7 @@ def local_approach(load_per_length, curvature, depth_pinion, depth_gear, young_m
         b = line_contact_half_width(q[loaded], 1.0 / curvature[loaded], e_star)
         # the formula holds for h >> b; a load so high that b nears h is far
         # beyond any gear's, and the approach is kept from turning negative
-        out[loaded] = sum(np.maximum(line_contact_approach(q[loaded], young_modulus,
-                                                           poisson_ratio, b, h[loaded]), 0.0)
-                          for h in (h1, h2))
+        both = line_contact_approach(np.tile(q[loaded], 2), young_modulus, poisson_ratio,
+                                     np.tile(b, 2), np.concatenate([h1[loaded], h2[loaded]]))
+        out[loaded] = np.maximum(both, 0.0).reshape(2, -1).sum(axis=0)
     return out

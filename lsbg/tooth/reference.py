@@ -99,14 +99,15 @@ _NODES, _WEIGHTS = np.polynomial.legendre.leggauss(64)
 
 def _positive(name, value, allow_inf=False):
     value = np.asarray(value, dtype=float)
-    if np.any(~(value > 0) | (np.isnan(value) if allow_inf else ~np.isfinite(value))):
+    # NaN fails "> 0" already; the ndarray methods keep this cheap in hot loops
+    if not ((value > 0).all() and (allow_inf or np.isfinite(value).all())):
         raise ValueError(f"{name} must be > 0, got {value}")
     return value
 
 
 def _poisson(value, name="poisson_ratio"):
     value = np.asarray(value, dtype=float)
-    if np.any(~((value > 0) & (value < 0.5))):
+    if not ((value > 0) & (value < 0.5)).all():
         raise ValueError(f"{name} must lie in (0, 0.5), got {value}")
     return value
 
