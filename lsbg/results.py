@@ -140,6 +140,9 @@ def run_dataset(record, model, settings, command=""):
     attrs.update(design_contact_ratio=ratio["total"], design_contact_ratio_profile=ratio["profile"],
                  design_contact_ratio_face=ratio["face"])
     attrs.update({f"contact_{k}": v for k, v in model.contact.params.to_dict().items()})
+    if model.contact.slice_stiffness is not None:  # the tooth's own compliance
+        attrs.update({f"slice_stiffness_{k}": v
+                      for k, v in model.contact.slice_stiffness.attrs.items()})
     if model.contact.params.model == "line":
         attrs.update(contact_line_damping_N_s_per_m2=model.contact.damping_coefficient,
                      mesh_natural_frequency_hz=model.contact.natural_frequency(model.gear_inertia),

@@ -143,6 +143,7 @@ def test_to_dict_has_unit_carrying_keys(params):
         "mesh_damping_ratio": 0.05,
         "slices": 20,
         "line_approach_limit_m": 5e-4,
+        "compliance": "uniform",
     }
     assert all(type(v) in (float, int, str) for v in d.values())
     # and back, also through the workflow's configuration keys

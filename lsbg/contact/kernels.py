@@ -61,10 +61,14 @@ MODEL_CODES = {"point": 0.0, "line": 1.0}
 # SEP_*: the line model's separation table (rows of line turns from SEP_FIRST,
 # SEP_INV_STEP per radian; SEP_ROWS = 0: conjugate flanks, no table);
 # SEP_LEAD: the least mismatch at which the flanks can touch (0 for conjugate
-# flanks; negative where a displacement makes them interfere)
+# flanks; negative where a displacement makes them interfere);
+# STIFF_*: the line model's slice-stiffness table (the tooth's own compliance:
+# rows of line turns from STIFF_FIRST, STIFF_INV_STEP per radian, in the
+# table's columns from STIFF_COLUMN; STIFF_ROWS = 0: the uniform bed)
 (S_FIRST, S_LAST, S_INV_STEP, S_ROWS, S_PSI_LO, S_PSI_HI, S_U1P, S_U1Q, S_U2P, S_U2Q,
- S_N1P, S_N1Q, S_N2P, S_N2Q, S_SEP_FIRST, S_SEP_INV_STEP, S_SEP_ROWS, S_SEP_LEAD) = range(18)
-N_SIDE = 18
+ S_N1P, S_N1Q, S_N2P, S_N2Q, S_SEP_FIRST, S_SEP_INV_STEP, S_SEP_ROWS, S_SEP_LEAD,
+ S_STIFF_FIRST, S_STIFF_INV_STEP, S_STIFF_ROWS, S_STIFF_COLUMN) = range(22)
+N_SIDE = 22
 
 # --- table[side, row]: point model, per line turn Psi = first + row / inv_step
 T_LEVER, T_AA, T_AB, T_BB, T_RADIUS, T_RHO = range(6)
@@ -77,7 +81,9 @@ N_PHASE_COLUMNS = 6
 N_COLUMNS = 11
 # ... followed, with a separation table, by two columns per row of line turn:
 # the initial separation of the flanks at the band's centre and its change
-# across the band (outer edge minus inner edge) [m]
+# across the band (outer edge minus inner edge) [m]; and, with a slice-stiffness
+# table, one column per row of line turn from S_STIFF_COLUMN: the band's
+# stiffness per unit length over the uniform bed's k_l [-]
 B_SEPARATION = N_COLUMNS
 
 # --- details[pair]: one row per tooth pair whose line meets the field
@@ -244,6 +250,19 @@ def _separation(table, side, j, t, sides, here):
 
 
 @njit(cache=True)
+def _stiffness_factor(table, side, j, sides, here):
+    """Stiffness of band j for a line at turn ``here`` over the uniform bed's,
+    interpolated linearly in the turn (held at the table's ends) [-]."""
+    rows = int(sides[side, S_STIFF_ROWS])
+    position = (here - sides[side, S_STIFF_FIRST]) * sides[side, S_STIFF_INV_STEP]
+    row = int(math.floor(position))
+    row = min(max(row, 0), rows - 2)
+    w = min(max(position - row, 0.0), 1.0)
+    c0 = int(sides[side, S_STIFF_COLUMN]) + row
+    return table[side, j, c0] + w * (table[side, j, c0 + 1] - table[side, j, c0])
+
+
+@njit(cache=True)
 def _line_side(side, eps, eps_rate, sign, phase, phase_rate, w1, w2, params, sides, table,
                details, count, slices):
     """Sum over the tooth pairs and slices of one side, line model."""
@@ -257,6 +276,8 @@ def _line_side(side, eps, eps_rate, sign, phase, phase_rate, w1, w2, params, sid
     stiffness, damping = params[P_LINE_K], params[P_LINE_C]
     # real flanks: a separation table (conjugate flanks have none)
     real_flanks = sides[side, S_SEP_ROWS] > 0.0
+    # the tooth's own compliance: a stiffness per slice and line turn
+    own_stiffness = sides[side, S_STIFF_ROWS] > 0.0
     mu_s, mu_d, v_s, v_d = params[P_MU_S], params[P_MU_D], params[P_V_S], params[P_V_D]
     e1, e2 = params[P_E1], params[P_E2]
     # Friction acts across the contact line, along the plane's normal N: the
@@ -309,7 +330,12 @@ def _line_side(side, eps, eps_rate, sign, phase, phase_rate, w1, w2, params, sid
                 xdot -= gap_rate * phase_rate
             if x > pair_deepest:
                 pair_deepest, pair_lever, pair_rate = x, lever, xdot
-            load = line_load_scalar(x, xdot, stiffness, damping)
+            if own_stiffness:
+                # stiffness-proportional damping: the slice keeps its damping ratio
+                f = _stiffness_factor(table, side, j, sides, here)
+                load = line_load_scalar(x, xdot, f * stiffness, f * damping)
+            else:
+                load = line_load_scalar(x, xdot, stiffness, damping)
             if slices is not None and count < slices.shape[0]:
                 slices[count, j] = load
             if load <= 0.0:

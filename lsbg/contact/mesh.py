@@ -141,6 +141,12 @@ class MeshContact:
         tabulated at ``SEPARATION_ROWS_PER_PITCH`` rows per base pitch and
         subtracted from each slice's approach. None: conjugate flanks (the
         coast side always keeps them).
+    slice_stiffness : lsbg.contact.slices.SliceStiffness, optional
+        Line model with the tooth's own compliance: the drive side's
+        stiffness per unit length of each slice over the line's turn (from
+        the loaded TCA with the FE compliance), in place of the uniform k_l;
+        each slice's damping scales with it, so it keeps the damping ratio.
+        None: the uniform bed (the coast side always keeps it).
 
     Attributes
     ----------
@@ -156,9 +162,13 @@ class MeshContact:
     """
 
     def __init__(self, pair, params=None, gear_inertia=None,
-                 samples_per_pitch=PHASE_SAMPLES_PER_PITCH, separation=None):
+                 samples_per_pitch=PHASE_SAMPLES_PER_PITCH, separation=None,
+                 slice_stiffness=None):
         self.pair = pair
         self.separation = separation
+        self.slice_stiffness = slice_stiffness
+        # each band's stiffness over k_l, averaged over its passage (1: uniform bed)
+        self._band_factor = None
         self.params = params if params is not None else ContactParameters()
         design = pair.design
         self.e1 = math.sin(design.base_cone_angle(1))
@@ -180,9 +190,14 @@ class MeshContact:
                 raise ValueError("a separation field (flank modification, misalignment) is "
                                  "defined for the line model; the point model keeps the "
                                  "paper's conjugate flanks")
+            if slice_stiffness is not None:
+                raise ValueError("a slice stiffness (the tooth's compliance) is defined for "
+                                 "the line model")
             self._sides, self._table = self._point_tables(samples_per_pitch)
         else:
             self._sides, self._table = self._line_bands(self.params.slices, separation)
+            if slice_stiffness is not None:
+                self._add_slice_stiffness(slice_stiffness)
         # Stiffness-proportional damping of each slice, c_l = 2 zeta k_l / omega_n,
         # gives the mesh mode the damping ratio zeta at the mean stiffness.
         self.damping_coefficient = 0.0
@@ -311,6 +326,23 @@ class MeshContact:
         sides[0, k.S_SEP_LEAD] = min(0.0, 1.1 * lead)
         return sides, full
 
+    def _add_slice_stiffness(self, slice_stiffness):
+        """Append the drive side's slice-stiffness columns to the band table."""
+        from lsbg.contact.slices import stiffness_columns
+
+        table = self._table
+        theta = np.arctan2(table[0, :, k.B_SIN], table[0, :, k.B_COS])
+        columns, first, inv_step, self._band_factor = stiffness_columns(
+            slice_stiffness, table[0, :, k.B_RHO], self.params.line_stiffness, theta,
+            tuple(self._sides[0, [k.S_PSI_LO, k.S_PSI_HI]]))
+        start = table.shape[2]
+        full = np.zeros(table.shape[:2] + (start + columns.shape[1],))
+        full[:, :, :start] = table
+        full[0, :, start:] = columns
+        self._sides[0, k.S_STIFF_FIRST], self._sides[0, k.S_STIFF_INV_STEP] = first, inv_step
+        self._sides[0, k.S_STIFF_ROWS], self._sides[0, k.S_STIFF_COLUMN] = columns.shape[1], start
+        self._table = full
+
     # ------------------------------------------------------------ evaluation
     def mismatch(self, pinion_angle, gear_angle):
         """Drive-side rotation mismatch eps = phi1 e1 - phi2 e2, wrapped [rad].
@@ -416,12 +448,15 @@ class MeshContact:
         length. Over one base pitch each band is inside the field for the
         fraction (psi_hi - psi_lo) / Psi_p (the profile contact ratio) of the
         time, so the mean is closed form:
-        ``k_l e2^2 eps_profile sum_j lever_j^2 length_j`` (drive side).
+        ``k_l e2^2 eps_profile sum_j lever_j^2 length_j`` (drive side). With
+        the tooth's slice stiffness each band's term carries its stiffness
+        over k_l averaged over its passage through the field.
         """
         self._require_line("mean_torsional_stiffness")
         sides, table = self._sides, self._table
         profile = (sides[0, k.S_PSI_HI] - sides[0, k.S_PSI_LO]) / self.pitch
-        integral = np.sum(table[0, :, k.B_LEVER] ** 2 * table[0, :, k.B_LENGTH])
+        terms = table[0, :, k.B_LEVER] ** 2 * table[0, :, k.B_LENGTH]
+        integral = np.sum(terms if self._band_factor is None else terms * self._band_factor)
         return float(self.params.line_stiffness * self.e2**2 * profile * integral)
 
     @property

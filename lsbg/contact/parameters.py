@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["CONTACT_MODELS", "ContactParameters", "CONTACT_CONFIG_KEYS"]
+__all__ = ["CONTACT_MODELS", "COMPLIANCES", "ContactParameters", "CONTACT_CONFIG_KEYS"]
 
 
 # One millimetre and one micrometre in metres: the paper's units are N, mm and s.
@@ -28,6 +28,10 @@ _UM = 1e-6
 
 #: Contact models of :class:`ContactParameters`.
 CONTACT_MODELS = ("point", "line")
+
+#: Line model's compliance of the teeth: the uniform bed of springs k_l, or the
+#: tooth's own from finite elements (:mod:`lsbg.tooth`).
+COMPLIANCES = ("uniform", "fe")
 
 
 # ---------------------------------------------------------------------------
@@ -84,13 +88,18 @@ class ContactParameters:
         Line model: a slice approach beyond this stops the run as a blow-up
         [m] (a linear slice law for steel teeth means nothing at half a
         millimetre; the static approach at the paper's load is about 60 µm).
+    compliance : {"uniform", "fe"}, default "uniform"
+        Line model: every slice on the uniform bed ``line_stiffness``, or
+        the drive side's slices on the tooth's own stiffness from the loaded
+        TCA with the finite-element compliance (a
+        :class:`lsbg.contact.slices.SliceStiffness` given to the contact).
 
     Raises
     ------
     ValueError
         Naming the offending field and its value, if ``k <= 0``, ``e < 1``,
         ``c_max < 0``, ``d <= 0``, a friction coefficient is outside [0, 1],
-        ``v_s <= 0``, ``v_d <= v_s``, ``model`` is unknown,
+        ``v_s <= 0``, ``v_d <= v_s``, ``model`` or ``compliance`` is unknown,
         ``line_stiffness <= 0``, ``damping_ratio < 0``, ``slices < 2`` or
         not whole, or ``approach_limit <= 0``.
 
@@ -112,6 +121,7 @@ class ContactParameters:
     damping_ratio: float = 0.05
     slices: int = 20
     approach_limit: float = 0.5 * _MM
+    compliance: str = "uniform"
 
     def __post_init__(self):
         for name in _FLOAT_FIELDS:
@@ -135,6 +145,7 @@ class ContactParameters:
             ("damping_ratio", 0.0 <= self.damping_ratio <= 1.0, "must lie in [0, 1] [-]"),
             ("slices", whole and self.slices >= 2, "must be a whole number >= 2"),
             ("approach_limit", self.approach_limit > 0.0, "must be > 0 [m]"),
+            ("compliance", self.compliance in COMPLIANCES, f"must be one of {COMPLIANCES}"),
         )
         for name, valid, rule in checks:
             if not valid:
@@ -208,7 +219,7 @@ class ContactParameters:
                 raise ValueError(f"contact.{key} = {value!r}: unknown key "
                                  f"(known: {sorted(known)})")
             field = known[key]
-            if field == "model":
+            if field in _WORD_FIELDS:
                 kwargs[field] = value
                 continue
             if isinstance(value, bool) or not isinstance(value, (int, float)):
@@ -237,7 +248,7 @@ class ContactParameters:
             value = getattr(self, field)
             if field == "k":
                 value = value * _MM**self.e
-            elif field not in ("model", "slices"):
+            elif field not in (*_WORD_FIELDS, "slices"):
                 value = value / _PAPER_UNITS[field]
             out[key] = value
         return out
@@ -292,10 +303,13 @@ class ContactParameters:
         for field, name in _ATTRIBUTE_NAMES.items():
             if prefix + name in attributes:
                 value = attributes[prefix + name]
-                values[field] = value if field == "model" else (
+                values[field] = value if field in _WORD_FIELDS else (
                     int(value) if field == "slices" else float(value))
         return cls(**values)
 
+
+#: Fields that are words, not numbers.
+_WORD_FIELDS = ("model", "compliance")
 
 _FLOAT_FIELDS = ("k", "e", "c_max", "d", "mu_s", "mu_d", "v_s", "v_d", "line_stiffness",
                  "damping_ratio", "approach_limit")
@@ -309,6 +323,7 @@ CONTACT_CONFIG_KEYS = {
     "v_s": "stiction_velocity_mm_s", "v_d": "friction_velocity_mm_s",
     "line_stiffness": "line_stiffness_N_per_mm_um", "damping_ratio": "mesh_damping_ratio",
     "slices": "slices", "approach_limit": "line_approach_limit_mm",
+    "compliance": "compliance",
 }
 
 
@@ -336,4 +351,5 @@ _ATTRIBUTE_NAMES = {
     "damping_ratio": "mesh_damping_ratio",
     "slices": "slices",
     "approach_limit": "line_approach_limit_m",
+    "compliance": "compliance",
 }

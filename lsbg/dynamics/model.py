@@ -246,7 +246,8 @@ class MeshingModel:
         return run_pybullet(self, settings)
 
 
-def load_model(geometry_dir, contact_params=None, flanks=None) -> MeshingModel:
+def load_model(geometry_dir, contact_params=None, flanks=None,
+               slice_stiffness=None) -> MeshingModel:
     """The meshing model of a geometry directory written by ``lsbg geometry``.
 
     Parameters
@@ -260,10 +261,19 @@ def load_model(geometry_dir, contact_params=None, flanks=None) -> MeshingModel:
         slices start from their separation field (the point model, the
         paper's reproduction, keeps the conjugate flanks). Default: the
         conjugate, aligned pair.
+    slice_stiffness : lsbg.contact.slices.SliceStiffness, optional
+        The tooth's own stiffness per slice (from the loaded TCA with the FE
+        compliance of this design point and these flanks); required by, and
+        only allowed with, the line model under ``compliance = "fe"``.
 
     Returns
     -------
     MeshingModel
+
+    Raises
+    ------
+    ValueError
+        If ``slice_stiffness`` and the contact's ``compliance`` disagree.
     """
     from pathlib import Path
 
@@ -276,13 +286,22 @@ def load_model(geometry_dir, contact_params=None, flanks=None) -> MeshingModel:
     gear_inertia = record["axial_inertia_gear_kg_m2"]
     line = contact_params is not None and contact_params.model == "line"
     separation = flanks.separation(pair) if flanks is not None and line else None
-    contact = MeshContact(pair, contact_params, gear_inertia=gear_inertia, separation=separation)
+    own = line and contact_params.compliance == "fe"
+    if own and slice_stiffness is None:
+        raise ValueError("contact.compliance = 'fe': the line model needs the tooth's slice "
+                         "stiffness (the loaded TCA with the FE compliance of this design "
+                         "point: lsbg ltca --compliance fe, given as --fe-ltca)")
+    if slice_stiffness is not None and not own:
+        raise ValueError("a slice stiffness (the tooth's compliance) was given, but the contact "
+                         "is not the line model with compliance = 'fe'")
+    contact = MeshContact(pair, contact_params, gear_inertia=gear_inertia, separation=separation,
+                          slice_stiffness=slice_stiffness)
     return MeshingModel(contact, gear_inertia,
                         record["axial_inertia_pinion_kg_m2"], urdf=geometry_dir / FILE_NAMES["urdf"])
 
 
 def simulate(geometry_dir, settings: SimulationSettings, contact_params=None, command="",
-             flanks=None):
+             flanks=None, slice_stiffness=None):
     """Run one meshing simulation and return its CF dataset.
 
     Parameters
@@ -294,6 +313,8 @@ def simulate(geometry_dir, settings: SimulationSettings, contact_params=None, co
     command : str
         Command line, recorded in the dataset's ``history``.
     flanks : lsbg.tca.separation.RealFlanks, optional
+        As :func:`load_model`.
+    slice_stiffness : lsbg.contact.slices.SliceStiffness, optional
         As :func:`load_model`.
 
     Returns
@@ -308,7 +329,7 @@ def simulate(geometry_dir, settings: SimulationSettings, contact_params=None, co
     """
     from lsbg.results import run_dataset
 
-    model = load_model(geometry_dir, contact_params, flanks)
+    model = load_model(geometry_dir, contact_params, flanks, slice_stiffness)
     log.info("%s engine, %s model, %s trace, spiral angle %.4g deg: %.4g s simulated",
              settings.engine, model.contact.params.model, model.pair.design.trace,
              math.degrees(model.pair.design.spiral_angle), settings.duration)
