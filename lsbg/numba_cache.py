@@ -18,9 +18,9 @@ import sys
 from pathlib import Path
 
 #: The modules with numba-compiled code (``cache=True``), relative to the package.
-COMPILED_MODULES = ("contact/law.py", "contact/kernels.py", "dynamics/settings.py",
-                    "dynamics/compiled_engine.py", "render.py", "stats/kernels.py",
-                    "tca/surface.py")
+COMPILED_MODULES = ("contact/law.py", "contact/kernels.py", "contact/statics.py",
+                    "dynamics/settings.py", "dynamics/compiled_engine.py", "render.py",
+                    "stats/kernels.py", "tca/surface.py")
 #: Versions of the compiled code whose numba caches are kept (the most recently used).
 KEEP_CACHES = 3
 #: Lock file of each cache sub-directory (see :func:`numba_cache_locator`).

@@ -8,6 +8,9 @@
   (Eq. 9);
 * :mod:`lsbg.contact.kernels`: the compiled kernels of the point and the line
   model (numba, cached on disk);
+* :mod:`lsbg.contact.statics`: the line model's mismatch at rest under a torque;
+* :mod:`lsbg.contact.slices`: the line model's stiffness per slice from the
+  tooth's own compliance (:class:`SliceStiffness`);
 * :mod:`lsbg.contact.mesh`: :class:`MeshContact`, the kernels' data built from
   the exact geometry, and the line model's stiffness calibration.
 """

@@ -23,6 +23,7 @@ import numpy as np
 
 from lsbg.contact import kernels as k
 from lsbg.contact.parameters import ContactParameters
+from lsbg.contact.statics import static_mismatch
 from lsbg.geometry import MEMBERS, SIDES
 
 #: Samples of the point model's phase table per base pitch. At the paper's
@@ -428,7 +429,7 @@ class MeshContact:
                 return base
             # real flanks: first touch, where the torque just rises
             load_torque = FIRST_TOUCH_TORQUE
-        eps = k.static_mismatch(float(pinion_angle), base, self.e2, float(load_torque),
+        eps = static_mismatch(float(pinion_angle), base, self.e2, float(load_torque),
                                 0.1 * self.pitch, *self.arrays)
         if not math.isfinite(eps):
             raise ValueError(f"load_torque = {load_torque!r}: the contact cannot carry it "
