@@ -9,7 +9,8 @@ from lsbg.contact import ContactParameters, MeshContact
 from lsbg.design import GearPairDesign
 from lsbg.geometry import GearPair
 from lsbg.tooth.compliance import FEMeshSettings, ToothMaterial, tooth_compliance
-from lsbg.tooth.local import local_approach, normal_curvature_across
+from lsbg.tooth.local import HertzLines, local_approach, normal_curvature_across
+from lsbg.tooth.field import active_field, undercut_roll
 from lsbg.tooth.ltca import FECompliance, contact_points, fe_loaded_tca, solve_contact
 
 TORQUE = 1964.99  # the paper's gear torque [N m]
@@ -22,8 +23,9 @@ def pair():
 
 @pytest.fixture(scope="module")
 def compliance(pair):
-    # coarse (one mean normal module per element on the teeth) to keep the suite fast
-    return tooth_compliance(pair, settings=FEMeshSettings(tooth_size=1.0))
+    # the coarsest mesh FEMeshSettings accepts (three elements across the tooth)
+    # and a coarse rim, to keep the suite fast
+    return tooth_compliance(pair, settings=FEMeshSettings(tooth_size=0.52, body_size=10.0))
 
 
 @pytest.fixture(scope="module")
@@ -123,6 +125,83 @@ def test_contact_problem_is_complementary_and_balanced(pair, compliance, contact
     assert np.count_nonzero(loads) > points.lever.size // 2
 
 
+def test_hertz_lines_are_the_local_approach_with_its_derivative():
+    rng = np.random.default_rng(1)
+    n = 40
+    length = rng.uniform(1e-6, 2e-3, n)  # slivers of bands too
+    curvature, h1, h2 = rng.uniform(50, 5000, n), rng.uniform(1e-3, 4e-3, n), \
+        rng.uniform(1e-3, 4e-3, n)
+    forces = rng.uniform(1.0, 4000.0, n)
+    lines = HertzLines(length, curvature, h1, h2, 2.06e11, 0.3)
+    expected = local_approach(forces / length, curvature, h1, h2, 2.06e11, 0.3)
+    assert np.allclose(lines.approach(forces), expected, rtol=1e-13, atol=0)
+    h = 1e-6
+    numeric = (lines.approach(forces * (1 + h)) - lines.approach(forces * (1 - h))) / (2 * h * forces)
+    assert np.allclose(lines.tangent(forces), numeric, rtol=1e-6)
+    assert lines.approach(np.zeros(n)).max() == 0 and np.all(np.isinf(lines.tangent(np.zeros(n))))
+
+
+def test_local_approach_keeps_growing_past_the_formulas_range():
+    # b ~ h at q ~ 1e9 N/m: the formula turns down there; a band cut to a
+    # sliver reaches such q, and a falling approach made it a rigid post
+    q = np.logspace(4, 12, 400)
+    approach = local_approach(q, 1000.0, 2e-3, 2e-3, 2.06e11, 0.3)
+    assert np.all(np.diff(approach) > 0)
+    # a whole band's loads (b << h) keep Weber and Banaschek's formula
+    from lsbg.tooth.reference import (line_contact_approach, line_contact_half_width,
+                                      reduced_modulus)
+    ordinary = q < 1e7
+    b = line_contact_half_width(q[ordinary], 1e-3, reduced_modulus(2.06e11, 0.3, 2.06e11, 0.3))
+    formula = 2 * line_contact_approach(q[ordinary], 2.06e11, 0.3, b, 2e-3)
+    assert np.allclose(approach[ordinary], formula, rtol=1e-14, atol=0)
+
+
+def test_newton_finds_the_secant_fixed_point_from_any_start(pair, compliance, contact):
+    fe = FECompliance(compliance, pair, contact.orientation,
+                      contact.arrays[2][0, :contact.params.slices, 0])
+    points = contact_points(contact, 0.3 * contact.pitch)
+    weights = fe.weights(points)
+    matrix = fe.matrix(points, weights)
+    curvature, h1, h2 = fe.point_values(points, weights)
+    lines = HertzLines(points.length, curvature, h1, h2, fe.young, fe.poisson)
+    secant = solve_contact(matrix, points, TORQUE, contact.e2, lines.approach)
+    newton = solve_contact(matrix, points, TORQUE, contact.e2, lines.approach, lines.tangent)
+    warm = solve_contact(matrix, points, 1.01 * TORQUE, contact.e2, lines.approach,
+                         lines.tangent, start=newton[0])
+    cold = solve_contact(matrix, points, 1.01 * TORQUE, contact.e2, lines.approach,
+                         lines.tangent)
+    assert newton[1] == pytest.approx(secant[1], rel=1e-9)
+    assert np.allclose(newton[0], secant[0], rtol=0, atol=1e-7 * secant[0].max())
+    assert warm[1] == pytest.approx(cold[1], rel=1e-12)
+
+
+def test_basic_rack_undercuts_below_seventeen_teeth():
+    # ISO 53 profile A: h = 1.25 m, rho = 0.38 m; no undercut from
+    # z = 2 (h - rho (1 - sin 20 deg)) / sin^2 20 deg = 17.1 teeth up
+    alpha = math.radians(20)
+    roll = [undercut_roll(z / 2, alpha, 1.25, 0.38, z)[0] for z in (10, 14, 16, 18, 30)]
+    assert roll[0] > roll[1] > roll[2] > 0
+    assert roll[3] == roll[4] == 0
+    # a sharp rack of depth 1 m undercuts z = 10 up to about half a module above T1
+    assert undercut_roll(5.0, alpha, 1.0, 0.0, 10)[0] == pytest.approx(0.50, abs=0.01)
+
+
+def test_field_ends_where_the_pinions_generated_flank_starts(pair, contact):
+    # the gear's tip overshoots the 9-tooth pinion's base cone (lsbg's undercut):
+    # the generated pinion's involute starts inside lsbg's field, the gear's
+    # tip still bounds the other side
+    d = pair.design
+    rho = contact.arrays[2][0, :contact.params.slices, 0]
+    lo, hi = active_field(pair, 0.25 * d.mean_module * math.cos(d.spiral_angle), rho)
+    psi_lo, psi_hi = pair.planes["drive"].field[:2]
+    assert pair.undercut["drive"]["pinion"] > 0
+    assert np.all(lo == psi_lo)
+    assert np.all((psi_hi - hi > math.radians(0.3)) & (psi_hi - hi < math.radians(0.8)))
+    for turn in np.linspace(0, contact.pitch, 7):
+        points = contact_points(contact, turn, (lo, hi))
+        assert np.all(points.psi <= hi[points.band] + 1e-12)
+
+
 def test_fe_mesh_stiffness_lies_in_the_iso_band(contact, compliance):
     out = fe_loaded_tca(contact, compliance, TORQUE, phases=16)
     per_width = out.attrs["mesh_stiffness_per_face_width_N_per_mm_um"]
@@ -144,6 +223,7 @@ def test_material_out_of_range_is_named(kwargs, key):
 
 @pytest.mark.parametrize("kwargs, key", [
     ({"tooth_size": 3.0}, "tooth_size"),
+    ({"tooth_size": 0.6}, "tooth_size = 0.6"),   # fewer than three elements across the tooth
     ({"face_points": 2}, "face_points"),
 ])
 def test_mesh_settings_out_of_range_are_named(kwargs, key):

@@ -28,7 +28,8 @@ import numpy as np
 
 from lsbg.tooth.reference import line_contact_approach, line_contact_half_width, reduced_modulus
 
-__all__ = ["normal_curvature_across", "relative_curvature", "local_approach", "peak_pressure"]
+__all__ = ["normal_curvature_across", "relative_curvature", "local_approach", "peak_pressure",
+           "HertzLines"]
 
 
 def normal_curvature_across(pair, member, cone_distance, profile_angle, step=1e-6):
@@ -148,6 +149,21 @@ def local_approach(load_per_length, curvature, depth_pinion, depth_gear, young_m
     -------
     numpy.ndarray
         Sum of both members' approach; zero where unloaded.
+
+    Notes
+    -----
+    Per member, delta = q A [2 ln(2 h/b) - nu/(1 - nu)] with A = (1 - nu^2)/(pi E)
+    grows with q while its bracket exceeds 1 (d delta/d q = A (bracket - 1),
+    as b ~ sqrt(q)), peaks where the bracket is 1 (b = 2 h exp(-(1 + nu/(1 - nu))/2),
+    about h: the formula, made for b << h, is out of its range) and then
+    falls to zero. A load per length so high is beyond a gear's, except on a
+    band that the field of contact cuts to a sliver of its length: with an
+    approach that fell as its load rose, such a band turned into a rigid post
+    in the LTCA (kilonewtons on a micrometre of line, q ~ 6e9 N/m, a "Hertz
+    pressure" of 1e5 MPa), and the contact problem lost the monotonicity that
+    makes its solution unique. Past the maximum the bracket is held at 1:
+    delta = q A, continuous and increasing. Below it (b < ~h, every load of a
+    whole band) nothing changes.
     """
     q = np.asarray(load_per_length, float)
     shape = q.shape
@@ -158,9 +174,77 @@ def local_approach(load_per_length, curvature, depth_pinion, depth_gear, young_m
     if np.any(loaded):
         e_star = reduced_modulus(young_modulus, poisson_ratio, young_modulus, poisson_ratio)
         b = line_contact_half_width(q[loaded], 1.0 / curvature[loaded], e_star)
-        # the formula holds for h >> b; a load so high that b nears h is far
-        # beyond any gear's, and the approach is kept from turning negative
-        both = line_contact_approach(np.tile(q[loaded], 2), young_modulus, poisson_ratio,
-                                     np.tile(b, 2), np.concatenate([h1[loaded], h2[loaded]]))
-        out[loaded] = np.maximum(both, 0.0).reshape(2, -1).sum(axis=0)
+        q2 = np.tile(q[loaded], 2)
+        both = line_contact_approach(q2, young_modulus, poisson_ratio, np.tile(b, 2),
+                                     np.concatenate([h1[loaded], h2[loaded]]))
+        # beyond the formula's maximum (its bracket down to 1, b ~ h) it would
+        # fall to zero: held at the bracket's 1 there, see the function's notes
+        floor = q2 * (1 - poisson_ratio**2) / (np.pi * young_modulus)
+        out[loaded] = np.maximum(both, floor).reshape(2, -1).sum(axis=0)
     return out
+
+
+class HertzLines:
+    """Local approach of a fixed set of line contacts and its derivative, for solvers.
+
+    :func:`local_approach` in the form a Newton iteration needs: inputs
+    checked once, the constants of each contact prepared once, and the load
+    the contact problem solves for (the force on a band of length l, not q).
+    Per member k, with A = (1 - nu^2)/(pi E) and b = sqrt(4 q R/(pi E*)),
+
+        delta_k = q A [2 ln(2 h_k/b) - nu/(1 - nu)],
+        d delta_k/d q = delta_k/q - A        (b ~ sqrt(q): d ln b/d q = 1/(2 q)),
+
+    the bracket held at 1 past the maximum as in :func:`local_approach`
+    (delta_k = q A, derivative A there).
+
+    Parameters
+    ----------
+    length : array_like
+        Length l of each band [m], > 0.
+    curvature : array_like
+        Relative curvature 1/R across the contact line [1/m], > 0.
+    depth_pinion, depth_gear : array_like
+        Half thickness of each tooth under the point [m], > 0.
+    young_modulus, poisson_ratio : float
+        E [Pa], nu [-] of both members.
+    """
+
+    def __init__(self, length, curvature, depth_pinion, depth_gear, young_modulus,
+                 poisson_ratio):
+        from lsbg.tooth.reference import _poisson, _positive
+
+        self.length = _positive("length", length)
+        shape = self.length.shape
+        curvature, h1, h2 = (np.broadcast_to(_positive(name, v), shape) for name, v in (
+            ("curvature", curvature), ("depth_pinion", depth_pinion),
+            ("depth_gear", depth_gear)))
+        e = float(_positive("young_modulus", young_modulus))
+        nu = float(_poisson(poisson_ratio))
+        e_star = reduced_modulus(e, nu, e, nu)
+        self._a = (1 - nu**2) / (np.pi * e)
+        # b^2 = (4 R/(pi E*)) q: the part of 2 ln(2 h/b) that does not depend on q
+        width = 4.0 / (curvature * np.pi * e_star)
+        self._constant = np.stack([2 * np.log(2 * h1) - np.log(width) - nu / (1 - nu),
+                                   2 * np.log(2 * h2) - np.log(width) - nu / (1 - nu)])
+
+    def _bracket(self, forces):
+        q = np.asarray(forces, float) / self.length
+        loaded = q > 0
+        bracket = np.maximum(self._constant - np.log(np.where(loaded, q, 1.0)), 1.0)
+        return q, loaded, bracket
+
+    def approach(self, forces):
+        """Both members' local approach under the band forces [N] [m]; 0 where unloaded."""
+        q, loaded, bracket = self._bracket(forces)
+        return np.where(loaded, q * self._a * bracket.sum(axis=0), 0.0)
+
+    def tangent(self, forces):
+        """Derivative of :meth:`approach` by each band's own force [m/N].
+
+        Infinite (logarithmically) as a force tends to 0: where a force is 0
+        it is returned as ``inf``; a solver linearises there otherwise.
+        """
+        _, loaded, bracket = self._bracket(forces)
+        slope = self._a * np.where(bracket > 1.0, bracket - 1.0, 1.0).sum(axis=0)
+        return np.where(loaded, slope / self.length, np.inf)

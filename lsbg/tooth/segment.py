@@ -29,10 +29,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["SegmentMesh", "segment_mesh", "tooth_zero_column"]
+__all__ = ["SegmentMesh", "segment_mesh", "tooth_zero_column", "fillet_corners",
+           "distance_to_polyline"]
 
 #: Sections of the loft across the face width (and beyond it) [-].
 SEGMENT_SECTIONS = 7
+#: Growth of the element size with the distance from tooth 0 [m per m]: the
+#: size doubles one tooth size away, which keeps the tetrahedra well shaped
+#: (faster growth coarsens the rim under the tooth and stiffens it).
+SIZE_GROWTH = 0.5
+#: The fillets' size grows this many times faster [-] (their refinement is a
+#: thin tube along the face width: most of the segment's elements).
+FILLET_GROWTH = 1.5
 
 
 @dataclass(frozen=True)
@@ -131,11 +139,14 @@ def _segment_runs(outline, tooth, teeth, n_top, n_root):
 def _build_segment(pair, member, teeth, fillet_radius, sections):
     """The segment's solid in the current gmsh model [volume tag].
 
-    The loft runs through the segment's teeth and closes each section with the
-    root circle around the rest of the gear (a toothless ring lofts as
-    reliably as the whole gear and costs a few teeth); after the root corners
-    are rounded and the blank is cut, two surfaces through the middle of the
-    outer gaps split the segment off.
+    The loft runs through the segment's own outline, from the middle of the
+    root of the gap before its first tooth to that after its last, and closes
+    each section down into the bore and round the axis there; its root corners
+    are rounded, and one boolean with the blank trims it to the spherical
+    shell and the bore. (Lofting the whole gear, or the segment closed by the
+    root circle, and splitting the segment off with surfaces through the
+    gaps costs two to three times as long in OCC's booleans, for the same
+    solid.)
     """
     import gmsh
 
@@ -151,44 +162,40 @@ def _build_segment(pair, member, teeth, fillet_radius, sections):
     runs, corners = _segment_runs(outline, tooth, teeth, n_top, n_root)
     segment_columns = [c for run in runs for c in run[:-1]] + [runs[-1][-1]]
     corner_columns = [segment_columns[i] for i in corners]
-    z = d.teeth[member - 1]
-    if 4 * teeth > z:
-        # a ring closing a wide segment lofts badly (OCC): loft the whole gear
-        runs, _ = _segment_runs(outline, tooth, z, n_top, n_root)
     axis, forward = pair.axis[member], pair.rotation_axis[member]
-    root, tip = d.root_angle(member), d.tip_angle(member)
+    root = d.root_angle(member)
     bore = (d.pinion_bore if member == 1 else d.gear_bore) / 2
-    columns = [c for run in runs for c in run[:-1]] + [runs[-1][-1]]
-    wires, cut_lines = [], ([], [])
+    # the outline, so the segment, runs in increasing azimuth about the rotation axis
+    polar = np.linspace(root, 0.5 * math.asin(bore / radii[-1]), 5)
+    wires = []
     for k in range(radii.size):
         points = outline.points[k]
-        tags = {c: occ.addPoint(*points[c]) for c in columns}
+        tags = {c: occ.addPoint(*points[c]) for c in segment_columns}
         curves = [occ.addSpline([tags[c] for c in run]) for run in runs]
-        if columns[0] != columns[-1]:
-            # the root circle from the segment's end round to its start, in three arcs
-            first, last = points[columns[0]], points[columns[-1]]
-            sense = np.sign(forward @ axis)
-            span = (sense * float(pair.azimuth(member, first) - pair.azimuth(member, last))) \
-                % (2 * math.pi)
-            centre = occ.addPoint(*(radii[k] * math.cos(root) * axis))
-            previous = tags[columns[-1]]
-            for j in (1, 2):
-                point = occ.addPoint(*rotate(last, forward, sense * span * j / 3))
-                curves.append(occ.addCircleArc(previous, centre, point))
-                previous = point
-            curves.append(occ.addCircleArc(previous, centre, tags[columns[0]]))
-        wires.append(occ.addWire(curves))
         start, end = points[segment_columns[0]], points[segment_columns[-1]]
-        # the cut curves: on the section's sphere, in the axial half-plane of
-        # the segment's ends, from inside the bore to beyond the tip
-        polar = np.linspace(0.5 * math.asin(bore / radii[-1]), tip + 0.1, 9)
-        for lines, point in zip(cut_lines, (start, end)):
+        turn = float(pair.azimuth(member, end) - pair.azimuth(member, start)) % (2 * math.pi)
+        # the sides: from the middle of the outer gaps' roots down into the bore,
+        # in the axial half-planes through them (so they follow the spiral from
+        # section to section); an arc about the axis inside the bore closes the section
+        sides = []
+        for point in (end, start):
             radial = point - (point @ axis) * axis
             radial /= np.linalg.norm(radial)
-            arc = radii[k] * (np.cos(polar)[:, None] * axis + np.sin(polar)[:, None] * radial)
-            lines.append(occ.addWire([occ.addSpline([occ.addPoint(*q) for q in arc])]))
+            sides.append(radii[k] * (np.cos(polar)[:, None] * axis
+                                     + np.sin(polar)[:, None] * radial))
+        down = [tags[segment_columns[-1]]] + [occ.addPoint(*q) for q in sides[0][1:]]
+        up = [occ.addPoint(*q) for q in sides[1][:0:-1]] + [tags[segment_columns[0]]]
+        curves.append(occ.addSpline(down))
+        centre = occ.addPoint(*(radii[k] * math.cos(polar[-1]) * axis))
+        previous = down[-1]
+        for j in (1, 2):
+            point = occ.addPoint(*rotate(sides[0][-1], forward, -turn * j / 3))
+            curves.append(occ.addCircleArc(previous, centre, point))
+            previous = point
+        curves.append(occ.addCircleArc(previous, centre, up[0]))
+        curves.append(occ.addSpline(up))
+        wires.append(occ.addWire(curves))
     body = occ.addThruSections(wires, makeSolid=True, makeRuled=False)
-    cuts = [occ.addThruSections(lines, makeSolid=False, makeRuled=False) for lines in cut_lines]
     occ.synchronize()
     # round the root corners: the loft's edges that run through the corner points
     corner_points = [outline.points[k][corner_columns] for k in (0, -1)]
@@ -205,12 +212,12 @@ def _build_segment(pair, member, teeth, fillet_radius, sections):
     if len(edges) != len(corners):
         raise RuntimeError(f"found {len(edges)} of the segment's {len(corners)} root corners")
     body = occ.fillet([b[1] for b in body], edges, [fillet_radius], removeVolume=True)
+    # the blank: the spherical shell R_i <= |r| <= R_e, bored (from simple
+    # solids first: one boolean with the lofted body, the costly kind)
     outer, inner = occ.addSphere(0, 0, 0, r_out), occ.addSphere(0, 0, 0, r_in)
-    shell, _ = occ.cut([(3, outer)], [(3, inner)])
-    body, _ = occ.intersect(body, shell)
     cylinder = occ.addCylinder(0, 0, 0, *(axis * 2 * r_out), bore)
-    body, _ = occ.cut(body, [(3, cylinder)])
-    pieces, _ = occ.fragment(body, [s for cut in cuts for s in cut])
+    blank, _ = occ.cut([(3, outer)], [(3, inner), (3, cylinder)])
+    pieces, _ = occ.intersect(body, blank)
     occ.synchronize()
     # keep the piece that holds tooth 0
     lo, hi = pair.flank_polar_range(member)
@@ -257,8 +264,178 @@ def _clamped_surfaces(pair, member, volume):
     return clamped
 
 
+def fillet_corners(pair, member, samples=41, margin=0.0):
+    """Corner lines of tooth 0's root fillets: where each flank meets the root cone [m].
+
+    The flank (or its radial continuation below the base cone) meets the root
+    cone along a line at the flank's start azimuth; the fillet of radius rho
+    rounds that corner and lies within about one rho of it.
+
+    Parameters
+    ----------
+    pair : lsbg.geometry.GearPair
+    member : {1, 2}
+    samples : int
+        Points along each line [-].
+    margin : float
+        Extension beyond the toe and the heel [m].
+
+    Returns
+    -------
+    numpy.ndarray, shape (2, samples, 3)
+        Drive side, then coast side.
+    """
+    from lsbg.solids import _sphere_points
+
+    d = pair.design
+    start = pair.flank_polar_range(member)[0]
+    rho = np.linspace(d.inner_cone_distance - margin, d.outer_cone_distance + margin, samples)
+    lines = []
+    for side in ("drive", "coast"):
+        foot, _ = pair.flank(member, side, rho, np.full(samples, start))
+        lines.append(_sphere_points(pair, member, rho, d.root_angle(member),
+                                    pair.azimuth(member, foot)))
+    return np.stack(lines)
+
+
+def distance_to_polyline(points, line):
+    """Distance of points to a polyline [m].
+
+    Parameters
+    ----------
+    points : numpy.ndarray, shape (n, 3)
+    line : numpy.ndarray, shape (s, 3)
+
+    Returns
+    -------
+    numpy.ndarray, shape (n,)
+    """
+    seg = np.diff(line, axis=0)
+    rel = points[:, None, :] - line[None, :-1, :]
+    t = np.clip(np.sum(rel * seg[None], axis=2) / np.sum(seg * seg, axis=1)[None], 0, 1)
+    return np.min(np.linalg.norm(rel - t[..., None] * seg[None], axis=2), axis=1)
+
+
+def _fillet_surfaces(pair, member, volume, fillet_radius):
+    """Surfaces of the segment that round tooth 0's root corners [surface tags].
+
+    A fillet surface lies wholly within about one fillet radius of its
+    corner line; the flanks, the root and the end faces reach far beyond it.
+
+    Returns
+    -------
+    list of list of int
+        The drive side's surfaces, then the coast side's.
+    """
+    import gmsh
+
+    corners = fillet_corners(pair, member, margin=0.2 * pair.design.face_width)
+    found = [[], []]
+    for _, surface in gmsh.model.getBoundary([(3, volume)], oriented=False):
+        lo, hi = gmsh.model.getParametrizationBounds(2, surface)
+        u, v = np.meshgrid(np.linspace(lo[0], hi[0], 5), np.linspace(lo[1], hi[1], 5))
+        points = np.reshape(gmsh.model.getValue(2, surface, np.column_stack(
+            [u.ravel(), v.ravel()]).ravel()), (-1, 3))
+        for side, line in enumerate(corners):
+            if np.all(distance_to_polyline(points, line) < 1.5 * fillet_radius):
+                found[side].append(abs(surface))
+    return found
+
+
+def _tooth_centre(pair, member):
+    """Frame about the axis centred on tooth 0, and its centre's azimuth by cone distance.
+
+    Returns
+    -------
+    across, other : numpy.ndarray, shape (3,)
+        Unit vectors normal to the axis: towards tooth 0's middle at the mean
+        cone distance, and a quarter turn on about the rotation axis.
+    coefficients : numpy.ndarray, shape (4,)
+        Cubic in the cone distance [m] of the azimuth of tooth 0's middle
+        from ``across`` [rad] (a spiral tooth turns across the face width by
+        more than a gear's pitch).
+    """
+    d = pair.design
+    axis = pair.rotation_axis[member]
+    polar = d.pitch_angle(member)
+    rho = np.linspace(d.inner_cone_distance, d.outer_cone_distance, 9)
+    middle = 0.5 * sum(pair.flank(member, side, rho, np.full(rho.size, polar))[0]
+                       for side in ("drive", "coast"))
+    centre = middle[rho.size // 2] - (middle[rho.size // 2] @ axis) * axis
+    across = centre / np.linalg.norm(centre)
+    other = np.cross(axis, across)
+    azimuth = np.unwrap(np.arctan2(middle @ other, middle @ across))
+    return across, other, np.polyfit(rho, azimuth, 3)[::-1]
+
+
+def _size_field(pair, member, volume, sizes, fillet_radius, growth):
+    """Background size field of the segment's mesh [field tag].
+
+    The smallest of
+
+    * ``tooth`` on tooth 0 and the half gaps beside it, growing by ``growth``
+      times the distance from there (sideways round the axis into the
+      neighbouring teeth, and down below the root cone into the rim) up to
+      ``body``: the neighbours are read only at their middle surface, which
+      the rim carries, and the rim and the bore carry smooth, small strains;
+    * ``fillet`` on tooth 0's root fillets, growing at the same rate to
+      ``tooth``: the root stress is read there, and the stress of a quadratic
+      field converges only with elements of a fraction of the fillet's radius.
+    """
+    import gmsh
+
+    d = pair.design
+    field = gmsh.model.mesh.field
+    a = pair.axis[member]
+    across, other, c = _tooth_centre(pair, member)
+    pitch = 2 * math.pi / d.teeth[member - 1]
+    r = "sqrt(x*x+y*y+z*z)"
+
+    def dot(v):
+        return f"(({v[0]:.17g})*x+({v[1]:.17g})*y+({v[2]:.17g})*z)"
+
+    polar = f"acos({dot(a)}/{r})"
+    below = f"max(0, ({d.root_angle(member):.17g} - {polar}) * {r})"
+    centre = f"({c[0]:.17g}+{r}*({c[1]:.17g}+{r}*({c[2]:.17g}+{r}*({c[3]:.17g}))))"
+    # azimuth from tooth 0's middle (gmsh's expressions have no atan2; the
+    # segment lies within a quarter turn of tooth 0, where the component along
+    # ``across`` is positive), and the arc beyond the middle of its gaps
+    azimuth = f"atan({dot(other)} / max({dot(across)}, 1e-9 * {r}))"
+    side = f"max(0, abs({azimuth} - {centre}) - {0.5 * pitch:.17g}) * {r} * sin({polar})"
+    away = f"sqrt(({side})^2 + ({below})^2)"
+    cone = field.add("MathEval")
+    field.setString(cone, "F", f"min({sizes['body']:.17g}, {sizes['tooth']:.17g} + "
+                               f"{growth:.17g} * {away})")
+    fields = [cone]
+    surfaces = _fillet_surfaces(pair, member, volume, fillet_radius)
+    for side, key in enumerate(("fillet", "coast_fillet")):
+        if sizes[key] >= sizes["tooth"]:
+            continue
+        if len(surfaces[side]) != 1:
+            raise RuntimeError(f"found {len(surfaces[side])} root fillet surfaces on tooth 0's "
+                               f"{('drive', 'coast')[side]} side, not 1")
+        distance = field.add("Distance")
+        field.setNumbers(distance, "SurfacesList", surfaces[side])
+        # samples closer than the fillet's elements (its length runs across the face)
+        field.setNumber(distance, "Sampling", int(min(400, 4 * d.face_width / sizes[key])))
+        threshold = field.add("Threshold")
+        field.setNumber(threshold, "InField", distance)
+        field.setNumber(threshold, "SizeMin", sizes[key])
+        field.setNumber(threshold, "SizeMax", sizes["tooth"])
+        field.setNumber(threshold, "DistMin", 0.5 * sizes[key])
+        field.setNumber(threshold, "DistMax", 0.5 * sizes[key]
+                        + (sizes["tooth"] - sizes[key]) / (FILLET_GROWTH * growth))
+        # beyond DistMax the threshold imposes nothing (else its SizeMax would cap the body)
+        field.setNumber(threshold, "StopAtDistMax", 1)
+        fields.append(threshold)
+    smallest = field.add("Min")
+    field.setNumbers(smallest, "FieldsList", fields)
+    return smallest
+
+
 def segment_mesh(pair, member, tooth_size, body_size=None, teeth=3, fillet_radius=0.25,
-                 sections=SEGMENT_SECTIONS):
+                 sections=SEGMENT_SECTIONS, fillet_size=None, coast_fillet_size=None,
+                 growth=None):
     """Mesh a segment of a member with tetrahedra.
 
     Parameters
@@ -266,10 +443,10 @@ def segment_mesh(pair, member, tooth_size, body_size=None, teeth=3, fillet_radiu
     pair : lsbg.geometry.GearPair
     member : {1, 2}
     tooth_size : float
-        Element size on the loaded tooth, its fillets and its neighbours [m].
+        Element size on the loaded tooth (tooth 0) [m].
     body_size : float, optional
-        Element size far from the teeth, reached 3 tooth depths below the
-        root [m]; default 3 x ``tooth_size``.
+        Largest element size, in the rim far from tooth 0 [m]; default
+        3 x ``tooth_size``.
     teeth : int
         Teeth in the segment, odd, at least 3 [-].
     fillet_radius : float
@@ -277,6 +454,15 @@ def segment_mesh(pair, member, tooth_size, body_size=None, teeth=3, fillet_radiu
         edge radius rho_a0 / m_mn [-] (0.2-0.3 in practice).
     sections : int
         Sections of the loft [-].
+    fillet_size : float, optional
+        Element size on tooth 0's drive-side root fillet [m], where the drive
+        flank's loads pull; default ``tooth_size`` (no refinement).
+    coast_fillet_size : float, optional
+        Element size on tooth 0's coast-side root fillet [m], in compression
+        under those loads; default ``fillet_size``.
+    growth : float, optional
+        Growth of the element size with the distance from tooth 0 and its
+        fillets [-]; default ``SIZE_GROWTH``.
 
     Returns
     -------
@@ -293,34 +479,33 @@ def segment_mesh(pair, member, tooth_size, body_size=None, teeth=3, fillet_radiu
     if isinstance(teeth, bool) or int(teeth) != teeth or teeth < 3 or teeth % 2 == 0:
         raise ValueError(f"teeth = {teeth!r}: the segment needs an odd number >= 3 of teeth")
     body_size = 3.0 * tooth_size if body_size is None else body_size
+    fillet_size = tooth_size if fillet_size is None else fillet_size
+    coast_fillet_size = fillet_size if coast_fillet_size is None else coast_fillet_size
+    growth = SIZE_GROWTH if growth is None else growth
     for name, value in (("tooth_size", tooth_size), ("body_size", body_size),
-                        ("fillet_radius", fillet_radius)):
+                        ("fillet_radius", fillet_radius), ("fillet_size", fillet_size),
+                        ("coast_fillet_size", coast_fillet_size), ("growth", growth)):
         if not (math.isfinite(value) and value > 0):
             raise ValueError(f"{name} = {value!r}: must be a positive number")
+    sizes = {"tooth": tooth_size, "body": max(body_size, tooth_size),
+             "fillet": min(fillet_size, tooth_size),
+             "coast_fillet": min(coast_fillet_size, tooth_size)}
     gmsh, started = _gmsh()
     try:
         gmsh.model.add(f"lsbg_segment_{member}")
         radius = fillet_radius * pair.design.mean_module * math.cos(pair.design.spiral_angle)
         volume = _build_segment(pair, member, int(teeth), radius, sections)
         clamped = _clamped_surfaces(pair, member, volume)
-        d = pair.design
-        # size: fine within a tooth depth of the root cone, coarse below it
-        field = gmsh.model.mesh.field
-        depth = d.addendum + d.dedendum
-        root_cone = field.add("MathEval")
-        a = pair.axis[member]
-        root = d.root_angle(member)
-        # distance below the root cone, by the polar angle from the axis
-        polar = f"acos((({a[0]:.17g})*x+({a[1]:.17g})*y+({a[2]:.17g})*z)/sqrt(x*x+y*y+z*z))"
-        below = f"max(0, ({root:.17g} - {polar}) * sqrt(x*x+y*y+z*z))"
-        growth = f"min(1, {below} / {3 * depth:.17g})"
-        field.setString(root_cone, "F", f"{tooth_size:.17g} + ({body_size - tooth_size:.17g}) * {growth}")
-        field.setAsBackgroundMesh(root_cone)
+        gmsh.model.mesh.field.setAsBackgroundMesh(
+            _size_field(pair, member, volume, sizes, radius, growth))
         gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
         gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
         gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
         gmsh.option.setNumber("Mesh.Algorithm3D", 10)  # HXT: fast, deterministic
         gmsh.option.setNumber("General.NumThreads", 1)
+        # the curves' element sizes by integrating the size field to 1e-5, not
+        # 1e-9: the same meshes, a second less per member
+        gmsh.option.setNumber("Mesh.LcIntegrationPrecision", 1e-5)
         gmsh.model.mesh.generate(3)
         tags, coords, _ = gmsh.model.mesh.getNodes()
         index = np.zeros(int(tags.max()) + 1, dtype=np.int64)
