@@ -27,6 +27,7 @@ report: "workflow/report/workflow.rst"
 
 include: "workflow/rules/common.smk"
 include: "workflow/rules/points.smk"
+include: "workflow/rules/tooth.smk"
 include: "workflow/rules/contact_state.smk"
 include: "workflow/rules/simulate.smk"
 include: "workflow/rules/aggregate.smk"

@@ -37,7 +37,9 @@ configuration that returns its problem lines):
    first; :func:`lsbg.tca.checks.contact_state_problems`): the relief within
    the backlash, the misalignment and the V-H map's corners neither losing
    contact nor closing the backlash; kept (:func:`contact_state_cache_dir`):
-   its quick TCAs and numba's start cost about 1.2 s once per configuration.
+   its quick TCAs and numba's start cost about 1.2 s once per configuration;
+9. the tooth section, the compliance case and each FE compliance's estimated
+   cost (:func:`lsbg.tooth.config.tooth_problems`).
 
 A YAML syntax error in a ``--configfile`` never reaches this module:
 Snakemake 9 reads that file before the Snakefile and stops with
@@ -63,8 +65,9 @@ import numpy as np
 from lsbg.design import CONFIG_KEYS, DesignError, GearPairDesign
 from lsbg.files import number_label
 from lsbg.resources import (
-    engines_run, geometry_cost, memory_limit_gb, run_cost_problems, run_memory_gb)
-from lsbg.workflow import design_points, map_steps, speed_keywords, speed_labels
+    engines_run, geometry_cost, memory_limit_gb, run_cost_problems, run_memory_gb,
+    speed_sweep_problems)
+from lsbg.workflow import design_points, map_steps
 
 __all__ = [
     "key_path", "check_config", "nonfinite_problems", "schema_problems", "fill_defaults",
@@ -107,7 +110,10 @@ def check_config(config, schema):
     pairs = {}  # the design points that pass the physics and the resource guard
     problems = (_name_problems(config) + _settings_problems(config) + run_cost_problems(config)
                 + _statistics_problems(config) + _design_problems(config, pairs))
-    problems += _contact_state_problems(config, pairs)
+    from lsbg.tooth.config import tooth_problems
+
+    problems += _contact_state_problems(config, pairs) + tooth_problems(
+        config, pairs, *memory_limit_gb(config))
     return list(dict.fromkeys(problems))
 
 
@@ -265,7 +271,7 @@ def _settings_problems(config):
                 problems.append(f"sensitivity.{key}[{k}] = {factor!r}: gives "
                                 f"{_settings_message(error, {**config, 'contact': scaled})}")
     if config.get("speed_sweep"):
-        problems += _speed_sweep_problems(config)
+        problems += speed_sweep_problems(config)
     return problems
 
 
@@ -294,56 +300,6 @@ def _settings_message(error, config):
             f"{config['contact'].get(CONTACT_CONFIG_KEYS[m.group(1)])!r}"
             if m.group(1) in CONTACT_CONFIG_KEYS else m.group(0)), rule)
     return f"{match.group(1)}: {rule}"
-
-
-def _speed_sweep_problems(config):
-    """The speed sweep's settings, checked as ``lsbg speed-run`` will use them."""
-    from lsbg.dynamics import SimulationSettings
-    from lsbg.speed import speed_settings
-
-    speed = config["speed_sweep"]
-    grid = speed["pinion_speeds_deg_s"]
-    problems = []
-    angle = speed.get("spiral_angle_deg", config["paper_spiral_angle_deg"])
-    if number_label(angle) != number_label(config["paper_spiral_angle_deg"]):
-        swept = {number_label(a) for a in config["sweep"]["spiral_angles_deg"]}
-        missing = [t for t in speed["traces"]
-                   if t not in config["sweep"]["traces"] or number_label(angle) not in swept]
-        if missing:
-            problems.append(f"speed_sweep.spiral_angle_deg = {angle!r}: no design point of "
-                            f"{', '.join(missing)} there (use paper_spiral_angle_deg or an "
-                            f"angle of sweep.spiral_angles_deg)")
-    try:
-        speeds, labels = speed_labels(grid)
-    except ValueError as error:
-        return [f"speed_sweep.pinion_speeds_deg_s = {grid!r}: {error}"]
-    if len(set(labels)) < len(labels):
-        problems.append(f"speed_sweep.pinion_speeds_deg_s = {grid!r}: speeds too close to "
-                        f"tell apart in file names")
-    try:
-        base = SimulationSettings.from_config(config["simulation"], engine=speed["engine"])
-    except ValueError:
-        return problems  # the simulation settings themselves: named by _settings_problems
-    teeth = config["design"].get("pinion_teeth", GearPairDesign.pinion_teeth)
-    limit, source = memory_limit_gb(config)
-    for value in (speeds[0], speeds[-1]):
-        at = (f"speed_sweep.pinion_speeds_deg_s = {grid!r}: the run at "
-              f"{math.degrees(value):.6g} deg/s")
-        try:
-            run = speed_settings(base, value, teeth, **speed_keywords(speed))
-        except ValueError as error:
-            # a setting lsbg.speed derives for the run ("full_rate = ...: why")
-            why = str(error).split(": ", 1)[-1]
-            problems.append(f"{at} (speed_sweep.engine = {speed['engine']!r}): {why}")
-            continue
-        instants, need = run_memory_gb(run.samples, run.duration, run.full_rate)
-        if need > limit:
-            problems.append(f"{at} records {instants:.3g} instants over {run.duration:.3g} s "
-                            f"(speed_sweep.mesh_cycles = {speed['mesh_cycles']!r}, "
-                            f"min_window_s = {speed['min_window_s']!r}, samples_per_mesh = "
-                            f"{speed['samples_per_mesh']!r}), about {need:.3g} GB, more than "
-                            f"{source} = {limit:.3g} GB")
-    return problems
 
 
 # --------------------------------------------------------------- statistics

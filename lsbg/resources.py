@@ -4,7 +4,8 @@ Part of the configuration check (:mod:`lsbg.config_check`): a design point's
 geometry memory and time from its mesh size (:func:`geometry_cost`), a run's
 record memory (:func:`run_memory_gb`), and the line model's and PyBullet's
 time against the runtime the simulation rules request
-(:func:`run_cost_problems`). The coefficients were measured on a 2-core
+(:func:`run_cost_problems`), and the speed sweep's runs
+(:func:`speed_sweep_problems`). The coefficients were measured on a 2-core
 machine (the calibration is in each constant's comment); they overestimate
 rather than under.
 """
@@ -14,14 +15,16 @@ from __future__ import annotations
 import math
 import os
 
-from lsbg.workflow import CONTACT_MODELS, simulation_runtime
+from lsbg.design import GearPairDesign
+from lsbg.files import number_label
+from lsbg.workflow import CONTACT_MODELS, simulation_runtime, speed_keywords, speed_labels
 
 __all__ = [
     "RUN_MEMORY_BASE_GB", "RUN_BYTES_PER_INSTANT", "LINE_SECONDS_PER_SLICE",
     "PYBULLET_SECONDS_PER_STEP", "run_memory_gb", "run_cost_problems", "engines_run",
     "GEOMETRY_MEMORY_BASE_GB", "GEOMETRY_BYTES_PER_VERTEX", "GEOMETRY_SECONDS_BASE",
     "GEOMETRY_SECONDS_PER_VERTEX", "GEOMETRY_TIME_EXPONENT", "geometry_cost",
-    "machine_memory_gb", "memory_limit_gb"
+    "machine_memory_gb", "memory_limit_gb", "speed_sweep_problems"
 ]
 
 
@@ -222,3 +225,54 @@ def memory_limit_gb(config):
     if machine is None:
         return math.inf, "limits.memory_gb (unset)"
     return machine, "limits.memory_gb (default: this machine's memory)"
+
+
+def speed_sweep_problems(config):
+    """The speed sweep's settings, checked as ``lsbg speed-run`` will use them: one line
+    per problem, starting with the ``speed_sweep`` key and its value."""
+    from lsbg.dynamics import SimulationSettings
+    from lsbg.speed import speed_settings
+
+    speed = config["speed_sweep"]
+    grid = speed["pinion_speeds_deg_s"]
+    problems = []
+    angle = speed.get("spiral_angle_deg", config["paper_spiral_angle_deg"])
+    if number_label(angle) != number_label(config["paper_spiral_angle_deg"]):
+        swept = {number_label(a) for a in config["sweep"]["spiral_angles_deg"]}
+        missing = [t for t in speed["traces"]
+                   if t not in config["sweep"]["traces"] or number_label(angle) not in swept]
+        if missing:
+            problems.append(f"speed_sweep.spiral_angle_deg = {angle!r}: no design point of "
+                            f"{', '.join(missing)} there (use paper_spiral_angle_deg or an "
+                            f"angle of sweep.spiral_angles_deg)")
+    try:
+        speeds, labels = speed_labels(grid)
+    except ValueError as error:
+        return [f"speed_sweep.pinion_speeds_deg_s = {grid!r}: {error}"]
+    if len(set(labels)) < len(labels):
+        problems.append(f"speed_sweep.pinion_speeds_deg_s = {grid!r}: speeds too close to "
+                        f"tell apart in file names")
+    try:
+        base = SimulationSettings.from_config(config["simulation"], engine=speed["engine"])
+    except ValueError:
+        return problems  # the simulation settings themselves: named by _settings_problems
+    teeth = config["design"].get("pinion_teeth", GearPairDesign.pinion_teeth)
+    limit, source = memory_limit_gb(config)
+    for value in (speeds[0], speeds[-1]):
+        at = (f"speed_sweep.pinion_speeds_deg_s = {grid!r}: the run at "
+              f"{math.degrees(value):.6g} deg/s")
+        try:
+            run = speed_settings(base, value, teeth, **speed_keywords(speed))
+        except ValueError as error:
+            # a setting lsbg.speed derives for the run ("full_rate = ...: why")
+            why = str(error).split(": ", 1)[-1]
+            problems.append(f"{at} (speed_sweep.engine = {speed['engine']!r}): {why}")
+            continue
+        instants, need = run_memory_gb(run.samples, run.duration, run.full_rate)
+        if need > limit:
+            problems.append(f"{at} records {instants:.3g} instants over {run.duration:.3g} s "
+                            f"(speed_sweep.mesh_cycles = {speed['mesh_cycles']!r}, "
+                            f"min_window_s = {speed['min_window_s']!r}, samples_per_mesh = "
+                            f"{speed['samples_per_mesh']!r}), about {need:.3g} GB, more than "
+                            f"{source} = {limit:.3g} GB")
+    return problems

@@ -37,7 +37,8 @@ REPORT_NAMES = ("paper", "sweep", "verification")
 FLANK_SECTIONS = ("flank_modification", "misalignment")
 CONTACT_STATE_SECTIONS = (*FLANK_SECTIONS, "tca", "misalignment_map")
 #: Sections of the configuration that lsbg's commands read from results/config.yaml.
-STUDY_SECTIONS = ("design", "simulation", "contact", *CONTACT_STATE_SECTIONS, "statistics")
+STUDY_SECTIONS = ("design", "simulation", "contact", *CONTACT_STATE_SECTIONS, "statistics",
+                  "tooth")
 
 #: File name patterns of every stage (Snakemake wildcards in braces).
 FILES = {
@@ -53,6 +54,8 @@ FILES = {
     "speed_curve": "results/speed_curve.nc",
     "tca": "results/tca/{trace}_beta{spiral}.nc",
     "vh_map": "results/vh/{trace}_beta{spiral}.nc",
+    "compliance": "results/tooth/{trace}_beta{spiral}_compliance.nc",
+    "fe_ltca": "results/tooth/{trace}_beta{spiral}_ltca.nc",
     "report": "reports/{name}.html",
 }
 
@@ -63,7 +66,7 @@ ENGINE_ONLY_KEYS = {"time_step_s": ("pybullet",), "method": ("scipy",),
 MODEL_ONLY_KEYS = {
     "point": ("stiffness_N_per_mm1_5", "exponent", "damping_N_s_per_mm", "penetration_depth_mm"),
     "line": ("line_stiffness_N_per_mm_um", "mesh_damping_ratio", "slices",
-             "line_approach_limit_mm"),
+             "line_approach_limit_mm", "compliance"),
 }
 
 
@@ -174,7 +177,8 @@ def simulation_params(config, engine, model):
     ``flank_modification`` and ``misalignment`` sections (every line-model
     command applies them; the point model keeps the conjugate flanks), so
     that every rule whose trigger holds them (the loaded TCA's too) reruns on
-    a change of the contact state.
+    a change of the contact state; under ``compliance: fe`` also the ``tooth``
+    section (the FE compliance it runs on).
     """
     simulation = {k: v for k, v in config["simulation"].items()
                   if engine in ENGINE_ONLY_KEYS.get(k, (engine,))}
@@ -182,6 +186,8 @@ def simulation_params(config, engine, model):
     contact = {k: v for k, v in config["contact"].items() if k not in others and k != "model"}
     if model == "line":
         contact.update({section: config.get(section, {}) for section in FLANK_SECTIONS})
+        if contact.get("compliance") == "fe":
+            contact["tooth"] = config.get("tooth", {})
     return canonical({"simulation": simulation, "contact": contact})
 
 
@@ -222,10 +228,12 @@ def simulation_runtime(config, runs=1):
 #: contact_state (``lsbg misalignment-map`` at the paper's point, 9 x 9 cells) about
 #: 6 s; sweep_contact_state (the other ten angles of a trace, 5 x 5 cells each) about
 #: 15 s; they fill the cores before the aggregates and the reports that read them.
-JOB_SECONDS = {"sweep_points": 15, "sweep_contact_state": 15, "convergence_point": 14,
-               "report_paper": 12, "report_verification": 8, "report_sweep": 8,
-               "convergence_line": 6, "contact_state": 6, "sensitivity": 4, "summary": 3,
-               "combine": 2}
+#: tooth_compliance (the FE compliance of the paper's point, both members) about 30 s:
+#: it starts first, as soon as its geometry is there.
+JOB_SECONDS = {"tooth_compliance": 30, "sweep_points": 15, "sweep_contact_state": 15,
+               "convergence_point": 14, "report_paper": 12, "report_verification": 8,
+               "report_sweep": 8, "convergence_line": 6, "contact_state": 6, "sensitivity": 4,
+               "fe_ltca": 4, "summary": 3, "combine": 2}
 #: Short jobs that every report and aggregate waits for: before all others, in this order.
 GATE_RULES = ("paper_geometry", "paper_ltca")
 
@@ -356,6 +364,38 @@ class Study:
     def paper_geometry(self):
         return [self.geometry(t, self.paper_spiral) for t in PAPER_TRACES]
 
+    # ------------------------------------------------ the tooth's compliance
+    @property
+    def own_compliance(self):
+        """True when every line-model analysis and run takes the tooth's FE compliance
+        (``contact.compliance: fe``)."""
+        return self.config["contact"].get("compliance", "uniform") == "fe"
+
+    def compliance(self, trace, spiral):
+        return _format(FILES["compliance"], trace=trace, spiral=spiral)
+
+    def fe_ltca(self, trace, spiral):
+        """The loaded TCA with the FE compliance at a design point: the design point's
+        loaded TCA itself under ``compliance: fe``, else the paper point's of
+        results/tooth/."""
+        if self.own_compliance:
+            return self.mesh(trace, spiral)
+        return _format(FILES["fe_ltca"], trace=trace, spiral=spiral)
+
+    @property
+    def tooth_files(self):
+        """FE compliances (and, under ``compliance: uniform``, the FE loaded TCAs) the
+        study makes: the paper's point of each trace; every design point under ``fe``."""
+        if self.own_compliance:
+            return [self.compliance(t, s) for t, s in self.points]
+        return [f(t, self.paper_spiral) for t in PAPER_TRACES
+                for f in (self.compliance, self.fe_ltca)]
+
+    @property
+    def needs_fe_ltca(self):
+        """Whether a paper-point line-model run reads the FE loaded TCA (``--fe-ltca``)."""
+        return self.own_compliance or "fe" in self.config["sensitivity"].get("compliance", [])
+
     # -------------------------------------------------------- contact state
     @property
     def points(self):
@@ -465,7 +505,7 @@ class Study:
         """What ``rule all`` asks for."""
         extra = [FILES["speed_curve"]] if self.speed_sweep else []
         return [*self.reports.values(), FILES["sweep"], FILES["summary"], *self.tca_files,
-                *self.vh_maps, *extra]
+                *self.vh_maps, *self.tooth_files, *extra]
 
     # ------------------------------------------------------------ wildcards
     @property

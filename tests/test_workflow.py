@@ -119,7 +119,8 @@ def test_default_and_test_configs_are_valid_and_plan_the_study(tmp_path):
     # The settings lsbg reads, as validated (schema defaults filled in).
     written = yaml.safe_load((tmp_path / "results" / "config.yaml").read_text(encoding="utf-8"))
     assert set(written) == {"design", "simulation", "contact", "flank_modification",
-                            "misalignment", "tca", "misalignment_map", "statistics"}
+                            "misalignment", "tca", "misalignment_map", "statistics",
+                            "tooth"}
     assert written["simulation"]["duration_s"] == config["simulation"]["duration_s"]
     assert written["flank_modification"]["lengthwise_crowning_um"] == 25
     assert written["misalignment_map"]["sweep_steps"] == config["misalignment_map"]["sweep_steps"]
@@ -265,8 +266,8 @@ def test_study_writes_the_summary_table(study):
     assert list(table.columns) == list(SUMMARY_COLUMNS)
     runs = table[~table.engine.isin(["ltca", "tca"])].groupby("run").size()
     # two traces x (point, line) x compiled, the point model on pybullet, the line model
-    # on scipy, two sensitivity runs
-    assert len(runs) == 10
+    # on scipy, two sensitivity cases (damping x2, the tooth's FE compliance) x two traces
+    assert len(runs) == 12
     speed = table[table.quantity == "gear_speed"]
     assert (abs(speed["mean"] - 1873.703) / 1873.703 < 0.02).all()
     mesh = table[table.engine == "ltca"]
@@ -347,9 +348,12 @@ def test_a_changed_setting_reruns_only_the_runs_that_use_it(study, tmp_path):
                      f"runs/{t}_beta35_point_compiled.nc", f"runs/{t}_beta35_point_pybullet.nc")}
     extra = write_yaml(tmp_path / "line.yaml", {"contact": {"mesh_damping_ratio": 0.07}})
     jobs, output = dry_run(study, extra)
-    _line_model = (["paper_ltca"] * 2 + ["sensitivity"] * 2 + ["convergence_line"] * 2
-                   + ["contact_state"] * 2 + ["combine", "summary", "report_paper",
-                                              "report_sweep", "report_verification", "all"])
+    # (the FE loaded TCA too: its bands and flanks are the line model's; not the FE
+    # compliance, which depends on the design and the tooth section only)
+    _line_model = (["paper_ltca"] * 2 + ["fe_ltca"] * 2 + ["sensitivity"] * 2
+                   + ["convergence_line"] * 2 + ["contact_state"] * 2
+                   + ["combine", "summary", "report_paper", "report_sweep",
+                      "report_verification", "all"])
     assert rules_of(jobs) == sorted(_line_model), output
     # The flanks: every line-model job and the contact state, not the point model.
     extra = write_yaml(tmp_path / "flanks.yaml", {"flank_modification": {"bias_um": 2}})
@@ -372,7 +376,8 @@ _AGGREGATES = ["combine", "summary", "report_paper", "report_sweep", "report_ver
                "all"]
 #: Every job of the test study.
 _EVERYTHING = (["paper_geometry"] * 2 + ["paper_ltca"] * 2 + ["sensitivity"] * 2
-               + _CONVERGENCE + ["contact_state"] * 2 + _AGGREGATES)
+               + _CONVERGENCE + ["contact_state"] * 2 + ["tooth_compliance"] * 2
+               + ["fe_ltca"] * 2 + _AGGREGATES)
 CODE_CHANGES = {
     "lsbg/verification.py": _CONVERGENCE + _AGGREGATES,
     "lsbg/stats/samples.py": _AGGREGATES,
@@ -382,7 +387,8 @@ CODE_CHANGES = {
     "lsbg/tca/vh_map.py": _EVERYTHING,
     "lsbg/sensitivity.py": ["sensitivity"] * 2 + [r for r in _AGGREGATES if r != "combine"],
     # every run at the paper's point reads its geometry; the convergence tables write
-    # every engine's run there
+    # every engine's run there; the FE segment is lofted through the STEP solid's
+    # sections (lsbg.step, lsbg.solids)
     "lsbg/solids.py": _EVERYTHING,
     "workflow/notebooks/sweep.ipynb": ["report_sweep", "all"],
 }

@@ -71,7 +71,27 @@ def test_every_run_and_file_of_the_default_study_is_planned_once(default):
         "--default-run", "compiled=results/runs/circular_beta35_point_compiled.nc",
         "--default-run", "pybullet=results/runs/circular_beta35_point_pybullet.nc"]
     assert study.targets == [*study.reports.values(), plan.FILES["sweep"],
-                             plan.FILES["summary"], *study.tca_files, *study.vh_maps]
+                             plan.FILES["summary"], *study.tca_files, *study.vh_maps,
+                             *study.tooth_files]
+
+
+def test_the_fe_compliance_is_planned_at_the_paper_point_or_everywhere(default):
+    """compliance uniform: the FE compliance and loaded TCA at the paper's point, both
+    traces; fe: every design point's compliance, and its loaded TCA is the design point's."""
+    study = plan.Study(default)
+    assert not study.own_compliance and study.needs_fe_ltca
+    assert study.tooth_files == [f"results/tooth/{t}_beta35_{what}.nc"
+                                 for t in plan.PAPER_TRACES for what in ("compliance", "ltca")]
+    assert study.fe_ltca("circular", "35") == "results/tooth/circular_beta35_ltca.nc"
+    fe = plan.Study(load(contact={**default["contact"], "compliance": "fe"},
+                         sensitivity={**default["sensitivity"], "compliance": ["uniform"]}))
+    assert fe.own_compliance and fe.needs_fe_ltca
+    assert fe.tooth_files == [fe.compliance(t, s) for t, s in fe.points]
+    assert len(fe.tooth_files) == len(study.points)
+    assert fe.fe_ltca("logarithmic", "22.5") == "results/mesh/logarithmic_beta22.5.nc"
+    # the line model's runs then depend on the tooth section too
+    assert "tooth" in plan.simulation_params(fe.config, "compiled", "line")["contact"]
+    assert "tooth" not in plan.simulation_params(fe.config, "compiled", "point")["contact"]
 
 
 def test_contact_state_files_cover_every_design_point(default):

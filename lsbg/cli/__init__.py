@@ -5,7 +5,8 @@ One module per group of subcommands, in the order the data flows:
 (``simulate``, ``sensitivity``, ``convergence``), :mod:`lsbg.cli.speed`
 (``mesh-mode``, ``speed-run``, ``speed-curve``), :mod:`lsbg.cli.analysis`
 (``ltca``, ``combine``, ``summary``, ``report``), :mod:`lsbg.cli.contact_state`
-(``tca``, ``misalignment-map``); the options they share are in
+(``tca``, ``misalignment-map``), :mod:`lsbg.cli.tooth` (``compliance``, and the
+options of the tooth's own compliance); the options they share are in
 :mod:`lsbg.cli.options`.
 
 Every subcommand is a function ``add_<name>_parser(subparsers)`` that adds its
@@ -62,6 +63,7 @@ PARSERS = [
     "lsbg.cli.simulate:add_sensitivity_parser",
     "lsbg.cli.simulate:add_convergence_parser",
     "lsbg.cli.analysis:add_ltca_parser",
+    "lsbg.cli.tooth:add_compliance_parser",
     "lsbg.cli.contact_state:add_tca_parser",
     "lsbg.cli.contact_state:add_misalignment_map_parser",
     "lsbg.cli.speed:add_mesh_mode_parser",

@@ -13,6 +13,8 @@ __all__ = ["add_ltca_parser", "add_combine_parser", "add_summary_parser", "add_r
 # ------------------------------------------------------------------- ltca
 def add_ltca_parser(subparsers):
     """``lsbg ltca``: quasi-static loaded tooth contact analysis of the line model."""
+    from lsbg.cli.tooth import add_tooth_options
+
     parser = subparsers.add_parser(
         "ltca", help="loaded tooth contact analysis (line model) of one design point",
         description="Solve the static equilibrium of the line contact model under the load at "
@@ -21,15 +23,22 @@ def add_ltca_parser(subparsers):
                     "pattern to --out (NetCDF, CF-1.11). The line model's stiffness and slices "
                     "come from the 'contact' section of --config; the flank modification and "
                     "the assembly displacements from its 'flank_modification' and "
-                    "'misalignment' sections (without them: the conjugate, aligned pair).")
+                    "'misalignment' sections (without them: the conjugate, aligned pair). Under "
+                    "contact.compliance: fe (or --compliance fe) the teeth's own compliance "
+                    "replaces the uniform bed: the contact problem is solved with the FE "
+                    "influence coefficients of --compliance-file and Hertz's local contact, and "
+                    "--out gains the contact pressure, the root stresses and the slice "
+                    "stiffness that line-model runs take (--fe-ltca).")
     parser.add_argument("--geometry", required=True, metavar="DIR",
                         help="geometry directory written by 'lsbg geometry'")
     add_contact_options(parser, model=False)
     parser.add_argument("--load-torque", type=float, metavar="N_M",
                         help="torque on the gear [N m] (default: simulation.load_torque_N_m of "
                              "--config, else the paper's 1964.99)")
-    parser.add_argument("--phases", type=int, default=256, metavar="N",
-                        help="mesh positions over one base pitch (default 256)")
+    parser.add_argument("--phases", type=int, metavar="N",
+                        help="mesh positions over one base pitch (default 256; with the FE "
+                             "compliance tooth.ltca_positions of --config, else 200)")
+    add_tooth_options(parser)
     parser.add_argument("--out", required=True, metavar="MESH.nc", help="output NetCDF file")
     parser.set_defaults(handler=run_ltca, contact_model="line")
 
@@ -51,11 +60,28 @@ def run_ltca(args):
     params = contact_from_args(args)
     flanks = flanks_from_args(args)
     try:
-        ds = ltca_for_geometry(args.geometry, load, params, phases=args.phases, flanks=flanks)
+        if params.compliance == "fe":
+            from lsbg.cli.tooth import compliance_from_args
+            from lsbg.files import read_design
+            from lsbg.geometry import GearPair
+            from lsbg.tooth.analysis import fe_ltca_for_geometry
+
+            pair = GearPair(read_design(args.geometry))
+            compliance, positions = compliance_from_args(args, pair, args.compliance_file)
+            ds = fe_ltca_for_geometry(args.geometry, load, params, compliance,
+                                      phases=args.phases or positions, flanks=flanks)
+        else:
+            ds = ltca_for_geometry(args.geometry, load, params, phases=args.phases or 256,
+                                   flanks=flanks)
     except ValueError as err:
         raise CommandError(str(err)) from None
     ds.attrs["history"] += f"; {' '.join(['lsbg', *sys.argv[1:]])}"
     write_dataset(ds, args.out)
+    if params.compliance == "fe":
+        print(f"lsbg ltca: FE compliance, max contact pressure "
+              f"{ds.attrs['max_contact_pressure_MPa']:.4g} MPa, max root stress pinion / gear "
+              f"{ds.attrs['max_root_stress_pinion_MPa']:.4g} / "
+              f"{ds.attrs['max_root_stress_gear_MPa']:.4g} MPa")
     print(f"lsbg ltca: {ds.attrs['phases']} phases, transmission error "
           f"{ds.attrs['transmission_error_peak_to_peak_urad']:.4g} urad peak to peak, mesh "
           f"stiffness {ds.attrs['mesh_stiffness_per_face_width_N_per_mm_um']:.4g} N/(mm um) "

@@ -173,7 +173,9 @@ def run_misalignment_map(args):
     if len(set(names)) < len(names):
         raise CommandError("--out, --tca-out: several design points would write the same file; "
                            "put {spiral} in every template")
-    params = contact_from_args(args)
+    # The map's loaded TCAs stay on the uniform bed: the tooth's slice stiffness is
+    # the secant of one assembly (docs/model.md, "The tooth itself").
+    params = contact_from_args(args).replace(compliance="uniform")
     flanks = flanks_from_args(args)
     pairs = [_design_pair(point["geometry"]) for point in points]
     for point in points:

@@ -89,7 +89,15 @@ def add_points_parser(subparsers):
     parser.add_argument("--step", action="store_true",
                         help="also write the exact solids as STEP into each geometry directory "
                              "(as 'lsbg geometry' does; a few seconds per design point)")
+    parser.add_argument("--compliance-out", metavar="COMPLIANCE.nc",
+                        help="under contact.compliance: fe, the FE compliance template (as "
+                             "'lsbg compliance --out'; kept where it holds the same inputs): "
+                             "the loaded TCA and the line-model runs then use the tooth's own "
+                             "compliance")
     add_flank_options(parser)
+    from lsbg.cli.tooth import add_tooth_options
+
+    add_tooth_options(parser, compliance_file=False)
     parser.set_defaults(handler=run_points)
 
 
@@ -104,8 +112,11 @@ def run_points(args):
     from lsbg.export import write_geometry
     from lsbg.files import fill_template, number_label
     from lsbg.geometry import GearPair
+    from lsbg.contact.slices import SliceStiffness
     from lsbg.ltca import ltca_for_geometry
     from lsbg.results import write_dataset
+    from lsbg.tooth.analysis import fe_ltca_for_geometry
+    from lsbg.tooth.config import compliance_for_design
 
     base = design_from_args(args)
     angles = args.spiral_angles or [math.degrees(base.spiral_angle)]
@@ -129,6 +140,8 @@ def run_points(args):
         files = [{"geometry": fill_template(args.geometry_out, "--geometry-out", spiral=label),
                   "mesh": (fill_template(args.mesh_out, "--mesh-out", spiral=label)
                            if args.mesh_out else None),
+                  "compliance": (fill_template(args.compliance_out, "--compliance-out",
+                                               spiral=label) if args.compliance_out else None),
                   **{model: fill_template(path, "--run", spiral=label)
                      for model, path in runs.items()}}
                  for label in map(number_label, angles)]
@@ -138,8 +151,18 @@ def run_points(args):
     if len(angles) > 1 and len(set(names)) < len(names):
         raise CommandError("--geometry-out, --mesh-out, --run: several design points would "
                            "write the same file; put {spiral} in every template")
+    own = params["line"].compliance == "fe"
+    if own:
+        # the tooth's compliance: every setting checked before the first file
+        from lsbg.cli.tooth import tooth_from_args
+
+        material, tooth_mesh, positions = tooth_from_args(args)
+        if not (args.compliance_out and args.mesh_out):
+            raise CommandError("contact.compliance = 'fe': lsbg points needs --compliance-out "
+                               "and --mesh-out (the FE compliance and the loaded TCA whose "
+                               "slice stiffness the line-model runs take)")
     options = {"geometry": "--geometry-out", "mesh": "--mesh-out", "point": "--run",
-               "line": "--run"}
+               "line": "--run", "compliance": "--compliance-out"}
     for point in files:
         for key, path in point.items():
             if path:
@@ -148,10 +171,19 @@ def run_points(args):
     for design, point in zip(designs, files):
         write_geometry(design, point["geometry"], step=args.step,
                        relief=_step_relief(args, design) if args.step else None)
+        slices = None
         if point["mesh"]:
             try:
-                mesh = ltca_for_geometry(point["geometry"], settings.load_torque, params["line"],
-                                         phases=args.phases, flanks=flanks)
+                if own:
+                    compliance, _ = compliance_for_design(GearPair(design), material,
+                                                          tooth_mesh, point["compliance"])
+                    mesh = fe_ltca_for_geometry(point["geometry"], settings.load_torque,
+                                                params["line"], compliance, phases=positions,
+                                                flanks=flanks)
+                    slices = SliceStiffness.from_dataset(mesh)
+                else:
+                    mesh = ltca_for_geometry(point["geometry"], settings.load_torque,
+                                             params["line"], phases=args.phases, flanks=flanks)
             except ValueError as err:
                 raise CommandError(str(err)) from None
             mesh.attrs["history"] += f"; {command}"
@@ -159,7 +191,7 @@ def run_points(args):
         for model in runs:
             try:
                 ds = simulate(point["geometry"], settings, params[model], command=command,
-                              flanks=flanks)
+                              flanks=flanks, slice_stiffness=slices if model == "line" else None)
             except SimulationError as err:
                 print(f"lsbg points: {design.trace}, {math.degrees(design.spiral_angle):g} deg, "
                       f"{model} model: simulation stopped: {err}", file=sys.stderr)

@@ -9,6 +9,7 @@ and :class:`lsbg.dynamics.SimulationSettings`.
 
 from __future__ import annotations
 
+import math
 import os
 from pathlib import Path
 
@@ -16,7 +17,8 @@ from lsbg.design import BASE_CONE_RULES, CONFIG_KEYS, HANDS, TRACES, GearPairDes
 
 __all__ = ["CommandError", "check_output", "add_design_options", "design_from_args",
            "read_study_sections", "add_contact_options", "contact_from_args",
-           "add_simulation_options", "simulation_from_args", "SIMULATION_OPTIONS"]
+           "add_simulation_options", "simulation_from_args", "SIMULATION_OPTIONS",
+           "add_fe_ltca_option", "slice_stiffness_from_args"]
 
 
 class CommandError(ValueError):
@@ -219,6 +221,10 @@ def add_contact_options(parser, model=True):
     parser.add_argument("--set-contact", action="append", default=[], metavar="KEY=VALUE",
                         help="override a key of the contact section (paper units), e.g. "
                              "mesh_damping_ratio=0.1; repeatable")
+    parser.add_argument("--compliance", choices=("uniform", "fe"),
+                        help="line model's tooth compliance: the uniform bed of springs or the "
+                             "tooth's own from finite elements (default: contact.compliance of "
+                             "--config, else uniform)")
     add_flank_options(parser)
 
 
@@ -274,6 +280,8 @@ def contact_from_args(args):
     contact = {**contact, **_assignments(getattr(args, "set_contact", []), "--set-contact")}
     if args.contact_model is not None:
         contact["model"] = args.contact_model
+    if getattr(args, "compliance", None) is not None:
+        contact["compliance"] = args.compliance
     try:
         return ContactParameters.from_config(contact)
     except ValueError as err:
@@ -311,3 +319,52 @@ def simulation_from_args(args):
     return settings, contact_from_args(args)
 
 
+def add_fe_ltca_option(parser):
+    """Add ``--fe-ltca``: the slice stiffness of a line-model run under compliance fe."""
+    parser.add_argument("--fe-ltca", metavar="MESH.nc",
+                        help="loaded TCA with the tooth's FE compliance of this design point "
+                             "and load (lsbg ltca under contact.compliance: fe): its slice "
+                             "stiffness replaces the uniform bed in line-model runs with "
+                             "compliance fe")
+
+
+def slice_stiffness_from_args(args, params, geometry_dir, load_torque):
+    """The slice stiffness of ``--fe-ltca`` for a run with ``params``, or None.
+
+    Raises
+    ------
+    CommandError
+        ``--fe-ltca`` missing under compliance fe (line model), given otherwise,
+        or of another design point or load.
+    """
+    import xarray as xr
+
+    from lsbg.contact.slices import SliceStiffness
+    from lsbg.files import read_design
+
+    path = getattr(args, "fe_ltca", None)
+    wanted = params.model == "line" and params.compliance == "fe"
+    if not wanted:
+        return None
+    if not path:
+        raise CommandError("contact.compliance = 'fe': a line-model run needs --fe-ltca (the "
+                           "design point's loaded TCA with the FE compliance)")
+    with xr.open_dataset(path) as ds:
+        ds = ds.load()
+    design = read_design(geometry_dir)
+    for key, value in design.to_config().items():
+        stored = ds.attrs.get(f"design_{key}")
+        same = (stored == value if isinstance(value, str) or stored is None
+                else math.isclose(float(stored), float(value), rel_tol=1e-12))
+        if not same:
+            raise CommandError(f"--fe-ltca {path}: design {key} = {stored!r}, the geometry's "
+                               f"{value!r}")
+    stored_load = float(ds.attrs.get("load_torque_N_m", math.nan))
+    if not math.isclose(stored_load, load_torque, rel_tol=1e-9):
+        raise CommandError(f"--fe-ltca {path}: computed at {stored_load!r} N m, the run's load "
+                           f"is {load_torque!r} N m (its slice stiffness is the secant at its "
+                           f"own load)")
+    try:
+        return SliceStiffness.from_dataset(ds)
+    except ValueError as err:
+        raise CommandError(f"--fe-ltca {path}: {err}") from None

@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import sys
 
-from lsbg.cli.options import (CommandError, add_simulation_options, check_output,
-                              flanks_from_args, simulation_from_args)
+from lsbg.cli.options import (CommandError, add_fe_ltca_option, add_simulation_options,
+                              check_output, flanks_from_args, simulation_from_args,
+                              slice_stiffness_from_args)
 
 __all__ = ["add_simulate_parser", "add_sensitivity_parser", "add_convergence_parser"]
 
@@ -19,6 +20,7 @@ def add_simulate_parser(subparsers):
                     "series to --out (NetCDF, CF-1.11). A blow-up (NaN, penetration beyond d, "
                     "runaway speed) stops the run with exit code 3 and writes nothing.")
     add_simulation_options(parser)
+    add_fe_ltca_option(parser)
     parser.add_argument("--out", required=True, metavar="RUN.nc", help="output NetCDF file")
     parser.set_defaults(handler=run_simulate)
 
@@ -30,10 +32,11 @@ def run_simulate(args):
 
     settings, params = simulation_from_args(args)
     flanks = flanks_from_args(args)
+    slices = slice_stiffness_from_args(args, params, args.geometry, settings.load_torque)
     check_output(args.out, "--out")
     try:
         ds = simulate(args.geometry, settings, params, command=" ".join(["lsbg", *sys.argv[1:]]),
-                      flanks=flanks)
+                      flanks=flanks, slice_stiffness=slices)
     except SimulationError as err:
         print(f"lsbg simulate: simulation stopped: {err}", file=sys.stderr)
         return 3
@@ -53,9 +56,12 @@ def add_sensitivity_parser(subparsers):
                     "with {case} replaced by the case's name (KEY_xFACTOR). One process for "
                     "all cases; every case is checked before the first run.")
     add_simulation_options(parser, contact_model=False)
+    add_fe_ltca_option(parser)
     parser.add_argument("--case", action="append", required=True, metavar="KEY=FACTOR",
                         help="a case: KEY one of mesh_damping_ratio, line_stiffness_N_per_mm_um, "
-                             "slices; repeatable")
+                             "slices (FACTOR scales it), or compliance=fe / compliance=uniform "
+                             "(the line model on the tooth's FE stiffness, from --fe-ltca, or "
+                             "on the uniform bed); repeatable")
     parser.add_argument("--out", required=True, metavar="RUN.nc",
                         help="output NetCDF file template with the field {case}")
     parser.set_defaults(handler=run_sensitivity, contact_model="line")
@@ -81,18 +87,20 @@ def run_sensitivity(args):
             changed = scaled_contact(base.to_config(), key.strip(), factor)
             params = ContactParameters.from_config({**base.to_config(), **changed})
             name = case_name(key.strip(), factor)
-            cases[name] = (params, fill_template(args.out, "--out", case=name))
+            slices = slice_stiffness_from_args(args, params, args.geometry, settings.load_torque)
+            cases[name] = (params, slices, fill_template(args.out, "--out", case=name))
         except (ValueError, TypeError, KeyError) as err:
             raise CommandError(f"--case {text!r}: {err}") from None
-    if len({path for _, path in cases.values()}) < len(cases):
+    if len({path for *_, path in cases.values()}) < len(cases):
         raise CommandError(f"--out {args.out!r}: the cases would write the same file; put "
                            f"{{case}} in it")
-    for _, path in cases.values():
+    for *_, path in cases.values():
         check_output(path, "--out")
     command = " ".join(["lsbg", *sys.argv[1:]])
-    for name, (params, path) in cases.items():
+    for name, (params, slices, path) in cases.items():
         try:
-            ds = simulate(args.geometry, settings, params, command=command, flanks=flanks)
+            ds = simulate(args.geometry, settings, params, command=command, flanks=flanks,
+                          slice_stiffness=slices)
         except SimulationError as err:
             print(f"lsbg sensitivity: case {name}: simulation stopped: {err}", file=sys.stderr)
             return 3
@@ -121,6 +129,7 @@ def add_convergence_parser(subparsers):
                              "(as 'lsbg simulate' would; repeatable)")
     parser.add_argument("--steady-state-after", type=float, default=0.2, metavar="S",
                         help="start of the steady state [s] (default 0.2)")
+    add_fe_ltca_option(parser)
     parser.add_argument("--out", required=True, metavar="TABLE.csv", help="output CSV file")
     parser.set_defaults(handler=run_convergence)
 
@@ -143,7 +152,8 @@ def run_convergence(args):
     for path in outputs.values():
         check_output(path, "--default-run")
     check_output(args.out, "--out")
-    model = load_model(args.geometry, params, flanks_from_args(args))
+    slices = slice_stiffness_from_args(args, params, args.geometry, settings.load_torque)
+    model = load_model(args.geometry, params, flanks_from_args(args), slices)
     try:
         known = open_runs(args.known)
     except (OSError, ValueError) as err:

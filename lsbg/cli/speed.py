@@ -8,11 +8,13 @@ import sys
 from lsbg.cli.options import (
     CommandError,
     add_contact_options,
+    add_fe_ltca_option,
     add_simulation_options,
     check_output,
     contact_from_args,
     flanks_from_args,
     simulation_from_args,
+    slice_stiffness_from_args,
 )
 
 __all__ = ["add_mesh_mode_parser", "add_speed_run_parser", "add_speed_curve_parser"]
@@ -77,6 +79,7 @@ def add_speed_run_parser(subparsers):
                     "--full-rate and --full-rate-after are the sweep's own. Writes the run as "
                     "'lsbg simulate' does.")
     add_simulation_options(parser, contact_model=False)
+    add_fe_ltca_option(parser)
     for option, (_, kind, text) in SPEED_OPTIONS.items():
         parser.add_argument(f"--{option.replace('_', '-')}", dest=option, type=kind, help=text)
     parser.add_argument("--out", required=True, metavar="RUN.nc", help="output NetCDF file")
@@ -111,9 +114,10 @@ def run_speed_run(args):
         settings = speed_settings(base, base.pinion_speed, teeth, **options)
     except (OSError, ValueError) as err:
         raise CommandError(str(err)) from None
+    slices = slice_stiffness_from_args(args, params, args.geometry, settings.load_torque)
     try:
         ds = simulate(args.geometry, settings, params, command=" ".join(["lsbg", *sys.argv[1:]]),
-                      flanks=flanks_from_args(args))
+                      flanks=flanks_from_args(args), slice_stiffness=slices)
     except SimulationError as err:
         print(f"lsbg speed-run: {args.pinion_speed:g} deg/s: simulation stopped: {err}",
               file=sys.stderr)

@@ -8,6 +8,10 @@ One module per report topic; none imports matplotlib (the figures are in
 * :mod:`lsbg.tables.line_model`: the line model's verdict (loaded TCA,
   full-rate fluctuations, model-form sensitivity, trends over spiral angle,
   the dynamic-factor curve);
+* :mod:`lsbg.tables.contact_state`: bearing patterns, V-H maps and their
+  sensitivities;
+* :mod:`lsbg.tables.tooth`: the uniform bed against the tooth's own FE
+  compliance (mesh stiffness, loaded TE, contact pressure, root stress);
 * :mod:`lsbg.tables.verification`: engine agreement, convergence, contact
   resonance, pressure angles and conjugacy.
 

@@ -112,3 +112,15 @@ def check_installed_lsbg():
 
 
 check_installed_lsbg()
+
+
+def fe_ltca_input(needed):
+    """Input ``fe_ltca`` of line-model runs: the loaded TCA with the FE compliance of their
+    design point (the paper's, where the wildcards name no angle), where ``needed(wildcards)``."""
+    return lambda w: ([STUDY.fe_ltca(w.trace, getattr(w, "spiral", PAPER_SPIRAL))]
+                      if needed(w) else [])
+
+
+def fe_ltca_option(wildcards, input):
+    """``--fe-ltca FILE`` of a run whose rule has the ``fe_ltca`` input, else nothing."""
+    return f"--fe-ltca {input.fe_ltca}" if input.fe_ltca else ""

@@ -48,13 +48,17 @@ rule paper_ltca:
     input:
         geometry=FILES["geometry"],
         config=ancient(FILES["study_config"]),
+        # under contact.compliance: fe, the FE compliance (rules/tooth.smk)
+        compliance=[FILES["compliance"]] if STUDY.own_compliance else [],
         sources=sources("ltca"),
     output:
         FILES["mesh"],
     params:
-        # Rerun trigger: the load and the line model's settings.
+        # Rerun trigger: the load and the line model's settings (with fe: the tooth's).
         load=config["simulation"]["load_torque_N_m"],
         contact=simulation_params(SWEEP_ENGINE, "line")["contact"],
+        compliance=lambda w, input: (f"--compliance-file {input.compliance}"
+                                     if input.compliance else ""),
     wildcard_constraints:
         spiral=re.escape(PAPER_SPIRAL),
     priority: plan.job_priority("paper_ltca")
@@ -67,8 +71,8 @@ rule paper_ltca:
     conda:
         CONDA_ENV
     shell:
-        "lsbg -v ltca --geometry {input.geometry} --config {input.config} --out {output}"
-        " > {log} 2>&1"
+        "lsbg -v ltca --geometry {input.geometry} --config {input.config}"
+        " {params.compliance} --out {output} > {log} 2>&1"
 
 
 BATCH = STUDY.batch_spirals(STUDY.traces[0])
@@ -94,6 +98,10 @@ if BATCH:
             meshes=[template(FILES["mesh"], spiral=s) for s in BATCH],
             runs=[template(FILES["run"], spiral=s, model=m, engine=SWEEP_ENGINE)
                   for s in BATCH for m in STUDY.sweep_models],
+            # under contact.compliance: fe, each point's FE compliance
+            compliances=[template(FILES["compliance"], spiral=s) for s in BATCH]
+            if STUDY.own_compliance
+            else [],
         params:
             spirals=" ".join(BATCH),
             engine=SWEEP_ENGINE,
@@ -104,6 +112,8 @@ if BATCH:
                 "--run '{}={}'".format(m, template(FILES["run"], trace=w.trace, model=m,
                                                    engine=SWEEP_ENGINE))
                 for m in STUDY.sweep_models),
+            compliance=lambda w: ("--compliance-out '{}'".format(
+                template(FILES["compliance"], trace=w.trace)) if STUDY.own_compliance else ""),
             design=plan.canonical(config["design"]),
             settings={m: simulation_params(SWEEP_ENGINE, m) for m in STUDY.sweep_models},
         priority: plan.job_priority("sweep_points")
@@ -111,12 +121,13 @@ if BATCH:
             "logs/sweep_points/{trace}.log",
         threads: 1
         resources:
-            mem_mb=1000,
-            runtime=10 + 2 * len(BATCH),
+            mem_mb=4000 if STUDY.own_compliance else 1000,
+            runtime=10 + (2 + STUDY.own_compliance * config["limits"]["tooth_minutes"])
+            * len(BATCH),
         conda:
             CONDA_ENV
         shell:
             "lsbg -v points --trace {wildcards.trace} --spiral-angles {params.spirals}"
             " --design {input.config} --config {input.config} --engine {params.engine}"
             " --geometry-out '{params.geometry}' --mesh-out '{params.mesh}'"
-            " {params.runs} > {log} 2>&1"
+            " {params.compliance} {params.runs} > {log} 2>&1"

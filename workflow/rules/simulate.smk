@@ -15,12 +15,14 @@ rule simulate:
     input:
         geometry=FILES["geometry"],
         config=ancient(FILES["study_config"]),
+        fe_ltca=fe_ltca_input(lambda w: STUDY.own_compliance and w.model == "line"),
         sources=sources("simulate"),
     output:
         FILES["run"],
     params:
         # Rerun trigger: the settings this run depends on.
         settings=lambda wildcards: simulation_params(wildcards.engine, wildcards.model),
+        fe_ltca=fe_ltca_option,
     wildcard_constraints:
         engine=STUDY.reference_engines,
     log:
@@ -33,7 +35,8 @@ rule simulate:
         CONDA_ENV
     shell:
         "lsbg -v simulate --geometry {input.geometry} --engine {wildcards.engine}"
-        " --contact-model {wildcards.model} --config {input.config} --out {output} > {log} 2>&1"
+        " --contact-model {wildcards.model} --config {input.config} {params.fe_ltca}"
+        " --out {output} > {log} 2>&1"
 
 
 if STUDY.sensitivity:
@@ -42,11 +45,14 @@ if STUDY.sensitivity:
         input:
             geometry=template(FILES["geometry"], spiral=PAPER_SPIRAL),
             config=ancient(FILES["study_config"]),
+            # the slice stiffness of the cases (or the base) under compliance fe
+            fe_ltca=fe_ltca_input(lambda w: STUDY.needs_fe_ltca),
             sources=sources("simulate"),
         output:
             [template(FILES["sensitivity_run"], spiral=PAPER_SPIRAL, case=case)
              for case in STUDY.sensitivity],
         params:
+            fe_ltca=fe_ltca_option,
             cases=" ".join(f"--case {key}={factor!r}"
                            for key, factor in STUDY.sensitivity.values()),
             out=lambda w: template(FILES["sensitivity_run"], trace=w.trace, spiral=PAPER_SPIRAL),
@@ -63,7 +69,8 @@ if STUDY.sensitivity:
             CONDA_ENV
         shell:
             "lsbg -v sensitivity --geometry {input.geometry} --engine {params.engine}"
-            " --config {input.config} {params.cases} --out '{params.out}' > {log} 2>&1"
+            " --config {input.config} {params.fe_ltca} {params.cases} --out '{params.out}'"
+            " > {log} 2>&1"
 
 
 for model in plan.CONTACT_MODELS:
@@ -74,6 +81,7 @@ for model in plan.CONTACT_MODELS:
         input:
             geometry=template(FILES["geometry"], spiral=PAPER_SPIRAL),
             config=ancient(FILES["study_config"]),
+            fe_ltca=fe_ltca_input(lambda w, rule=model: STUDY.own_compliance and rule == "line"),
             sources=sources("convergence"),
         output:
             table=report(
@@ -94,6 +102,7 @@ for model in plan.CONTACT_MODELS:
             settings=plan.canonical({engine: simulation_params(engine, model)
                                      for engine in STUDY.convergence_engines(model)}),
             steady_state_after=config["statistics"]["steady_state_after_s"],
+            fe_ltca=fe_ltca_option,
         priority: plan.job_priority(f"convergence_{model}")
         log:
             f"logs/convergence/{{trace}}_{model}.log",
@@ -106,5 +115,6 @@ for model in plan.CONTACT_MODELS:
         shell:
             "lsbg -v convergence --geometry {input.geometry} --config {input.config}"
             " --contact-model {params.model} --engines {params.engines} {params.default_runs}"
-            " --steady-state-after {params.steady_state_after} --out {output.table}"
+            " --steady-state-after {params.steady_state_after} {params.fe_ltca}"
+            " --out {output.table}"
             " > {log} 2>&1"

@@ -11,6 +11,7 @@ rule speed_run:
     input:
         geometry=FILES["geometry"],
         config=ancient(FILES["study_config"]),
+        fe_ltca=fe_ltca_input(lambda w: STUDY.own_compliance),
         sources=sources("speed"),
     output:
         FILES["speed_run"],
@@ -18,6 +19,7 @@ rule speed_run:
         engine=SPEED_ENGINE,
         options=STUDY.speed_options,
         settings=simulation_params(SPEED_ENGINE, "line"),
+        fe_ltca=fe_ltca_option,
     log:
         "logs/speed_run/{trace}_beta{spiral}_w{speed}.log",
     threads: 1
@@ -29,7 +31,7 @@ rule speed_run:
     shell:
         "lsbg -v speed-run --geometry {input.geometry} --config {input.config}"
         " --engine {params.engine} --pinion-speed {wildcards.speed} {params.options}"
-        " --out {output} > {log} 2>&1"
+        " {params.fe_ltca} --out {output} > {log} 2>&1"
 
 
 rule speed_curve:

@@ -1,0 +1,220 @@
+"""The tooth's own compliance through the command line and the configuration: `lsbg
+compliance` (computed once, kept), `lsbg ltca --compliance fe` (the line model on the slice
+stiffness reproduces the complementarity LTCA), a line-model run on it, `compliance:
+uniform` leaving today's LTCA as it was, and bad input named before any work."""
+
+import copy
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+import yaml
+
+from lsbg import cli
+from lsbg.design import GearPairDesign
+from lsbg.export import write_geometry
+from lsbg.tooth.config import tooth_from_config
+
+REPO = Path(__file__).resolve().parents[1]
+#: A coarse FE model: the suite's budget (the default mesh is checked in tests/test_tooth.py).
+COARSE = ["--set-tooth", "element_size_module=0.52", "--set-tooth", "rim_element_factor=10",
+          "--set-tooth", "face_points=5", "--set-tooth", "profile_points=5"]
+
+
+@pytest.fixture(scope="module")
+def point(tmp_path_factory):
+    """The paper's LSBG: geometry, coarse FE compliance and the FE loaded TCA via the CLI."""
+    root = tmp_path_factory.mktemp("tooth_cli")
+    geo = root / "logarithmic_beta35"
+    write_geometry(GearPairDesign(), geo)
+    config = root / "config.yaml"
+    config.write_text(yaml.safe_dump({"flank_modification": {"lengthwise_crowning_um": 25,
+                                                              "profile_crowning_um": 5}}))
+    files = {"root": root, "geo": geo, "config": config, "compliance": root / "c.nc",
+             "fe": root / "fe.nc"}
+    assert cli.main(["compliance", "--geometry", str(geo), *COARSE,
+                     "--out", str(files["compliance"])]) == 0
+    assert cli.main(["ltca", "--geometry", str(geo), "--config", str(config), "--compliance", "fe",
+                     "--compliance-file", str(files["compliance"]), *COARSE, "--phases", "48",
+                     "--out", str(files["fe"])]) == 0
+    return files
+
+
+def test_the_compliance_is_computed_once_and_kept(point, capsys):
+    before = point["compliance"].stat().st_mtime_ns
+    capsys.readouterr()
+    assert cli.main(["compliance", "--geometry", str(point["geo"]), *COARSE,
+                     "--out", str(point["compliance"])]) == 0
+    assert "kept (same inputs)" in capsys.readouterr().out
+    assert point["compliance"].stat().st_mtime_ns == before
+    # another material: other inputs, computed again (and it says so)
+    other = point["root"] / "other.nc"
+    with xr.open_dataset(point["compliance"]) as first:
+        hash_ = first.attrs["inputs_hash"]
+    assert cli.main(["compliance", "--geometry", str(point["geo"]), *COARSE,
+                     "--set-tooth", "young_modulus_GPa=103", "--out", str(other)]) == 0
+    with xr.open_dataset(other) as second, xr.open_dataset(point["compliance"]) as first:
+        assert second.attrs["inputs_hash"] != hash_
+        # half the modulus: twice the compliance (linear elasticity, same mesh and nu)
+        c1, c2 = first["compliance_gear"].values, second["compliance_gear"].values
+        big = np.abs(c1) > 0.1 * np.abs(c1).max()
+        np.testing.assert_allclose(c2[big] / c1[big], 206 / 103, rtol=1e-6)
+
+
+def test_the_fe_ltca_carries_stresses_and_a_slice_stiffness_that_reproduces_it(point):
+    with xr.open_dataset(point["fe"]) as ds:
+        ds = ds.load()
+    assert ds.attrs["compliance"] == "fe" and ds.attrs["contact_compliance"] == "fe"
+    for name, unit in {"transmission_error": "urad", "mesh_stiffness": "N/um",
+                       "max_contact_pressure": "MPa", "root_stress_pinion": "MPa",
+                       "root_stress_gear": "MPa", "contact_pattern": "N/mm",
+                       "slice_stiffness": "N/(mm um)"}.items():
+        assert ds[name].attrs["units"] == unit, name
+    # the line model on the slice stiffness reproduces the complementarity solution
+    p2p = float(np.ptp(ds["transmission_error"].values))
+    assert ds.attrs["slice_table_transmission_error_difference_urad"] < 1e-3 * p2p
+    # a bevel tooth is not a uniform bed: its stiffness varies over the face and cycle
+    k = ds["slice_stiffness"].values
+    assert np.all(k > 0) and k.max() / k.min() > 1.5
+    assert 5 < float(np.median(k)) < 50         # N/(mm um): the order of ISO's c_gamma
+    assert ds.attrs["max_root_stress_pinion_MPa"] > 0 and ds.attrs["max_root_stress_gear_MPa"] > 0
+
+
+def test_a_line_model_run_takes_the_slice_stiffness(point):
+    run = point["root"] / "run.nc"
+    common = ["simulate", "--geometry", str(point["geo"]), "--config", str(point["config"]),
+              "--engine", "compiled", "--contact-model", "line", "--duration", "0.03",
+              "--samples", "30", "--ramp-time", "0.01", "--full-rate", "2000"]
+    assert cli.main([*common, "--compliance", "fe", "--fe-ltca", str(point["fe"]),
+                     "--out", str(run)]) == 0
+    with xr.open_dataset(run) as ds, xr.open_dataset(point["fe"]) as fe:
+        assert ds.attrs["contact_compliance"] == "fe"
+        assert ds.attrs["slice_stiffness_compliance_inputs_hash"] == fe.attrs[
+            "compliance_inputs_hash"]
+        # the mesh mode's frequency follows the FE mean stiffness, below the uniform bed's
+        assert 0.5 < ds.attrs["mean_mesh_stiffness_N_per_m"] / (
+            fe.attrs["mesh_stiffness_mean_N_per_um"] * 1e6) < 1.5
+
+
+def test_compliance_uniform_leaves_todays_ltca(point, tmp_path):
+    config = yaml.safe_load(point["config"].read_text())
+    uniform = tmp_path / "uniform.yaml"
+    uniform.write_text(yaml.safe_dump({**config, "contact": {"compliance": "uniform"}}))
+    a, b = tmp_path / "a.nc", tmp_path / "b.nc"
+    for cfg, out in ((point["config"], a), (uniform, b)):
+        assert cli.main(["ltca", "--geometry", str(point["geo"]), "--config", str(cfg),
+                         "--phases", "32", "--out", str(out)]) == 0
+    with xr.open_dataset(a) as da, xr.open_dataset(b) as db:
+        for name in ("transmission_error", "mesh_stiffness", "contact_pattern", "pair_load"):
+            np.testing.assert_allclose(db[name].values, da[name].values, rtol=1e-6, atol=0)
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["ltca", "--compliance", "fe"], "needs --compliance-file"),
+    (["simulate", "--contact-model", "line", "--compliance", "fe"], "needs --fe-ltca"),
+    (["compliance", "--set-tooth", "poisson_ratio=0.5"], "tooth.poisson_ratio = 0.5"),
+    (["compliance", "--set-tooth", "young_modulus_GPa=5000"], "tooth.young_modulus_GPa = 5000"),
+    (["compliance", "--set-tooth", "element_size_module=0.8"], "tooth.element_size_module = 0.8"),
+    (["compliance", "--set-tooth", "face_points=4.5"], "tooth.face_points = 4.5"),
+    (["compliance", "--set-tooth", "rim_size=3"], "tooth.rim_size = 3: unknown key"),
+])
+def test_bad_input_is_named_before_any_work(point, capsys, argv, message):
+    out = point["root"] / "never.nc"
+    code = cli.main([argv[0], "--geometry", str(point["geo"]), *argv[1:], "--out", str(out)])
+    assert code == 2
+    assert message in capsys.readouterr().err
+    assert not out.exists()
+
+
+def test_a_slice_stiffness_of_another_load_is_refused(point, capsys):
+    out = point["root"] / "never.nc"
+    code = cli.main(["simulate", "--geometry", str(point["geo"]), "--contact-model", "line",
+                     "--compliance", "fe", "--fe-ltca", str(point["fe"]), "--load-torque", "1000",
+                     "--out", str(out)])
+    assert code == 2 and "secant at its own load" in capsys.readouterr().err
+    assert not out.exists()
+
+
+def deep_update(base, over):
+    """``over`` merged into ``base`` section by section, as Snakemake merges config files."""
+    out = copy.deepcopy(base)
+    for key, value in over.items():
+        out[key] = (deep_update(out[key], value) if isinstance(value, dict)
+                    and isinstance(out.get(key), dict) else copy.deepcopy(value))
+    return out
+
+
+def test_the_configuration_check_names_the_tooth_keys():
+    from lsbg.config_check import check_config
+
+    schema = yaml.safe_load((REPO / "workflow/schemas/config.schema.yaml").read_text())
+    base = yaml.safe_load((REPO / "workflow/config.yaml").read_text())
+    test = yaml.safe_load((REPO / "workflow/config-test.yaml").read_text())
+    merged = deep_update(base, test)
+
+    def problems(**changes):
+        config = copy.deepcopy(merged)
+        for path, value in changes.items():
+            section, key = path.split("__")
+            config.setdefault(section, {})[key] = value
+        return "\n".join(check_config(config, schema))
+
+    assert "tooth.young_modulus_GPa" in problems(tooth__young_modulus_GPa=5000)
+    assert "tooth.poisson_ratio" in problems(tooth__poisson_ratio=0.5)
+    same = problems(sensitivity__compliance=["uniform"])
+    assert "sensitivity.compliance[0] = 'uniform': the same as contact.compliance" in same
+    # the resource guard: a mesh too fine for the time the rules grant
+    fine = problems(tooth__element_size_module=0.1, limits__tooth_minutes=0.5)
+    assert "tooth.element_size_module = 0.1: the FE compliance of" in fine
+    assert "limits.tooth_minutes = 0.5" in fine
+    assert problems() == ""
+
+
+def test_tooth_section_in_si():
+    material, mesh, positions = tooth_from_config({"young_modulus_GPa": 210, "poisson_ratio": 0.29,
+                                                   "element_size_module": 0.5,
+                                                   "ltca_positions": 120})
+    assert material.young_modulus == pytest.approx(2.1e11) and material.poisson_ratio == 0.29
+    assert mesh.tooth_size == 0.5 and positions == 120
+
+
+def test_points_under_compliance_fe_reuse_the_compliance_and_run_on_it(point, tmp_path):
+    """`lsbg points` (the sweep's batch job) under compliance fe: the design point's
+    compliance is kept (same inputs), its loaded TCA is the FE one, its line run takes
+    that slice stiffness."""
+    config = tmp_path / "fe.yaml"
+    config.write_text(yaml.safe_dump({
+        **yaml.safe_load(point["config"].read_text()),
+        "contact": {"compliance": "fe"},
+        "simulation": {"duration_s": 0.02, "samples": 20, "ramp_time_s": 0.01,
+                       "full_rate_hz": 2000},
+        "tooth": {"element_size_module": 0.52, "rim_element_factor": 10, "face_points": 5,
+                  "profile_points": 5, "ltca_positions": 48}}))
+    compliance = tmp_path / "logarithmic_beta{spiral}_compliance.nc"
+    (tmp_path / "logarithmic_beta35_compliance.nc").write_bytes(point["compliance"].read_bytes())
+    before = (tmp_path / "logarithmic_beta35_compliance.nc").stat().st_mtime_ns
+    assert cli.main(["points", "--trace", "logarithmic", "--spiral-angles", "35", "--config",
+                     str(config), "--geometry-out", str(tmp_path / "geo{spiral}"),
+                     "--mesh-out", str(tmp_path / "mesh{spiral}.nc"),
+                     "--compliance-out", str(compliance),
+                     "--run", f"line={tmp_path / 'line{spiral}.nc'}"]) == 0
+    assert (tmp_path / "logarithmic_beta35_compliance.nc").stat().st_mtime_ns == before
+    with xr.open_dataset(tmp_path / "mesh35.nc") as mesh, \
+            xr.open_dataset(tmp_path / "line35.nc") as run, xr.open_dataset(point["fe"]) as fe:
+        assert mesh.attrs["compliance"] == "fe" and "slice_stiffness" in mesh
+        # the same design point, flanks and FE model as `lsbg ltca --compliance fe`
+        np.testing.assert_allclose(mesh["transmission_error"].values,
+                                   fe["transmission_error"].values, rtol=1e-9)
+        assert run.attrs["slice_stiffness_compliance_inputs_hash"] == mesh.attrs[
+            "compliance_inputs_hash"]
+
+
+def test_points_under_compliance_fe_need_the_compliance_template(point, tmp_path, capsys):
+    config = tmp_path / "fe.yaml"
+    config.write_text(yaml.safe_dump({"contact": {"compliance": "fe"}}))
+    code = cli.main(["points", "--trace", "logarithmic", "--spiral-angles", "35", "--config",
+                     str(config), "--geometry-out", str(tmp_path / "geo{spiral}"),
+                     "--mesh-out", str(tmp_path / "mesh{spiral}.nc")])
+    assert code == 2 and "needs --compliance-out" in capsys.readouterr().err
+    assert not (tmp_path / "geo35").exists()
