@@ -212,6 +212,41 @@ def test_fe_mesh_stiffness_lies_in_the_iso_band(contact, compliance):
     assert np.all(out["root_stress_pinion"].values > 0)
 
 
+def test_nodal_cholesky_solves_a_block_system():
+    # a 3-D grid's stiffness-like matrix with three DOFs per node, some clamped
+    import scipy.sparse as sp
+    from scipy.sparse.linalg import spsolve
+
+    from lsbg.tooth.elasticity import NodalCholesky
+
+    rng = np.random.default_rng(3)
+    line = sp.diags([-1.0, 2.0, -1.0], [-1, 0, 1], shape=(7, 7))
+    eye = sp.identity(7)
+    grid = (sp.kron(sp.kron(line, eye), eye) + sp.kron(sp.kron(eye, line), eye)
+            + sp.kron(sp.kron(eye, eye), line))
+    coupling = sp.csr_matrix(rng.uniform(-0.3, 0.3, (3, 3)))
+    matrix = (sp.kron(grid, sp.identity(3) + coupling @ coupling.T) + 0.01 * sp.identity(3 * 343)).tocsr()
+    free = np.arange(3 * 10, 3 * 343)
+    factor = NodalCholesky(matrix, free, np.arange(3 * 343)[free] // 3)
+    rhs = rng.standard_normal((free.size, 4))
+    expected = spsolve(matrix[free][:, free].tocsc(), rhs)
+    assert np.allclose(factor.solve(rhs), expected, rtol=1e-10, atol=1e-12 * np.abs(expected).max())
+    assert np.allclose(factor.solve(rhs[:, 0]), expected[:, 0], rtol=1e-10,
+                       atol=1e-12 * np.abs(expected).max())
+
+
+def test_resource_estimate_matches_the_mesh_and_grows_with_it(pair, compliance):
+    from lsbg.tooth.compliance import fe_resource_estimate
+
+    coarse = fe_resource_estimate(pair, FEMeshSettings(tooth_size=0.52, body_size=10.0))
+    for name in ("pinion", "gear"):
+        assert getattr(coarse, f"dofs_{name}") == pytest.approx(
+            compliance.attrs[f"fe_dofs_{name}"], rel=0.15)
+    fine = fe_resource_estimate(pair, FEMeshSettings(tooth_size=0.3))
+    assert fine.dofs > 2 * coarse.dofs and fine.seconds > 2 * coarse.seconds
+    assert 2 * coarse.memory < fine.memory < 1e10
+
+
 @pytest.mark.parametrize("kwargs, key", [
     ({"young_modulus": -1.0}, "young_modulus"),
     ({"poisson_ratio": 0.5}, "poisson_ratio"),

@@ -15,9 +15,10 @@ blank has a sharp corner where the flank meets the root cone, at which the
 stress of an elastic solid is singular and no root stress converges.
 
 gmsh meshes it with linear tetrahedra whose size is ``tooth_size`` on the
-loaded tooth and its fillets and grows to ``body_size`` away from them; the
-finite elements (:mod:`lsbg.tooth.elasticity`) put quadratic shape functions
-on them. The bore and both cut faces are clamped.
+loaded tooth, smaller on its root fillets (the root stress is read there),
+and grows with the distance from them (:func:`_size_field`) to ``body_size``;
+the finite elements (:mod:`lsbg.tooth.elasticity`) put quadratic shape
+functions on them. The bore and both cut faces are clamped.
 
 Lengths in metres.
 """
@@ -30,7 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 
 __all__ = ["SegmentMesh", "segment_mesh", "tooth_zero_column", "fillet_corners",
-           "distance_to_polyline"]
+           "fillet_points", "distance_to_polyline"]
 
 #: Sections of the loft across the face width (and beyond it) [-].
 SEGMENT_SECTIONS = 7
@@ -140,13 +141,11 @@ def _build_segment(pair, member, teeth, fillet_radius, sections):
     """The segment's solid in the current gmsh model [volume tag].
 
     The loft runs through the segment's own outline, from the middle of the
-    root of the gap before its first tooth to that after its last, and closes
-    each section down into the bore and round the axis there; its root corners
-    are rounded, and one boolean with the blank trims it to the spherical
-    shell and the bore. (Lofting the whole gear, or the segment closed by the
-    root circle, and splitting the segment off with surfaces through the
-    gaps costs two to three times as long in OCC's booleans, for the same
-    solid.)
+    root of the gap before its first tooth to that after its last, closed
+    down into the bore and round the axis there; its root corners are
+    rounded, and one boolean with the blank trims it. (Lofting the whole gear
+    and splitting the segment off with surfaces through the gaps cost two to
+    three times as long in OCC's booleans, for the same solid.)
     """
     import gmsh
 
@@ -532,3 +531,86 @@ def segment_mesh(pair, member, tooth_size, body_size=None, teeth=3, fillet_radiu
                        clamped=np.unique(np.concatenate(fixed)) if fixed else np.empty(0, int),
                        member=int(member), teeth=int(teeth), tooth_size=float(tooth_size),
                        body_size=float(body_size))
+
+
+def fillet_points(pair, member, segment_mesh, fillet_radius):
+    """Points on the root fillets of tooth 0, both sides, and the tetrahedra around them.
+
+    The fillet rounds the corner where the flank (or its radial continuation)
+    meets the root cone; its surface lies within one fillet radius of that
+    corner line. Its boundary vertices are the points, and on the drive side
+    (the loaded flank's, in tension) also the middles of the boundary edges
+    between them that run across the fillet: the quadratic field's other
+    nodes, which halve the spacing of the points round the fillet's arc,
+    where the stress peaks between a few rows of vertices. Points within 2 % of the face width of the toe and
+    heel are left out (the end faces' edges).
+
+    Parameters
+    ----------
+    pair : lsbg.geometry.GearPair
+    member : {1, 2}
+    segment_mesh : SegmentMesh
+    fillet_radius : float
+        [m].
+
+    Returns
+    -------
+    points : numpy.ndarray, shape (q, 3)
+    cells : numpy.ndarray, shape (c,)
+        Every tetrahedron that holds a point as a vertex or on an edge: the
+        stress of the quadratic field jumps between them, and their mean is
+        the point's stress (less dependent on which element one picks).
+    owner : numpy.ndarray, shape (c,)
+        The point of each of ``cells`` [-].
+    side : numpy.ndarray, shape (q,)
+        0 drive, 1 coast.
+    cone_distance : numpy.ndarray, shape (q,)
+    """
+    d = pair.design
+    nodes, tets = segment_mesh.nodes, segment_mesh.tetrahedra
+    # boundary faces: those of one tetrahedron
+    faces = np.sort(np.concatenate([tets[[0, 1, 2]], tets[[0, 1, 3]], tets[[0, 2, 3]],
+                                    tets[[1, 2, 3]]], axis=1), axis=0)
+    unique, counts = np.unique(faces, axis=1, return_counts=True)
+    faces = unique[:, counts == 1]
+    boundary = np.unique(faces)
+    x = nodes[:, boundary].T
+    radius = np.linalg.norm(x, axis=1)
+    margin = 0.02 * d.face_width
+    keep = (radius > d.inner_cone_distance + margin) & (radius < d.outer_cone_distance - margin)
+    side = np.full(nodes.shape[1], -1)
+    corners = fillet_corners(pair, member)
+    for s, corner in enumerate(corners):
+        near = keep & (distance_to_polyline(x, corner) < 1.05 * fillet_radius)
+        side[boundary[near & (side[boundary] < 0)]] = s
+    vertices = np.flatnonzero(side >= 0)
+    # drive-side boundary edges across the fillet (more than 45 deg from its
+    # corner line): both ends on the drive fillet
+    edges = np.sort(np.concatenate([faces[[0, 1]], faces[[0, 2]], faces[[1, 2]]], axis=1), axis=0)
+    edges = np.unique(edges[:, (side[edges[0]] == 0) & (side[edges[1]] == 0)], axis=1)
+    along = np.diff(corners[0], axis=0)
+    along /= np.linalg.norm(along, axis=1, keepdims=True)
+    middle = 0.5 * (nodes[:, edges[0]] + nodes[:, edges[1]]).T
+    nearest = np.argmin(np.linalg.norm(middle[:, None] - corners[0][None, :-1], axis=2), axis=1)
+    direction = (nodes[:, edges[1]] - nodes[:, edges[0]]).T
+    cosine = np.abs(np.sum(direction * along[nearest], axis=1)) / np.linalg.norm(direction, axis=1)
+    edges = edges[:, cosine < math.cos(math.radians(45))]
+    points = np.concatenate([nodes[:, vertices].T, 0.5 * (nodes[:, edges[0]] + nodes[:, edges[1]]).T])
+    # the tetrahedra round each vertex, then round each edge (holding both its ends)
+    point = np.full(nodes.shape[1], -1)
+    point[vertices] = np.arange(vertices.size)
+    owner = point[tets]  # (4, m)
+    corner, cells = np.nonzero(owner >= 0)
+    owner = [owner[corner, cells]]
+    cells = [cells]
+    n = nodes.shape[1]
+    key = {int(a) * n + int(b): i for i, (a, b) in enumerate(edges.T)}
+    for i, j in ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)):
+        a, b = np.minimum(tets[i], tets[j]), np.maximum(tets[i], tets[j])
+        hit = np.flatnonzero((side[a] == 0) & (side[b] == 0))
+        found = np.array([key.get(int(k), -1) for k in a[hit] * n + b[hit]], dtype=np.int64)
+        cells.append(hit[found >= 0])
+        owner.append(vertices.size + found[found >= 0])
+    return (points, np.concatenate(cells), np.concatenate(owner),
+            np.concatenate([side[vertices], np.zeros(edges.shape[1], int)]),
+            np.linalg.norm(points, axis=1))
