@@ -17,8 +17,7 @@ import math
 from pathlib import Path
 
 __all__ = ["TOOTH_CONFIG_KEYS", "TOOTH_DEFAULTS", "tooth_from_config",
-           "compliance_for_design", "fe_resource_estimate", "fe_design_points",
-           "tooth_problems"]
+           "compliance_for_design", "fe_design_points", "tooth_problems"]
 
 log = logging.getLogger(__name__)
 
@@ -135,42 +134,6 @@ def compliance_for_design(pair, material, settings, path):
     return dataset, False
 
 
-#: The FE model's size and cost, calibrated on the paper's pair (b / m_mn = 7.9) with
-#: both members' 3-tooth segments on this 2-core machine (2026-11-24, another job
-#: running beside): 73 800 degrees of freedom, 27 s and 0.76 GB peak at an element
-#: size of 0.5 m_mn (rim growth 6), 117 400, 53 s and 1.19 GB at 0.375. The degrees
-#: of freedom follow A s^-3 + B s^-1 (the teeth's volume, and the fillets and rim
-#: whose elements grow from the tooth's), per unit b / m_mn; time and memory grow
-#: with them a little faster than measured (exponents 1.5 and 1.2 against 1.4 and
-#: 1.0), to overestimate.
-FE_DOFS_VOLUME, FE_DOFS_SURFACE = 288.0, 3495.0
-FE_REFERENCE_DOFS, FE_REFERENCE_SECONDS, FE_REFERENCE_GB = 73800.0, 27.4, 0.76
-FE_TIME_EXPONENT, FE_MEMORY_EXPONENT = 1.5, 1.2
-
-
-def fe_resource_estimate(pair, settings):
-    """Estimated size, wall time and peak memory of a design point's FE compliance.
-
-    Parameters
-    ----------
-    pair : lsbg.geometry.GearPair
-    settings : lsbg.tooth.compliance.FEMeshSettings
-
-    Returns
-    -------
-    dict
-        ``dofs`` (both members) [-], ``seconds`` [s] and ``memory_gb`` [GB].
-    """
-    d = pair.design
-    normal_module = d.mean_module * math.cos(d.spiral_angle)
-    slenderness = d.face_width / normal_module
-    s = settings.tooth_size
-    dofs = slenderness * (FE_DOFS_VOLUME / s**3 + FE_DOFS_SURFACE / s)
-    scale = dofs / FE_REFERENCE_DOFS
-    return {"dofs": dofs, "seconds": FE_REFERENCE_SECONDS * scale**FE_TIME_EXPONENT,
-            "memory_gb": FE_REFERENCE_GB * scale**FE_MEMORY_EXPONENT}
-
-
 def fe_design_points(config, pairs):
     """The design points whose FE compliance the study computes.
 
@@ -215,6 +178,8 @@ def tooth_problems(config, pairs, memory_limit, memory_source):
     list of str
         One line per problem, starting with the key and its value.
     """
+    from lsbg.tooth.compliance import fe_resource_estimate
+
     try:
         _, settings, _ = tooth_from_config(config.get("tooth", {}))
     except ValueError as error:
@@ -236,14 +201,14 @@ def tooth_problems(config, pairs, memory_limit, memory_source):
     for (trace, spiral), pair in fe_design_points(config, pairs).items():
         cost = fe_resource_estimate(pair, settings)
         beyond = []
-        if cost["memory_gb"] > memory_limit:
-            beyond.append(f"{cost['memory_gb']:.3g} GB of memory, more than {memory_source} = "
+        if cost.memory / 1e9 > memory_limit:
+            beyond.append(f"{cost.memory / 1e9:.3g} GB of memory, more than {memory_source} = "
                           f"{memory_limit:.3g} GB")
-        if cost["seconds"] / 60 > minutes:
-            beyond.append(f"{cost['seconds'] / 60:.3g} min, more than limits.tooth_minutes = "
+        if cost.seconds / 60 > minutes:
+            beyond.append(f"{cost.seconds / 60:.3g} min, more than limits.tooth_minutes = "
                           f"{minutes!r}")
         if beyond:
             problems.append(f"tooth.element_size_module = {size!r}: the FE compliance of "
-                            f"{trace} {spiral} deg ({cost['dofs']:.3g} degrees of freedom) "
+                            f"{trace} {spiral} deg ({cost.dofs:.3g} degrees of freedom) "
                             f"would need about {' and '.join(beyond)}")
     return problems
