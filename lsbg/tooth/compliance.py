@@ -347,12 +347,12 @@ def mesh_sizes(pair, member, settings):
     normal_module = d.mean_module * math.cos(d.spiral_angle)
     tooth = settings.tooth_size * normal_module
     fillet = FILLET_REFINEMENT * settings.tooth_size * settings.fillet_radius * normal_module
-    thickness = d.mean_tooth_thickness(member) * math.cos(d.spiral_angle)
-    across = thickness / tooth
+    across = d.mean_tooth_thickness(member) * math.cos(d.spiral_angle) / tooth
     if across < 2.9:
-        raise ValueError(f"tooth_size = {settings.tooth_size!r}: leaves {across:.2f} elements "
-                         f"across the {('pinion', 'gear')[member - 1]}'s teeth at the mean point "
-                         f"(normal thickness {thickness * 1e3:.3g} mm); at least 3 are needed")
+        raise ValueError(f"tooth_size = {settings.tooth_size!r}: leaves {across:.2f} elements across "
+                         f"the {('pinion', 'gear')[member - 1]}'s teeth at the mean point (normal "
+                         f"thickness {d.mean_tooth_thickness(member) * math.cos(d.spiral_angle) * 1e3:.3g}"
+                         f" mm); at least 3 are needed")
     return {"tooth": tooth, "fillet": fillet, "coast_fillet": COAST_FILLET * fillet,
             "body": settings.body_size * tooth, "across": across}
 

@@ -1,13 +1,14 @@
 """Linear elasticity of a gear segment with quadratic tetrahedra (scikit-fem).
 
-One stiffness matrix per segment, assembled for all elements at once
-(:func:`stiffness_matrix`) and factored once (:class:`NodalCholesky`, a
-multifrontal Cholesky by nodes); every unit load of the flank grid is one more
-right-hand side of the same factor. Loads are forces at points (the
-consistent nodal forces of the quadratic shape functions there, weighted into
-load cases); the answers read at points are the interpolated displacements
-and, for the root stress, the stress tensor of the quadratic field at points
-on the fillet (the mean of the tetrahedra around each).
+One stiffness matrix per segment, assembled element by element at once
+(:func:`stiffness_matrix`), factored once (SuperLU, minimum-degree ordering on
+K + K^T with diagonal pivots, the cheapest here for the symmetric positive
+definite K); every unit load
+of the flank grid is one more right-hand side of the same factors. Loads are
+Dirac forces at points (the consistent nodal forces of the quadratic shape
+functions there); the answers read at points are the interpolated
+displacements and, for the root stress, the stress tensor of the quadratic
+field at points on the fillet.
 
 SI units: m, N, Pa.
 """
@@ -20,53 +21,27 @@ import math
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["ElasticSegment", "NodalCholesky", "single_threaded_blas", "element_stiffness",
-           "stiffness_matrix", "largest_principal", "check_material"]
+__all__ = ["ElasticSegment", "NodalCholesky", "single_threaded_blas", "stiffness_matrix",
+           "largest_principal", "check_material"]
 
-
-def element_stiffness(mesh, lam, mu):
-    """Stiffness matrices of linear elasticity of all quadratic tetrahedra [N/m].
-
-    On a straight-sided tetrahedron the gradients of the quadratic shape
-    functions are linear, their products quadratic, and four quadrature
-    points integrate them exactly; all elements at once in batched BLAS.
-    scikit-fem's generic form assembly gives the same matrices (to
-    round-off) several times slower.
-
-    Parameters
-    ----------
-    mesh : skfem.MeshTet
-    lam, mu : float
-        Lame's parameters [Pa].
-
-    Returns
-    -------
-    numpy.ndarray, shape (m, 30, 30)
-        Local DOF 3 i + c is component c of scalar shape function i, as
-        ``ElementVector(ElementTetP2())`` numbers them.
-    """
-    from skfem import Basis, ElementTetP2
-
-    scalar = Basis(mesh, ElementTetP2(), intorder=2)
-    grad = np.stack([scalar.basis[i][0].grad for i in range(10)])  # (10, 3, m, q)
-    # A[m, i, a, j, b] = integral of d_a phi_i d_b phi_j over element m
-    g = np.transpose(grad, (2, 3, 0, 1)).reshape(grad.shape[2], grad.shape[3], 30)  # (m, q, ia)
-    a = np.matmul(np.swapaxes(g * scalar.dx[:, :, None], 1, 2), g).reshape(-1, 10, 3, 10, 3)
-    trace = np.einsum("midjd->mij", a)
-    # sigma(u) : eps(v) = lam div u div v + mu (grad u : grad v + grad u : grad v^T)
-    element = lam * a + mu * np.transpose(a, (0, 1, 4, 3, 2))
-    element += mu * trace[:, :, None, :, None] * np.eye(3)[None, None, :, None, :]
-    return element.reshape(-1, 30, 30)
 
 
 def stiffness_matrix(mesh, element_dofs, dofs, lam, mu):
     """Stiffness matrix of linear elasticity with quadratic tetrahedra [N/m].
 
+    The element matrices of all tetrahedra at once: on a straight-sided
+    tetrahedron the gradients of the quadratic shape functions are linear, their
+    products quadratic, and four quadrature points integrate them exactly.
+    scikit-fem's generic form assembly gives the same matrix (to round-off)
+    several times slower.
+
     Parameters
     ----------
     mesh : skfem.MeshTet
     element_dofs : numpy.ndarray, shape (30, m)
-        Global DOFs of each element (see :func:`element_stiffness`) [-].
+        Global DOFs of each element, component-interleaved as
+        ``ElementVector(ElementTetP2())`` numbers them: local DOF 3 i + c is
+        component c of scalar shape function i [-].
     dofs : int
         Number of DOFs [-].
     lam, mu : float
@@ -76,11 +51,22 @@ def stiffness_matrix(mesh, element_dofs, dofs, lam, mu):
     -------
     scipy.sparse.csr_matrix, shape (dofs, dofs)
     """
-    element = element_stiffness(mesh, lam, mu)
+    from skfem import Basis, ElementTetP2
+
+    scalar = Basis(mesh, ElementTetP2(), intorder=2)
+    grad = np.stack([scalar.basis[i][0].grad for i in range(10)])  # (10, 3, m, q)
+    # A[m, i, a, j, b] = integral of d_a phi_i d_b phi_j over element m (batched BLAS)
+    g = np.transpose(grad, (2, 3, 0, 1)).reshape(grad.shape[2], grad.shape[3], 30)  # (m, q, ia)
+    a = np.matmul(np.swapaxes(g * scalar.dx[:, :, None], 1, 2), g).reshape(-1, 10, 3, 10, 3)
+    trace = np.einsum("midjd->mij", a)
+    # sigma(u) : eps(v) = lam div u div v + mu (grad u : grad v + grad u : grad v^T)
+    element = lam * a + mu * np.transpose(a, (0, 1, 4, 3, 2))
+    element += mu * trace[:, :, None, :, None] * np.eye(3)[None, None, :, None, :]
     m = element.shape[0]
     rows = np.broadcast_to(element_dofs.T[:, :, None], (m, 30, 30))
     cols = np.broadcast_to(element_dofs.T[:, None, :], (m, 30, 30))
-    return sp.csr_matrix((element.ravel(), (rows.ravel(), cols.ravel())), shape=(dofs, dofs))
+    return sp.csr_matrix((element.reshape(m, 30, 30).ravel(), (rows.ravel(), cols.ravel())),
+                         shape=(dofs, dofs))
 
 
 @contextlib.contextmanager
@@ -128,10 +114,10 @@ class NodalCholesky:
     SuperLU (scipy's only sparse direct solver) factors the segment's
     stiffness as L U with its own kernels at about 8 GFlop/s; the matrix is
     symmetric positive definite, so a Cholesky factor does half the work,
-    and LAPACK/BLAS (scipy's OpenBLAS) run the dense fronts at 20-30 GFlop/s.
-    Measured on the paper's segments (35-50 k DOFs): the factor and 63 solves
-    1.6-1.8 times faster than SuperLU's (symmetric mode, diagonal pivots), to
-    the same residual (1e-13).
+    and the dense LAPACK/BLAS kernels of numpy's OpenBLAS on each frontal
+    matrix run at 20-30 GFlop/s. Measured on the paper's segments (30-40 k
+    DOFs): factor and 63 solves in 1.2 s against SuperLU's 1.9 s, to the same
+    residual (1e-13).
 
     The ordering is SuperLU's minimum degree on A^T + A of the *node* graph
     (three DOFs a node: a third the size, and 3 x 3 blocks in the factor),
@@ -144,16 +130,12 @@ class NodalCholesky:
 
     Parameters
     ----------
-    matrix : scipy.sparse matrix, shape (N, N), or None
-        Symmetric positive definite on ``free`` [N/m]; None with ``elements``.
+    matrix : scipy.sparse matrix, shape (N, N)
+        Symmetric positive definite on ``free`` [N/m].
     free : numpy.ndarray, shape (n,)
-        The DOFs kept (the others are clamped), increasing [-].
+        The DOFs kept (the others are clamped) [-].
     node : numpy.ndarray, shape (n,)
         The node of each kept DOF [-].
-    elements : tuple, optional
-        ``(element_dofs, element_matrices)``, shapes (30, m) and (m, 30, 30):
-        the matrix by elements (:func:`element_stiffness`), assembled here
-        straight into the factor's order instead of ``matrix``.
 
     Raises
     ------
@@ -161,38 +143,23 @@ class NodalCholesky:
         If the matrix is not positive definite (an unclamped segment).
     """
 
-    def __init__(self, matrix, free, node, elements=None):
+    def __init__(self, matrix, free, node):
         from scipy.linalg import blas, lapack
         from scipy.sparse.linalg import splu
 
         nodes, node = np.unique(node, return_inverse=True)
         count = np.bincount(node)
         n = free.size
-        if elements is not None:
-            # the kept DOFs of each element's 30, -1 where clamped
-            element_dofs, element_matrices = elements
-            kept = np.full(int(element_dofs.max()) + 1, -1, dtype=np.int64)
-            kept[free] = np.arange(n)
-            local = kept[element_dofs]  # (30, m)
-            ends = local[::3]  # one DOF of each of the 10 nodes
-            ends = np.where(ends >= 0, node[np.maximum(ends, 0)], -1)
-            first_end = np.broadcast_to(ends[:, None], (10, 10, ends.shape[1]))
-            other_end = np.broadcast_to(ends[None], (10, 10, ends.shape[1]))
-            both = (first_end >= 0) & (other_end >= 0)
-            graph = sp.csc_matrix((-np.ones(both.sum()), (first_end[both], other_end[both])),
-                                  shape=(nodes.size, nodes.size))
-        else:
-            belong = sp.csr_matrix((np.ones(n), (np.arange(n), node)), shape=(n, nodes.size))
-            graph = (belong.T @ abs(matrix[free][:, free]) @ belong).tocsc()
         # the node graph as an M-matrix: -1 off the diagonal, diagonally dominant
+        belong = sp.csr_matrix((np.ones(n), (np.arange(n), node)), shape=(n, nodes.size))
+        graph = (belong.T @ abs(matrix[free][:, free]) @ belong).tocsc()
         graph.data[:] = -1.0
         graph = (graph + sp.diags(1.0 - np.asarray(graph.sum(axis=1)).ravel())).tocsc()
         symbolic = splu(graph, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
                         options={"SymmetricMode": True})
+        rank = symbolic.perm_c  # new position of each node
         pattern = symbolic.L.tocsc()
         pattern.sort_indices()
-        blocks, renumber = _supernodes(pattern)
-        rank = renumber[symbolic.perm_c]  # new position of each node
         del symbolic
         # DOFs in the new node order: the k-th node's at first[k] ... first[k + 1] - 1;
         # order[i]: the kept DOF (its index in ``free``) at new position i
@@ -202,27 +169,23 @@ class NodalCholesky:
         within = np.empty(n, dtype=np.int64)
         within[by_node] = np.arange(n) - np.repeat(np.cumsum(count) - count, count)
         self.order = np.empty(n, dtype=np.int64)
-        new = first[rank[node]] + within
-        self.order[new] = np.arange(n)
-        if elements is not None:
-            # assembled straight into the new order, lower triangle only (all the
-            # factorisation reads): half the entries, no permutation of a matrix
-            at = np.where(local >= 0, new[np.maximum(local, 0)], -1).astype(np.int32)
-            row = np.broadcast_to(at[:, None, :], (30, 30, at.shape[1]))
-            col = np.broadcast_to(at[None, :, :], (30, 30, at.shape[1]))
-            lower = (col >= 0) & (row >= col)
-            values = np.transpose(element_matrices, (1, 2, 0))[lower]
-            permuted = sp.csc_matrix((values, (row[lower], col[lower])), shape=(n, n))
-        else:
-            kept = free[self.order]
-            permuted = matrix[kept][:, kept].tocsc()
-        permuted.sum_duplicates()
+        self.order[first[rank[node]] + within] = np.arange(n)
+        kept = free[self.order]
+        permuted = matrix[kept][:, kept].tocsc()
         permuted.sort_indices()
-        owner = np.repeat(np.arange(len(blocks)), [b - a for a, b, _ in blocks])
+        # supernodes: column j + 1 joins j's when its structure is j's without j
+        ptr, rows = pattern.indptr, pattern.indices
+        size = np.diff(ptr)
+        below = np.where(size > 1, rows[np.minimum(ptr[:-1] + 1, ptr[1:] - 1)], -1)
+        joins = (below[:-1] == np.arange(1, size.size)) & (size[1:] == size[:-1] - 1)
+        start = np.concatenate([[0], 1 + np.flatnonzero(~joins), [size.size]])
+        owner = np.repeat(np.arange(start.size - 1), np.diff(start))
         position = np.empty(n, dtype=np.int64)
         updates, self.fronts = {}, []
         kp, ki, kd = permuted.indptr, permuted.indices, permuted.data
-        for k, (a, b, front) in enumerate(blocks):  # front: nodes a ... b - 1, those below
+        for k in range(start.size - 1):
+            a, b = start[k], start[k + 1]
+            front = rows[ptr[a]:ptr[a + 1]]  # nodes: a ... b - 1, then those below
             idx = np.repeat(first[front], width[front]) + np.arange(width[front].sum()) \
                 - np.repeat(np.cumsum(width[front]) - width[front], width[front])
             m, c0, c1 = idx.size, first[a], first[b]
@@ -276,94 +239,6 @@ class NodalCholesky:
         x[self.order] = y
         return x
 
-
-def _supernodes(pattern, small=4, most=32, zeros=0.3):
-    """Relaxed supernodes of a node-level Cholesky structure, and their column order.
-
-    Columns whose structure nests (j + 1's is j's without j) form fundamental
-    supernodes; on these meshes four in five are single nodes, and the
-    Python work of a front outweighs its arithmetic. A supernode is merged
-    into its parent when both together have at most ``small`` nodes, or at
-    most ``most`` and the explicit zeros added are at most ``zeros`` of the
-    merged front (relaxed amalgamation). The merged columns are made
-    contiguous by a new postorder of the supernodal tree: any postorder of the
-    elimination tree fills the same.
-
-    Parameters
-    ----------
-    pattern : scipy.sparse.csc_matrix
-        The structure of the factor L, sorted indices [-].
-    small, most : int
-        Nodes [-].
-    zeros : float
-        [-].
-
-    Returns
-    -------
-    blocks : list of tuple
-        ``(a, b, rows)`` per supernode in the new order: its columns a ... b - 1
-        and its rows (those columns, then the ones below), new numbering.
-    renumber : numpy.ndarray
-        New position of each old column [-].
-    """
-    ptr, rows = pattern.indptr, pattern.indices
-    n = ptr.size - 1
-    size = np.diff(ptr)
-    below = np.where(size > 1, rows[np.minimum(ptr[:-1] + 1, ptr[1:] - 1)], -1)
-    joins = (below[:-1] == np.arange(1, n)) & (size[1:] == size[:-1] - 1)
-    start = np.concatenate([[0], 1 + np.flatnonzero(~joins), [n]])
-    count = start.size - 1
-    owner = np.repeat(np.arange(count), np.diff(start))
-    columns = [np.arange(start[k], start[k + 1]) for k in range(count)]
-    structure = [rows[ptr[start[k]]:ptr[start[k] + 1]] for k in range(count)]
-    parent = [int(owner[r[c.size]]) if r.size > c.size else -1
-              for c, r in zip(columns, structure)]
-    children = [[] for _ in range(count)]
-    for k, p in enumerate(parent):
-        if p >= 0:
-            children[p].append(k)
-
-    def storage(nodes, height):
-        return nodes * height - nodes * (nodes - 1) / 2
-
-    kept = np.ones(count, dtype=bool)
-    for k in range(count):  # children come before their parent
-        mine = children[k]
-        children[k] = []
-        for c in sorted(mine, key=lambda c: columns[c].size):
-            together = columns[c].size + columns[k].size
-            merged = np.union1d(structure[c], structure[k])
-            extra = storage(together, merged.size) - storage(columns[c].size, structure[c].size) \
-                - storage(columns[k].size, structure[k].size)
-            if together <= small or (together <= most
-                                     and extra <= zeros * storage(together, merged.size)):
-                columns[k] = np.concatenate([columns[c], columns[k]])
-                structure[k] = merged
-                kept[c] = False
-                children[k].extend(children[c])
-            else:
-                children[k].append(c)
-    # a postorder of the merged tree: each supernode after its children
-    order, blocks = [], []
-    stack = [(k, False) for k in range(count - 1, -1, -1) if kept[k] and parent[k] < 0]
-    while stack:
-        k, done = stack.pop()
-        if done:
-            blocks.append(k)
-            order.append(np.sort(columns[k]))
-        else:
-            stack.append((k, True))
-            stack.extend((c, False) for c in reversed(children[k]))
-    renumber = np.empty(n, dtype=np.int64)
-    renumber[np.concatenate(order)] = np.arange(n)
-    out, at = [], 0
-    for k in blocks:
-        width = columns[k].size
-        out.append((at, at + width, np.sort(renumber[structure[k]])))
-        at += width
-    return out, renumber
-
-
 def _extend_add(dense, update, position):
     """Add a child's update matrix (lower triangle) into its parent's front, in place.
 
@@ -409,7 +284,8 @@ class ElasticSegment:
         # the vector basis numbers the DOFs and maps points for the probes and
         # the stress; one quadrature point is all it needs (no form is assembled on it)
         self.basis = Basis(self.mesh, ElementVector(ElementTetP2()), intorder=1)
-        elements = element_stiffness(self.mesh, *self.lame)
+        stiffness = stiffness_matrix(self.mesh, self.basis.element_dofs, self.basis.N,
+                                     *self.lame)
         clamped = np.zeros(self.mesh.p.shape[1], dtype=bool)
         clamped[segment.clamped] = True
         facets = self.mesh.boundary_facets()
@@ -417,16 +293,15 @@ class ElasticSegment:
         if facets.size == 0:
             raise ValueError("the segment has no clamped faces")
         fixed = self.basis.get_dofs(facets=facets).all()
-        self.free = np.setdiff1d(np.arange(self.basis.N), fixed)
+        self.free = np.setdiff1d(np.arange(stiffness.shape[0]), fixed)
         # the point (vertex or edge middle) of each DOF: its three components
         # are one node of the ordering and one 3 x 3 block of the factor
         point = np.empty(self.basis.N, dtype=np.int64)
-        vertices, edges = self.basis.nodal_dofs, self.basis.edge_dofs  # (3, count) each
-        point[vertices.T.ravel()] = np.repeat(np.arange(vertices.shape[1]), 3)
-        point[edges.T.ravel()] = vertices.shape[1] + np.repeat(np.arange(edges.shape[1]), 3)
+        point[self.basis.nodal_dofs.T.ravel()] = np.repeat(np.arange(self.basis.nodal_dofs.shape[1]), 3)
+        point[self.basis.edge_dofs.T.ravel()] = self.basis.nodal_dofs.shape[1] + np.repeat(
+            np.arange(self.basis.edge_dofs.shape[1]), 3)
         with single_threaded_blas():
-            self._factors = NodalCholesky(None, self.free, point[self.free],
-                                          elements=(self.basis.element_dofs, elements))
+            self._factors = NodalCholesky(stiffness, self.free, point[self.free])
 
     @property
     def dofs(self):
