@@ -6,7 +6,8 @@ Run as a script (pytest does not collect it: no ``test_`` prefix)::
 
 Runs bench_dynamics.py (kernels, engines per simulated second, the PyBullet
 step against its floor, compile and cache-load times), bench_tca.py (the
-surface TCA and the V-H map of a design point) and bench_study.py (the
+surface TCA and the V-H map of a design point), bench_tooth.py (the FE
+compliance and the FE loaded TCA of a design point) and bench_study.py (the
 start-up costs, the full study with -j2 and -j1, the speed sweep), then prints
 one table: figure, value, target, verdict. About 10 minutes on two cores.
 """
@@ -19,11 +20,14 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import bench_dynamics  # noqa: E402
 import bench_study  # noqa: E402
 import bench_tca  # noqa: E402
+import bench_tooth  # noqa: E402
 
 
 def main(argv=None):
     argv = list(sys.argv[1:] if argv is None else argv)
-    rows = bench_dynamics.main([]) + bench_tca.main([]) + bench_study.main(argv)
+    # the tooth's benchmark pins this process to one CPU: after the study (-j2)
+    rows = (bench_dynamics.main([]) + bench_tca.main([]) + bench_study.main(argv)
+            + bench_tooth.main([]))
     print("\n== lsbg benchmark: every figure against its target ==")
     for row in rows:
         print(f"  {row['figure']:62s} {row['value']:9.3g} {row['unit']:3s} "
