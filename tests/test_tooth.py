@@ -217,7 +217,7 @@ def test_nodal_cholesky_solves_a_block_system():
     import scipy.sparse as sp
     from scipy.sparse.linalg import spsolve
 
-    from lsbg.tooth.elasticity import NodalCholesky
+    from lsbg.tooth.cholesky import NodalCholesky
 
     rng = np.random.default_rng(3)
     line = sp.diags([-1.0, 2.0, -1.0], [-1, 0, 1], shape=(7, 7))
@@ -225,7 +225,8 @@ def test_nodal_cholesky_solves_a_block_system():
     grid = (sp.kron(sp.kron(line, eye), eye) + sp.kron(sp.kron(eye, line), eye)
             + sp.kron(sp.kron(eye, eye), line))
     coupling = sp.csr_matrix(rng.uniform(-0.3, 0.3, (3, 3)))
-    matrix = (sp.kron(grid, sp.identity(3) + coupling @ coupling.T) + 0.01 * sp.identity(3 * 343)).tocsr()
+    block = sp.identity(3) + coupling @ coupling.T
+    matrix = (sp.kron(grid, block) + 0.01 * sp.identity(3 * 343)).tocsr()
     free = np.arange(3 * 10, 3 * 343)
     factor = NodalCholesky(matrix, free, np.arange(3 * 343)[free] // 3)
     rhs = rng.standard_normal((free.size, 4))

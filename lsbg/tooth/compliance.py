@@ -101,8 +101,10 @@ class FEMeshSettings:
         (0.45 of the fillet radius at the default), and every size grows
         from there with the distance (:mod:`lsbg.tooth.segment`), so refining
         ``tooth_size`` refines the whole mesh. Default 0.5: a further
-        refinement to 0.375 moves the mesh stiffness by 0.6 % and the root
-        stresses by less than 4 % (the paper's pair, 35 deg, both traces).
+        refinement to 0.375 moves the mesh stiffness by 0.5-0.6 % and the
+        largest root stresses by 0.4-4.5 % (the paper's pair, 35 deg, both
+        traces, 7-tooth segments; the stresses scatter by about 3 % from mesh
+        to mesh).
     body_size : float
         Largest element size, far in the rim, as a multiple of the tooth size
         [-].
@@ -347,31 +349,32 @@ def mesh_sizes(pair, member, settings):
     normal_module = d.mean_module * math.cos(d.spiral_angle)
     tooth = settings.tooth_size * normal_module
     fillet = FILLET_REFINEMENT * settings.tooth_size * settings.fillet_radius * normal_module
-    across = d.mean_tooth_thickness(member) * math.cos(d.spiral_angle) / tooth
+    thickness = d.mean_tooth_thickness(member) * math.cos(d.spiral_angle)
+    across = thickness / tooth
     if across < 2.9:
-        raise ValueError(f"tooth_size = {settings.tooth_size!r}: leaves {across:.2f} elements across "
-                         f"the {('pinion', 'gear')[member - 1]}'s teeth at the mean point (normal "
-                         f"thickness {d.mean_tooth_thickness(member) * math.cos(d.spiral_angle) * 1e3:.3g}"
-                         f" mm); at least 3 are needed")
+        raise ValueError(f"tooth_size = {settings.tooth_size!r}: leaves {across:.2f} elements "
+                         f"across the {('pinion', 'gear')[member - 1]}'s teeth at the mean point "
+                         f"(normal thickness {thickness * 1e3:.3g} mm); at least 3 are needed")
     return {"tooth": tooth, "fillet": fillet, "coast_fillet": COAST_FILLET * fillet,
             "body": settings.body_size * tooth, "across": across}
 
 
 #: The resource model of :func:`fe_resource_estimate`, fitted to this code's
-#: meshes and runs (2 x 4 designs x 27 settings meshed; 7 tooth sizes run, 0.25
-#: to 0.52, on one core of a 2-core x86-64 machine, OpenBLAS single-threaded).
-#: DOFs of a member: ``dofs_tooth * V_t / h^3 + dofs_fillet * (b / h_f + b / h_c)
-#: + dofs_body * V_s / H^3`` (V_t = b (h_a + h_f) pi m_mn the loaded tooth's
-#: band, h its element size; b the face width, h_f and h_c the drive and coast
-#: fillets' sizes: the graded tubes along them; V_s the segment's volume, H the
-#: body size): within 7 % of the meshes (rms 3 %). Seconds of a member
-#: (meshing, assembly, factorisation, solves): ``seconds_base + seconds_scale
-#: (N / 1e4)^seconds_power``, within 17 % (the machine is shared). Peak memory
-#: of the process: ``memory_base + memory_scale (N_max / 1e4)^memory_power``,
-#: within 4 %.
-RESOURCE_MODEL = {"dofs_tooth": 14.64, "dofs_fillet": 245.1, "dofs_body": 21.15,
-                  "seconds_base": 0.944, "seconds_scale": 0.2298, "seconds_power": 1.746,
-                  "memory_base": 2.224e8, "memory_scale": 9.156e7, "memory_power": 1.292}
+#: meshes and runs with 7-tooth segments (3 designs, 2 members, 18 settings
+#: meshed; 7 tooth sizes run, 0.25 to 0.52, on one core of a shared 2-core
+#: x86-64 machine). DOFs of a member: ``dofs_tooth * V_t / h^3 + dofs_fillet
+#: * (b / h_f + b / h_c) + dofs_body * V_s / H^3`` (V_t = b (h_a + h_f) pi m_mn
+#: the loaded tooth's band, h its element size; b the face width, h_f and h_c
+#: the drive and coast fillets' element sizes: the graded tubes along them;
+#: V_s the segment's volume, H the body size): within 5 % of the meshes (rms
+#: 3 %; 3-tooth segments come out about 10 % below it). Seconds of a member
+#: (geometry, meshing, assembly, factorisation, solves): ``seconds_base +
+#: seconds_scale (N / 1e4)^seconds_power``, within 23 % (the geometry's OCC
+#: booleans are most of the base). Peak memory of the process:
+#: ``memory_base + memory_scale (N_max / 1e4)^memory_power``, within 9 %.
+RESOURCE_MODEL = {"dofs_tooth": 13.49, "dofs_fillet": 293.8, "dofs_body": 21.42,
+                  "seconds_base": 2.393, "seconds_scale": 0.1005, "seconds_power": 1.941,
+                  "memory_base": 1.5e8, "memory_scale": 1.018e8, "memory_power": 1.155}
 
 
 @dataclass(frozen=True)
@@ -419,7 +422,7 @@ def fe_resource_estimate(pair, settings=None):
     -------
     FEResources
         E.g. the paper's pair at 35 deg with the default settings: about
-        74 000 DOFs, 0.72 GB, 6.5 s.
+        85 000 DOFs, 0.7 GB, 8 s (measured: 84 705 DOFs, 0.66 GB, 7.6-8.4 s).
 
     Raises
     ------
