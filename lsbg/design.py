@@ -204,6 +204,30 @@ class GearPairDesign:
             out[key] = _exact_inverse(value, *scale) if scale is not None else value
         return out
 
+    def attrs_difference(self, attrs):
+        """The first design key on which a dataset's ``design_*`` attributes differ.
+
+        Parameters
+        ----------
+        attrs : dict
+            A dataset's attributes, the design written as ``design_<key>``
+            (:meth:`to_config`'s keys and units).
+
+        Returns
+        -------
+        tuple or None
+            ``(key, stored value, this design's value)``, or None where every
+            key agrees (numbers to 1e-12 relative).
+        """
+        for key, value in self.to_config().items():
+            stored = attrs.get(f"design_{key}")
+            same = stored is not None and (
+                stored == value if isinstance(value, str)
+                else math.isclose(float(stored), float(value), rel_tol=1e-12))
+            if not same:
+                return key, stored, value
+        return None
+
     def replace(self, **changes) -> "GearPairDesign":
         """A copy with some parameters changed (SI units), validated again."""
         return dataclasses.replace(self, **changes)

@@ -168,6 +168,14 @@ def test_the_configuration_check_names_the_tooth_keys():
     fine = problems(tooth__element_size_module=0.1, limits__tooth_minutes=0.5)
     assert "tooth.element_size_module = 0.1: the FE compliance of" in fine
     assert "limits.tooth_minutes = 0.5" in fine
+    # root fillets too wide for the 37-tooth gear's gaps at 45 deg (its root is
+    # 1.7 mm wide at the toe): named before any job, both traces
+    wide = problems(contact__compliance="fe", sweep__spiral_angles_deg=[35, 45],
+                    tooth__fillet_radius_module=0.34)
+    for trace in ("logarithmic", "circular"):
+        assert (f"tooth.fillet_radius_module = 0.34: {trace} 45 deg: the gear's root fillets "
+                "do not fit") in wide
+    assert "35 deg: the" not in wide
     assert problems() == ""
 
 

@@ -50,6 +50,20 @@ def test_segment_holds_three_teeth_of_the_blank(pair):
     assert mesh.clamped.size > 50
 
 
+@pytest.mark.parametrize("spiral, member", [(20, 1), (45, 2)])
+def test_segments_mesh_at_the_ends_of_the_sweep(spiral, member):
+    """Where OCC's own root fillet failed (the pinion at 20-32.5 deg, the gear at
+    42.5-45 deg), the sections' fillets give a 7-tooth segment of the blank."""
+    from lsbg.mass import quadrature_mass_properties
+    from lsbg.tooth.segment import segment_mesh
+
+    pair = GearPair(GearPairDesign.from_config({"spiral_angle_deg": spiral}))
+    mesh = segment_mesh(pair, member, 2e-3, teeth=7)
+    volume = tetrahedra_volume(mesh.nodes, mesh.tetrahedra)
+    whole = quadrature_mass_properties(pair, member).volume
+    assert volume == pytest.approx(7 / pair.design.teeth[member - 1] * whole, rel=0.02)
+
+
 def test_flank_curvature_along_the_contact_line_is_the_generating_curve(pair):
     # both flanks contain the contact line, which lies in the plane of action
     # with the flanks' normals: its normal curvature is the curve's, sin(beta_p)/R

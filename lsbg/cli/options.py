@@ -352,13 +352,11 @@ def slice_stiffness_from_args(args, params, geometry_dir, load_torque):
     with xr.open_dataset(path) as ds:
         ds = ds.load()
     design = read_design(geometry_dir)
-    for key, value in design.to_config().items():
-        stored = ds.attrs.get(f"design_{key}")
-        same = (stored == value if isinstance(value, str) or stored is None
-                else math.isclose(float(stored), float(value), rel_tol=1e-12))
-        if not same:
-            raise CommandError(f"--fe-ltca {path}: design {key} = {stored!r}, the geometry's "
-                               f"{value!r}")
+    difference = design.attrs_difference(ds.attrs)
+    if difference is not None:
+        key, stored, value = difference
+        raise CommandError(f"--fe-ltca {path}: design {key} = {stored!r}, the geometry's "
+                           f"{value!r}")
     stored_load = float(ds.attrs.get("load_torque_N_m", math.nan))
     if not math.isclose(stored_load, load_torque, rel_tol=1e-9):
         raise CommandError(f"--fe-ltca {path}: computed at {stored_load!r} N m, the run's load "

@@ -58,7 +58,7 @@ def add_compliance_parser(subparsers):
     """``lsbg compliance``: the FE compliance of one design point."""
     parser = subparsers.add_parser(
         "compliance", help="finite-element compliance of the teeth of one design point",
-        description="Mesh a three-tooth segment of each member of the pair in --geometry "
+        description="Mesh a seven-tooth segment of each member of the pair in --geometry "
                     "(gmsh, root fillets), solve linear elasticity with quadratic tetrahedra "
                     "(scikit-fem) for unit normal loads over the field of contact, and write the "
                     "influence coefficients and the fillet stresses to --out (NetCDF) with the "

@@ -179,6 +179,7 @@ def tooth_problems(config, pairs, memory_limit, memory_source):
         One line per problem, starting with the key and its value.
     """
     from lsbg.tooth.compliance import fe_resource_estimate
+    from lsbg.tooth.outline import segment_sections
 
     try:
         _, settings, _ = tooth_from_config(config.get("tooth", {}))
@@ -199,6 +200,14 @@ def tooth_problems(config, pairs, memory_limit, memory_source):
     minutes = config["limits"].get("tooth_minutes", 10)
     size = config.get("tooth", {}).get("element_size_module", settings.tooth_size)
     for (trace, spiral), pair in fe_design_points(config, pairs).items():
+        # the root fillets must fit in the gaps (a numpy check of the loft's sections)
+        rho = settings.fillet_radius * pair.design.mean_module * math.cos(pair.design.spiral_angle)
+        for member in (1, 2):
+            try:
+                segment_sections(pair, member, settings.segment_teeth, rho)
+            except ValueError as error:
+                problems.append(f"tooth.fillet_radius_module = {settings.fillet_radius!r}: "
+                                f"{trace} {spiral} deg: {error}")
         cost = fe_resource_estimate(pair, settings)
         beyond = []
         if cost.memory / 1e9 > memory_limit:

@@ -461,12 +461,11 @@ def fe_loaded_tca(contact, compliance, load_torque, phases=200, form_limit=True)
     design = contact.pair.design
     hash_ = compliance.attrs.get("inputs_hash")
     # the compliance holds only for the design it was computed for: every key
-    for key, value in design.to_config().items():
-        stored = compliance.attrs.get(f"design_{key}")
-        if stored is None or (stored != value if isinstance(value, str)
-                              else not math.isclose(float(stored), float(value), rel_tol=1e-12)):
-            raise ValueError(f"the compliance dataset has design {key} = {stored!r}, the "
-                             f"contact's design {value!r}: compute it for this design point")
+    difference = design.attrs_difference(compliance.attrs)
+    if difference is not None:
+        key, stored, value = difference
+        raise ValueError(f"the compliance dataset has design {key} = {stored!r}, the "
+                         f"contact's design {value!r}: compute it for this design point")
     bands = contact.params.slices
     band_rho = contact.arrays[2][0, :bands, k.B_RHO]
     psi_lo, psi_hi = contact.pair.planes["drive"].field[:2]

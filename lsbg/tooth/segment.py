@@ -9,10 +9,11 @@ the body under them down to the bore, as lsbg's gear blank defines it
 The solid is lofted through the exact section outlines of
 :func:`lsbg.solids.section_outline` as the STEP solids are
 (:mod:`lsbg.step`), cut in each gap beyond the outer teeth along the middle of
-the root (so the cut follows the spiral), and its root corners are rounded
-with the tool edge radius rho_a0 = ``fillet_radius`` x module: lsbg's
-blank has a sharp corner where the flank meets the root cone, at which the
-stress of an elastic solid is singular and no root stress converges.
+the root (so the cut follows the spiral), the root corners of tooth 0's gaps
+rounded in every section with the tool edge radius rho_a0 = ``fillet_radius``
+x module (:mod:`lsbg.tooth.outline`): lsbg's blank has a sharp corner where
+the flank meets the root cone, at which the stress of an elastic solid is
+singular and no root stress converges.
 
 gmsh meshes it with linear tetrahedra whose size is ``tooth_size`` on the
 loaded tooth, smaller on its root fillets (the root stress is read there),
@@ -30,11 +31,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["SegmentMesh", "segment_mesh", "tooth_zero_column", "fillet_corners",
-           "fillet_points", "distance_to_polyline"]
+from lsbg.tooth.outline import (SEGMENT_SECTIONS, distance_to_polyline, fillet_corners,
+                                segment_sections)
 
-#: Sections of the loft across the face width (and beyond it) [-].
-SEGMENT_SECTIONS = 7
+__all__ = ["SegmentMesh", "segment_mesh", "fillet_points"]
+
 #: Growth of the element size with the distance from tooth 0 [m per m]: the
 #: size doubles one tooth size away, which keeps the tetrahedra well shaped
 #: (faster growth coarsens the rim under the tooth and stiffens it).
@@ -73,105 +74,36 @@ class SegmentMesh:
     body_size: float
 
 
-def tooth_zero_column(pair, member, outline, section):
-    """Outline tooth that holds tooth 0's flanks on one section [-].
-
-    :meth:`lsbg.geometry.GearPair.flank` gives the flanks of tooth 0; the
-    outline counts its teeth from its own start. The tooth whose azimuth span
-    (low-flank root to the next tooth's) contains tooth 0's drive flank at the
-    middle of its profile is tooth 0.
-
-    Parameters
-    ----------
-    pair : lsbg.geometry.GearPair
-    member : {1, 2}
-    outline : lsbg.solids.SectionOutline
-    section : int
-        Row of the outline to look on [-].
-
-    Returns
-    -------
-    int
-        Index j of the outline's tooth (columns j * per_tooth ...).
-    """
-    z = pair.design.teeth[member - 1]
-    lo, hi = pair.flank_polar_range(member)
-    point, _ = pair.flank(member, "drive", outline.cone_distance[section], 0.5 * (lo + hi))
-    start = outline.azimuth[section, 0]
-    offset = (float(pair.azimuth(member, point)) - start) % (2 * math.pi)
-    return int(offset // (2 * math.pi / z)) % z
-
-
-def _segment_runs(outline, tooth, teeth, n_top, n_root):
-    """Column runs of the segment's open outline, and its root corners.
-
-    The outline is cut in the middle of the root arcs before the first and
-    after the last tooth; each run is one smooth piece (root arc, flank, top
-    land), sharing end columns with its neighbours.
-
-    Returns
-    -------
-    runs : list of list of int
-        Outline columns, in order, of each piece.
-    corners : list of int
-        Positions (in the open outline) of the flank-root corners.
-    """
-    n = outline.per_tooth
-    total = outline.points.shape[1]
-    side = (n - n_top - n_root) // 2
-    half = (teeth - 1) // 2
-    first_tooth = tooth - half
-    # middle of the root arc of the tooth before the first (its arc runs from
-    # its high flank's root to the first tooth's low flank's root)
-    root_start = 2 * side + n_top - 1
-    middle = root_start + (n_root + 1) // 2
-    start = (first_tooth - 1) * n + middle
-    stop = (first_tooth + teeth - 1) * n + middle
-    columns = np.arange(start, stop + 1)
-    # piece boundaries of every tooth, relative to the tooth's first column
-    boundaries = {0, side - 1, side + n_top, root_start}
-    cuts = [i for i, c in enumerate(columns) if (c % n) in boundaries]
-    corners = [i for i, c in enumerate(columns) if (c % n) in (0, root_start)]
-    marks = sorted(set([0, *cuts, columns.size - 1]))
-    runs = [[int(columns[i]) % total for i in range(a, b + 1)] for a, b in zip(marks[:-1], marks[1:])]
-    return runs, corners
-
-
 def _build_segment(pair, member, teeth, fillet_radius, sections):
     """The segment's solid in the current gmsh model [volume tag].
 
-    The loft runs through the segment's own outline, from the middle of the
-    root of the gap before its first tooth to that after its last, closed
-    down into the bore and round the axis there; its root corners are
-    rounded, and one boolean with the blank trims it. (Lofting the whole gear
-    and splitting the segment off with surfaces through the gaps cost two to
-    three times as long in OCC's booleans, for the same solid.)
+    The loft runs through :func:`segment_sections`, closed down into the bore
+    and round the axis there, and one boolean with the blank trims it.
+    (Lofting the whole gear and splitting the segment off with surfaces
+    through the gaps cost two to three times as long in OCC's booleans, for
+    the same solid.)
     """
     import gmsh
 
-    from lsbg.step import loft_sections
     from lsbg.vectors import rotate
 
     occ = gmsh.model.occ
     d = pair.design
     r_in, r_out = d.inner_cone_distance, d.outer_cone_distance
-    outline, n_top, n_root = loft_sections(pair, member, sections)
-    radii = outline.cone_distance
-    tooth = tooth_zero_column(pair, member, outline, sections // 2)
-    runs, corners = _segment_runs(outline, tooth, teeth, n_top, n_root)
-    segment_columns = [c for run in runs for c in run[:-1]] + [runs[-1][-1]]
-    corner_columns = [segment_columns[i] for i in corners]
+    radii, outlines = segment_sections(pair, member, teeth, fillet_radius, sections)
     axis, forward = pair.axis[member], pair.rotation_axis[member]
     root = d.root_angle(member)
     bore = (d.pinion_bore if member == 1 else d.gear_bore) / 2
     # the outline, so the segment, runs in increasing azimuth about the rotation axis
     polar = np.linspace(root, 0.5 * math.asin(bore / radii[-1]), 5)
     wires = []
-    for k in range(radii.size):
-        points = outline.points[k]
-        tags = {c: occ.addPoint(*points[c]) for c in segment_columns}
-        curves = [occ.addSpline([tags[c] for c in run]) for run in runs]
-        start, end = points[segment_columns[0]], points[segment_columns[-1]]
+    for k, pieces in enumerate(outlines):
+        curves, first, last = [], None, None
+        for piece in pieces:  # consecutive pieces share their end points
+            tags = [last or occ.addPoint(*piece[0])] + [occ.addPoint(*q) for q in piece[1:]]
+            curves.append(occ.addSpline(tags))
+            first, last = first or tags[0], tags[-1]
+        start, end = pieces[0][0], pieces[-1][-1]
         turn = float(pair.azimuth(member, end) - pair.azimuth(member, start)) % (2 * math.pi)
         # the sides: from the middle of the outer gaps' roots down into the bore,
         # in the axial half-planes through them (so they follow the spiral from
@@ -182,8 +114,8 @@ def _build_segment(pair, member, teeth, fillet_radius, sections):
             radial /= np.linalg.norm(radial)
             sides.append(radii[k] * (np.cos(polar)[:, None] * axis
                                      + np.sin(polar)[:, None] * radial))
-        down = [tags[segment_columns[-1]]] + [occ.addPoint(*q) for q in sides[0][1:]]
-        up = [occ.addPoint(*q) for q in sides[1][:0:-1]] + [tags[segment_columns[0]]]
+        down = [last] + [occ.addPoint(*q) for q in sides[0][1:]]
+        up = [occ.addPoint(*q) for q in sides[1][:0:-1]] + [first]
         curves.append(occ.addSpline(down))
         centre = occ.addPoint(*(radii[k] * math.cos(polar[-1]) * axis))
         previous = down[-1]
@@ -195,22 +127,6 @@ def _build_segment(pair, member, teeth, fillet_radius, sections):
         curves.append(occ.addSpline(up))
         wires.append(occ.addWire(curves))
     body = occ.addThruSections(wires, makeSolid=True, makeRuled=False)
-    occ.synchronize()
-    # round the root corners: the loft's edges that run through the corner points
-    corner_points = [outline.points[k][corner_columns] for k in (0, -1)]
-    edges = []
-    for _, edge in gmsh.model.getEntities(1):
-        ends = [gmsh.model.getValue(0, abs(p[1]), [])
-                for p in gmsh.model.getBoundary([(1, edge)], oriented=False)]
-        if len(ends) != 2:
-            continue
-        ends = np.array(ends)
-        near = [np.min(np.linalg.norm(c[:, None] - ends[None], axis=2), axis=0) for c in corner_points]
-        if np.any(near[0] < 1e-9) and np.any(near[1] < 1e-9):
-            edges.append(edge)
-    if len(edges) != len(corners):
-        raise RuntimeError(f"found {len(edges)} of the segment's {len(corners)} root corners")
-    body = occ.fillet([b[1] for b in body], edges, [fillet_radius], removeVolume=True)
     # the blank: the spherical shell R_i <= |r| <= R_e, bored (from simple
     # solids first: one boolean with the lofted body, the costly kind)
     outer, inner = occ.addSphere(0, 0, 0, r_out), occ.addSphere(0, 0, 0, r_in)
@@ -261,58 +177,6 @@ def _clamped_surfaces(pair, member, volume):
         elif np.ptp(radius) > 1e-6 * radius.max() and off_axis.min() < bore * (1 + 1e-6):
             clamped.append(surface)
     return clamped
-
-
-def fillet_corners(pair, member, samples=41, margin=0.0):
-    """Corner lines of tooth 0's root fillets: where each flank meets the root cone [m].
-
-    The flank (or its radial continuation below the base cone) meets the root
-    cone along a line at the flank's start azimuth; the fillet of radius rho
-    rounds that corner and lies within about one rho of it.
-
-    Parameters
-    ----------
-    pair : lsbg.geometry.GearPair
-    member : {1, 2}
-    samples : int
-        Points along each line [-].
-    margin : float
-        Extension beyond the toe and the heel [m].
-
-    Returns
-    -------
-    numpy.ndarray, shape (2, samples, 3)
-        Drive side, then coast side.
-    """
-    from lsbg.solids import _sphere_points
-
-    d = pair.design
-    start = pair.flank_polar_range(member)[0]
-    rho = np.linspace(d.inner_cone_distance - margin, d.outer_cone_distance + margin, samples)
-    lines = []
-    for side in ("drive", "coast"):
-        foot, _ = pair.flank(member, side, rho, np.full(samples, start))
-        lines.append(_sphere_points(pair, member, rho, d.root_angle(member),
-                                    pair.azimuth(member, foot)))
-    return np.stack(lines)
-
-
-def distance_to_polyline(points, line):
-    """Distance of points to a polyline [m].
-
-    Parameters
-    ----------
-    points : numpy.ndarray, shape (n, 3)
-    line : numpy.ndarray, shape (s, 3)
-
-    Returns
-    -------
-    numpy.ndarray, shape (n,)
-    """
-    seg = np.diff(line, axis=0)
-    rel = points[:, None, :] - line[None, :-1, :]
-    t = np.clip(np.sum(rel * seg[None], axis=2) / np.sum(seg * seg, axis=1)[None], 0, 1)
-    return np.min(np.linalg.norm(rel - t[..., None] * seg[None], axis=2), axis=1)
 
 
 def _fillet_surfaces(pair, member, volume, fillet_radius):

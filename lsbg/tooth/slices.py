@@ -4,7 +4,7 @@ At each mesh position the complementarity LTCA (:mod:`lsbg.tooth.ltca`)
 finds, at every contact point (a band of the face width on one tooth pair's
 contact line), the load per unit length q and the approach x of the flanks
 there (the mismatch's lever times the rotation, less the initial separation
-of real flanks): the bulk deflection of all three teeth of both members under
+of real flanks): the bulk deflection of the three teeth in mesh of both members under
 all the loads, plus the local Hertz compression. Their ratio k = q / x is the
 stiffness per unit length that a slice of the line model must have to carry
 the same load at the same approach: the effective (secant) stiffness of the
