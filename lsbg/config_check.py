@@ -39,7 +39,9 @@ configuration that returns its problem lines):
    contact nor closing the backlash; kept (:func:`contact_state_cache_dir`):
    its quick TCAs and numba's start cost about 1.2 s once per configuration;
 9. the tooth section, the compliance case and each FE compliance's estimated
-   cost (:func:`lsbg.tooth.config.tooth_problems`).
+   cost (:func:`lsbg.tooth.config.tooth_problems`);
+10. the rating section and the paper point's ISO 10300 rating
+    (:func:`lsbg.rating.config.rating_problems`).
 
 A YAML syntax error in a ``--configfile`` never reaches this module:
 Snakemake 9 reads that file before the Snakefile and stops with
@@ -110,10 +112,11 @@ def check_config(config, schema):
     pairs = {}  # the design points that pass the physics and the resource guard
     problems = (_name_problems(config) + _settings_problems(config) + run_cost_problems(config)
                 + _statistics_problems(config) + _design_problems(config, pairs))
+    from lsbg.rating.config import rating_problems
     from lsbg.tooth.config import tooth_problems
 
     problems += _contact_state_problems(config, pairs) + tooth_problems(
-        config, pairs, *memory_limit_gb(config))
+        config, pairs, *memory_limit_gb(config)) + rating_problems(config, pairs)
     return list(dict.fromkeys(problems))
 
 

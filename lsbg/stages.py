@@ -45,12 +45,15 @@ STAGE_MODULES = {
               "theory", "spectra", "speed", "ltca", "tca"),
     "contact_state": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics",
                       "ltca", "results", "theory", "tca"),
+    "rating": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "results",
+               "theory", "ltca", "tca", "rating", "summary", "stats", "spectra", "runs",
+               "combine"),
     "aggregate": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "results",
                   "theory", "stats", "spectra", "runs", "combine", "summary", "ltca", "tca"),
     # the notebooks' imports too (tests/test_stages.py reads them)
     "report": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "results",
                "theory", "stats", "spectra", "runs", "combine", "summary", "ltca", "reports",
-               "verification", "tables", "figures", "sensitivity", "speed", "tca"),
+               "verification", "tables", "figures", "sensitivity", "speed", "tca", "rating"),
 }
 
 #: Stage -> where its command starts: ``"module:function"`` of the lsbg.cli
@@ -66,6 +69,8 @@ STAGE_ENTRIES = {
              "cli.tooth:tooth_from_args"),
     "tooth": ("cli.tooth:run_compliance", "cli.tooth:tooth_from_args",
               "cli.options:read_study_sections", "cli.options:_read_yaml"),
+    "rating": ("cli.rating:run_rate", "cli.options:read_study_sections",
+               "cli.options:_read_yaml"),
     "points": ("cli.geometry:run_points", "cli.options:design_from_args",
                "cli.options:flanks_from_args", "cli.options:read_study_sections",
                "cli.options:_read_yaml"),

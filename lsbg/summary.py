@@ -30,7 +30,7 @@ from lsbg.runs import QUANTITIES, THEORY_ATTRIBUTES, full_rate_series, open_mesh
 __all__ = [
     "SUMMARY_QUANTITIES", "SUMMARY_UNITS", "SUMMARY_COLUMNS", "STATISTICS_KEYS", "statistics_options",
     "CONTACT_STATE_QUANTITIES", "quantity_summary", "mesh_summary", "tca_summary", "vh_summary",
-    "summary_table"
+    "summary_table", "run_dynamic_factor"
 ]
 
 
@@ -201,9 +201,30 @@ def quantity_summary(ds, quantity, steady_state_after=0.2, window=(0.8, 1.0),
         "full_rate_std": spectra.rms_fluctuation(full),
         "sampling_std_min": float(spread.min()),
         "sampling_std_max": float(spread.max()),
-        "dynamic_factor": (spectra.dynamic_factor(full, float(ds.attrs["solver_load_torque_N_m"]))
+        "dynamic_factor": (run_dynamic_factor(ds, steady_state_after)
                            if quantity == "contact_torque" else np.nan),
     }
+
+
+def run_dynamic_factor(ds, steady_state_after=0.2):
+    """A run's dynamic factor: its largest full-rate contact torque over the static load.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A run (:func:`lsbg.results.open_run`).
+    steady_state_after : float
+        Start of the steady state [s].
+
+    Returns
+    -------
+    float
+        [-] (:func:`lsbg.spectra.dynamic_factor`).
+    """
+    from lsbg import spectra
+
+    full = full_rate_series(ds, "contact_torque", steady_state_after)
+    return spectra.dynamic_factor(full, float(ds.attrs["solver_load_torque_N_m"]))
 
 
 def _run_name(ds):

@@ -38,7 +38,7 @@ FLANK_SECTIONS = ("flank_modification", "misalignment")
 CONTACT_STATE_SECTIONS = (*FLANK_SECTIONS, "tca", "misalignment_map")
 #: Sections of the configuration that lsbg's commands read from results/config.yaml.
 STUDY_SECTIONS = ("design", "simulation", "contact", *CONTACT_STATE_SECTIONS, "statistics",
-                  "tooth")
+                  "tooth", "rating")
 
 #: File name patterns of every stage (Snakemake wildcards in braces).
 FILES = {
@@ -56,6 +56,7 @@ FILES = {
     "vh_map": "results/vh/{trace}_beta{spiral}.nc",
     "compliance": "results/tooth/{trace}_beta{spiral}_compliance.nc",
     "fe_ltca": "results/tooth/{trace}_beta{spiral}_ltca.nc",
+    "rating": "results/rating/{trace}_beta{spiral}.nc",
     "report": "reports/{name}.html",
 }
 
@@ -233,7 +234,7 @@ def simulation_runtime(config, runs=1):
 JOB_SECONDS = {"tooth_compliance": 30, "sweep_points": 15, "sweep_contact_state": 15,
                "convergence_point": 14, "report_paper": 12, "report_verification": 8,
                "report_sweep": 8, "convergence_line": 6, "contact_state": 6, "sensitivity": 4,
-               "fe_ltca": 4, "summary": 3, "combine": 2}
+               "fe_ltca": 4, "summary": 3, "combine": 2, "rating": 2}
 #: Short jobs that every report and aggregate waits for: before all others, in this order.
 GATE_RULES = ("paper_geometry", "paper_ltca")
 
@@ -396,6 +397,22 @@ class Study:
         """Whether a paper-point line-model run reads the FE loaded TCA (``--fe-ltca``)."""
         return self.own_compliance or "fe" in self.config["sensitivity"].get("compliance", [])
 
+    # ------------------------------------------------------------ rating
+    def rating(self, trace, spiral):
+        return _format(FILES["rating"], trace=trace, spiral=spiral)
+
+    @property
+    def rating_files(self):
+        """The ISO 10300 rating of the paper's point, both traces."""
+        return [self.rating(t, self.paper_spiral) for t in PAPER_TRACES]
+
+    def rating_run(self, trace):
+        """The run whose dynamic factor is the rating's K_v: the paper point's line-model
+        run with the sweep engine (none when the sweep runs the point model only)."""
+        if "line" not in self.sweep_models:
+            return []
+        return [self.run(trace, self.paper_spiral, "line", self.sweep_engine)]
+
     # -------------------------------------------------------- contact state
     @property
     def points(self):
@@ -505,7 +522,7 @@ class Study:
         """What ``rule all`` asks for."""
         extra = [FILES["speed_curve"]] if self.speed_sweep else []
         return [*self.reports.values(), FILES["sweep"], FILES["summary"], *self.tca_files,
-                *self.vh_maps, *self.tooth_files, *extra]
+                *self.vh_maps, *self.tooth_files, *self.rating_files, *extra]
 
     # ------------------------------------------------------------ wildcards
     @property

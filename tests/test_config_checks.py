@@ -101,6 +101,12 @@ def bad_values(schema):
         if kind == "string":
             return [("wrong type", 7), ("wrong type", ["a.csv"])]
         return bad_values({**schema, "type": kind})
+    if "oneOf" in schema:  # a choice or a number (rating.dynamic_factor): the number's bad
+        # values that are no choice either, and a word that is no choice
+        number = next(s for s in schema["oneOf"] if s.get("type") in ("number", "integer"))
+        return [("not one of the choices", "no-such-choice")] + [
+            (category, value) for category, value in bad_values(number)
+            if category not in ("wrong type",)]
     if "enum" in schema:
         return [("not one of the choices", "no-such-choice"), ("wrong type", 7)]
     if kind in ("number", "integer"):

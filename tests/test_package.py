@@ -27,6 +27,7 @@ LAYERS = (
     ("ltca", "sensitivity", "verification", "spectra", "speed", "stats"),
     ("tca",),
     ("tooth",),
+    ("rating",),
     ("runs",),
     ("combine",),
     ("summary",),

@@ -72,7 +72,11 @@ def test_every_run_and_file_of_the_default_study_is_planned_once(default):
         "--default-run", "pybullet=results/runs/circular_beta35_point_pybullet.nc"]
     assert study.targets == [*study.reports.values(), plan.FILES["sweep"],
                              plan.FILES["summary"], *study.tca_files, *study.vh_maps,
-                             *study.tooth_files]
+                             *study.tooth_files, *study.rating_files]
+    # the ISO 10300 rating: the paper's point of each trace, K_v from its line run
+    assert study.rating_files == ["results/rating/logarithmic_beta35.nc",
+                                  "results/rating/circular_beta35.nc"]
+    assert study.rating_run("circular") == ["results/runs/circular_beta35_line_compiled.nc"]
 
 
 def test_the_fe_compliance_is_planned_at_the_paper_point_or_everywhere(default):

@@ -64,6 +64,7 @@ PARSERS = [
     "lsbg.cli.simulate:add_convergence_parser",
     "lsbg.cli.analysis:add_ltca_parser",
     "lsbg.cli.tooth:add_compliance_parser",
+    "lsbg.cli.rating:add_rate_parser",
     "lsbg.cli.contact_state:add_tca_parser",
     "lsbg.cli.contact_state:add_misalignment_map_parser",
     "lsbg.cli.speed:add_mesh_mode_parser",

@@ -14,6 +14,7 @@ rule report_paper:
         tca=STUDY.paper_tca_files,
         vh=STUDY.paper_vh_maps,
         fe_ltca=[STUDY.fe_ltca(t, PAPER_SPIRAL) for t in plan.PAPER_TRACES],
+        rating=STUDY.rating_files,
         sources=sources("report"),
     output:
         report(STUDY.reports["paper"], caption="../report/reports.rst", category="Reports",
@@ -27,6 +28,7 @@ rule report_paper:
         tca=lambda wildcards, input: yaml_list(input.tca),
         vh=lambda wildcards, input: yaml_list(input.vh),
         fe_ltca=lambda wildcards, input: yaml_list(input.fe_ltca),
+        rating=lambda wildcards, input: yaml_list(input.rating),
         paper_engine=STUDY.paper_engine,
         line_engine=SWEEP_ENGINE,
         steady_state_after=config["statistics"]["steady_state_after_s"],
@@ -47,7 +49,7 @@ rule report_paper:
         " --param 'runs={params.runs}' --param 'sensitivity_runs={params.sensitivity}'"
         " --param 'mesh_files={params.meshes}' --param 'geometry_dirs={params.geometry}'"
         " --param 'tca_files={params.tca}' --param 'vh_files={params.vh}'"
-        " --param 'fe_ltca_files={params.fe_ltca}'"
+        " --param 'fe_ltca_files={params.fe_ltca}' --param 'rating_files={params.rating}'"
         " --param paper_engine={params.paper_engine}"
         " --param line_engine={params.line_engine}"
         " --param steady_state_after_s={params.steady_state_after}"

@@ -1,5 +1,5 @@
 # The tooth's own compliance (docs/model.md, "The tooth itself"): `lsbg compliance`
-# meshes a three-tooth segment of each member and writes its finite-element
+# meshes a seven-tooth segment of each member and writes its finite-element
 # influence coefficients and fillet stresses (results/tooth/*_compliance.nc);
 # `lsbg ltca --compliance fe` solves the loaded TCA with them and Hertz's local
 # contact as a complementarity problem, and writes the transmission error,
