@@ -99,8 +99,8 @@ def life_table(ratings) -> pd.DataFrame:
     pandas.DataFrame
         Per stress (:data:`LIFE_STRESSES`): the two stresses [MPa], their
         ratio LSBG / SBG, the Basquin exponent stated and the life ratio
-        LSBG / SBG with its range over the exponents (> 1: the LSBG lives
-        longer). Rows whose stress a dataset lacks are left out.
+        LSBG / SBG with its least and most over the exponents' range (> 1:
+        the LSBG lives longer). Rows whose stress a dataset lacks are left out.
     """
     from lsbg.rating.life import life_ratio
 
@@ -113,6 +113,6 @@ def life_table(ratings) -> pd.DataFrame:
         life = life_ratio(s, s_ref, kind)
         rows.append({"stress": label, "SBG [MPa]": s_ref, "LSBG [MPa]": s,
                      "stress ratio LSBG/SBG": s / s_ref, "exponent p": life["exponent"],
-                     "life ratio LSBG/SBG": life["ratio"], "low": life["low"],
-                     "high": life["high"]})
+                     "life ratio LSBG/SBG": life["ratio"], "least over the p range": life["low"],
+                     "most over the p range": life["high"]})
     return pd.DataFrame(rows)
