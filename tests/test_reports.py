@@ -145,7 +145,7 @@ def test_paper_report(study_files, tmp_path):
               "7. Xbar-R control charts", "8. Simulated means", "9. The paper", "10. Which gear",
               "11. Agreement", "12. What the paper", "13. The line model",
               "14. Dynamics under the line model", "15. Model-form sensitivity",
-              "16. The contact state", "17. The tooth itself", "18. Conclusion", "Appendix A. The summary statistics",
+              "16. The contact state", "17. The tooth itself", "18. Service life", "19. Conclusion", "Appendix A. The summary statistics",
               "Appendix B. Inputs and settings"],
         # pair picture, Fig. 8, 9-10, 11, 12, 13, 14, 15 (2), 16, 17 (2), 18 (2); sampling
         # luck, spectrum, full-rate stretch; TE and stiffness, load sharing, contact
@@ -281,7 +281,7 @@ def test_notebooks_declare_the_interface_parameters():
         "paper": {"runs", "sensitivity_runs", "mesh_files", "geometry_dirs", "paper_engine",
                   "line_engine", "steady_state_after_s", "chart_window_start_s",
                   "chart_window_stop_s", "subgroup_size", "sweep_file", "tca_files", "vh_files",
-                  "fe_ltca_files"},
+                  "fe_ltca_files", "rating_files"},
         "sweep": {"sweep_file", "summary_file", "speed_curve_file", "steady_state_after_s",
                   "vh_files"},
         "verification": {"convergence_files", "geometry_dirs", "runs", "mesh_files",

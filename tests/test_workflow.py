@@ -120,7 +120,7 @@ def test_default_and_test_configs_are_valid_and_plan_the_study(tmp_path):
     written = yaml.safe_load((tmp_path / "results" / "config.yaml").read_text(encoding="utf-8"))
     assert set(written) == {"design", "simulation", "contact", "flank_modification",
                             "misalignment", "tca", "misalignment_map", "statistics",
-                            "tooth"}
+                            "tooth", "rating"}
     assert written["simulation"]["duration_s"] == config["simulation"]["duration_s"]
     assert written["flank_modification"]["lengthwise_crowning_um"] == 25
     assert written["misalignment_map"]["sweep_steps"] == config["misalignment_map"]["sweep_steps"]
@@ -350,8 +350,9 @@ def test_a_changed_setting_reruns_only_the_runs_that_use_it(study, tmp_path):
     jobs, output = dry_run(study, extra)
     # (the FE loaded TCA too: its bands and flanks are the line model's; not the FE
     # compliance, which depends on the design and the tooth section only)
+    # (and the rating: its FE loaded TCA and its K_v's line run)
     _line_model = (["paper_ltca"] * 2 + ["fe_ltca"] * 2 + ["sensitivity"] * 2
-                   + ["convergence_line"] * 2 + ["contact_state"] * 2
+                   + ["convergence_line"] * 2 + ["contact_state"] * 2 + ["rating"] * 2
                    + ["combine", "summary", "report_paper", "report_sweep",
                       "report_verification", "all"])
     assert rules_of(jobs) == sorted(_line_model), output
@@ -365,10 +366,18 @@ def test_a_changed_setting_reruns_only_the_runs_that_use_it(study, tmp_path):
     assert rules_of(jobs) == sorted(["contact_state"] * 2 + ["combine", "summary",
                                                              "report_paper", "report_sweep",
                                                              "all"]), output
-    # Statistics settings rerun the statistics, not the simulations.
+    # Statistics settings rerun the statistics, not the simulations; the steady state
+    # the convergence tables and the rating's K_v too
     extra = write_yaml(tmp_path / "stats.yaml", {"statistics": {"subgroup_size": 4}})
     jobs, output = dry_run(study, extra)
     assert rules_of(jobs) == sorted(["summary", "report_paper", "report_sweep", "all"]), output
+    extra = write_yaml(tmp_path / "steady.yaml", {"statistics": {"steady_state_after_s": 0.008}})
+    jobs, output = dry_run(study, extra)
+    assert rules_of(jobs) == sorted(_CONVERGENCE + ["rating"] * 2 + _AGGREGATES), output
+    # The rating's own settings: its jobs and the paper report
+    extra = write_yaml(tmp_path / "rating.yaml", {"rating": {"application_factor": 1.25}})
+    jobs, output = dry_run(study, extra)
+    assert rules_of(jobs) == sorted(["rating", "rating", "report_paper", "all"]), output
 
 
 _CONVERGENCE = ["convergence_point"] * 2 + ["convergence_line"] * 2
@@ -377,10 +386,12 @@ _AGGREGATES = ["combine", "summary", "report_paper", "report_sweep", "report_ver
 #: Every job of the test study.
 _EVERYTHING = (["paper_geometry"] * 2 + ["paper_ltca"] * 2 + ["sensitivity"] * 2
                + _CONVERGENCE + ["contact_state"] * 2 + ["tooth_compliance"] * 2
-               + ["fe_ltca"] * 2 + _AGGREGATES)
+               + ["fe_ltca"] * 2 + ["rating"] * 2 + _AGGREGATES)
 CODE_CHANGES = {
-    "lsbg/verification.py": _CONVERGENCE + _AGGREGATES,
-    "lsbg/stats/samples.py": _AGGREGATES,
+    # (the rating reads the line run that the convergence table writes, and its K_v
+    # comes through lsbg.summary, which reads lsbg.stats)
+    "lsbg/verification.py": _CONVERGENCE + ["rating"] * 2 + _AGGREGATES,
+    "lsbg/stats/samples.py": ["rating"] * 2 + _AGGREGATES,
     # lsbg.cli.options reads the flanks (lsbg.tca, which imports lsbg.ltca): every
     # stage lists both (lsbg.stages), so a change reruns the study
     "lsbg/ltca.py": _EVERYTHING,

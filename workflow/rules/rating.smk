@@ -22,6 +22,7 @@ rule rating:
         rating=plan.canonical(config["rating"]),
         load=config["simulation"]["load_torque_N_m"],
         speed=config["simulation"]["pinion_speed_deg_s"],
+        steady_state=config["statistics"]["steady_state_after_s"],
         tooth=plan.canonical(config["tooth"]),
         run=lambda wildcards, input: f"--run {input.run}" if input.run else "",
     wildcard_constraints:
