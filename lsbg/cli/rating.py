@@ -34,6 +34,12 @@ def add_rate_parser(subparsers):
     parser.add_argument("--fe-ltca", metavar="LTCA.nc",
                         help="the design point's loaded TCA with the FE compliance (lsbg ltca "
                              "--compliance fe) at the same load")
+    parser.add_argument("--compliance-file", metavar="COMPLIANCE.nc",
+                        help="the design point's FE compliance (lsbg compliance): with it, the "
+                             "FE loaded TCA is also solved at each corner of the assembly's "
+                             "displacement envelope (misalignment_map.axes at "
+                             "+-misalignment_map.range of --config, on top of its misalignment "
+                             "section) and the largest stresses there written beside")
     parser.add_argument("--out", required=True, metavar="RATING.nc", help="output NetCDF file")
     parser.set_defaults(handler=run_rate)
 
@@ -96,7 +102,8 @@ def run_rate(args):
             key, stored, value = design.attrs_difference(fe.attrs)
             raise CommandError(f"--fe-ltca {args.fe_ltca}: design {key} = {stored!r}, the "
                                f"geometry's {value!r}")
-    ds = rating_dataset(result, design, material, conditions, source, fe)
+    displaced = _envelope_ltcas(args, design, load) if args.compliance_file else None
+    ds = rating_dataset(result, design, material, conditions, source, fe, displaced)
     write_dataset(ds, args.out)
     ratio = design.gear_teeth / design.pinion_teeth
     print(f"lsbg rate: sigma_H {result.contact_stress / 1e6:.0f} MPa (S_H "
@@ -107,3 +114,42 @@ def run_rate(args):
           f"{result.rated_pinion_torque_bending * ratio:.0f} N m (root) against {load:g} N m "
           f"-> {args.out}", file=sys.stdout)
     return 0
+
+
+def _envelope_ltcas(args, design, load):
+    """{corner: (displacements, FE loaded TCA)} at the corners of the V-H envelope."""
+    from lsbg.cli.options import contact_from_args
+    from lsbg.geometry import GearPair
+    from lsbg.rating.dataset import envelope_corners
+    from lsbg.tca.misalignment import DISPLACEMENTS
+    from lsbg.tca.separation import RealFlanks
+    from lsbg.tooth.analysis import fe_ltca_for_geometry
+    from lsbg.tooth.config import compliance_for_design, tooth_from_config
+
+    contact, tooth, modification, misalignment, vh = read_study_sections(
+        args.config, "contact", "tooth", "flank_modification", "misalignment",
+        "misalignment_map")
+    try:
+        material, settings, positions = tooth_from_config(tooth)
+    except ValueError as err:
+        raise CommandError(str(err)) from None
+    axes = vh.get("axes") or ["E", "P"]
+    half_range = float(vh.get("range") or 0.1)
+    pair = GearPair(design)
+    compliance, _ = compliance_for_design(pair, material, settings, args.compliance_file)
+    args.contact_model, args.compliance = "line", "fe"
+    params = contact_from_args(args)
+    out = {}
+    for label, values in envelope_corners(axes, half_range).items():
+        corner = dict(misalignment)
+        for letter, value in values.items():
+            key = DISPLACEMENTS[letter][1]
+            corner[key] = float(corner.get(key) or 0.0) + value
+        try:
+            flanks = RealFlanks.from_config(modification, corner)
+            ltca = fe_ltca_for_geometry(args.geometry, load, params, compliance,
+                                        phases=positions, flanks=flanks)
+        except ValueError as err:
+            raise CommandError(f"the displaced assembly {label}: {err}") from None
+        out[label] = (values, ltca)
+    return out

@@ -15,7 +15,7 @@ import re
 
 import numpy as np
 
-__all__ = ["rating_dataset", "MEMBERS"]
+__all__ = ["rating_dataset", "envelope_corners", "MEMBERS"]
 
 MEMBERS = ("pinion", "gear")
 
@@ -25,7 +25,33 @@ def _attribute_name(symbol):
     return "factor_" + re.sub(r"[^0-9A-Za-z_]", "_", symbol)
 
 
-def rating_dataset(rating, design, material, conditions, dynamic_factor_source, fe_ltca=None):
+def envelope_corners(axes, half_range):
+    """The corners of a V-H envelope: every sign of each displacement.
+
+    Parameters
+    ----------
+    axes : sequence of str
+        Displacement letters (``E``, ``P``, ``G``, ``Sigma``).
+    half_range : float
+        Largest displacement either way [mm; deg for Sigma].
+
+    Returns
+    -------
+    dict
+        ``{label: {letter: value}}``, e.g. ``"E+0.1 P-0.1": {"E": 0.1, "P": -0.1}``,
+        in configuration units.
+    """
+    import itertools
+
+    out = {}
+    for signs in itertools.product((1, -1), repeat=len(axes)):
+        values = {a: s * half_range for a, s in zip(axes, signs)}
+        out[" ".join(f"{a}{v:+g}" for a, v in values.items())] = values
+    return out
+
+
+def rating_dataset(rating, design, material, conditions, dynamic_factor_source, fe_ltca=None,
+                   displaced=None):
     """The rating of one design point, with the FE stresses beside it.
 
     Parameters
@@ -39,6 +65,10 @@ def rating_dataset(rating, design, material, conditions, dynamic_factor_source, 
     fe_ltca : xarray.Dataset, optional
         The design point's FE loaded TCA (``lsbg ltca --compliance fe``) at
         the same load.
+    displaced : dict, optional
+        ``{corner label: (displacements {letter: value}, FE loaded TCA)}`` at
+        the corners of the assembly's displacement envelope
+        (:func:`envelope_corners`).
 
     Returns
     -------
@@ -92,17 +122,49 @@ def rating_dataset(rating, design, material, conditions, dynamic_factor_source, 
         **{_attribute_name(k): float(v) for k, v in factors.items()},
     }
     if fe_ltca is not None:
-        pressure = np.asarray(fe_ltca["max_contact_pressure"].values, dtype=float)
-        roots = np.array([float(fe_ltca[f"root_stress_{m}"].max()) for m in MEMBERS])
+        peak, median, roots = _fe_peaks(fe_ltca)
         variables.update({
-            "fe_max_contact_pressure": scalar(pressure.max(), "MPa",
+            "fe_max_contact_pressure": scalar(peak, "MPa",
                                               "largest Hertz pressure over the mesh cycle "
                                               "(FE loaded TCA)"),
             "fe_median_contact_pressure": scalar(
-                np.median(pressure), "MPa",
+                median, "MPa",
                 "median over the mesh cycle of each position's largest Hertz pressure"),
             "fe_max_root_stress": member(roots, "MPa", "largest tensile principal stress in "
                                          "the root fillet over the mesh cycle (FE loaded TCA)"),
         })
         attrs["fe_ltca_load_torque_N_m"] = float(fe_ltca.attrs.get("load_torque_N_m", np.nan))
-    return xr.Dataset(variables, coords={"member": ("member", list(MEMBERS))}, attrs=attrs)
+    coords = {"member": ("member", list(MEMBERS))}
+    if displaced:
+        labels = list(displaced)
+        letters = list(next(iter(displaced.values()))[0])
+        peaks = [_fe_peaks(ltca) for _, ltca in displaced.values()]
+        variables.update({
+            "displacement": (("corner", "axis"),
+                             np.array([[d[a] for a in letters] for d, _ in displaced.values()],
+                                      dtype=float),
+                             {"units": "mm (deg for Sigma)",
+                              "long_name": "assembly displacement at each corner of the "
+                                           "envelope"}),
+            "fe_displaced_max_contact_pressure": (
+                "corner", np.array([p[0] for p in peaks]),
+                {"units": "MPa", "long_name": "largest Hertz pressure over the mesh cycle, "
+                                              "displaced assembly (FE loaded TCA)"}),
+            "fe_displaced_median_contact_pressure": (
+                "corner", np.array([p[1] for p in peaks]),
+                {"units": "MPa", "long_name": "median over the mesh cycle of each position's "
+                                              "largest Hertz pressure, displaced assembly"}),
+            "fe_displaced_max_root_stress": (
+                ("corner", "member"), np.array([p[2] for p in peaks]),
+                {"units": "MPa", "long_name": "largest root stress over the mesh cycle, "
+                                              "displaced assembly (FE loaded TCA)"}),
+        })
+        coords.update(corner=("corner", labels), axis=("axis", letters))
+    return xr.Dataset(variables, coords=coords, attrs=attrs)
+
+
+def _fe_peaks(ltca):
+    """(largest pressure, median of the per-position largest, root maxima) [MPa]."""
+    pressure = np.asarray(ltca["max_contact_pressure"].values, dtype=float)
+    roots = [float(ltca[f"root_stress_{m}"].max()) for m in MEMBERS]
+    return float(pressure.max()), float(np.median(pressure)), roots
