@@ -80,3 +80,12 @@ def test_life_statement_names_a_ranking_only_where_every_stress_agrees():
     # only higher or tied: the other type never loses
     one_sided = {"SBG": sbg, "LSBG": rating("logarithmic", 3000.0, 2300.0, 1000.0)}
     assert life_statement(one_sided).startswith("The LSBG lives longer in no comparison; the **SBG** in")
+
+
+def test_the_brief_statement_keeps_the_verdict_and_the_ratios():
+    ratings = {"SBG": rating("circular", 3000.0, 2000.0, 1000.0),
+               "LSBG": rating("logarithmic", 2700.0, 1800.0, 900.0)}
+    brief = life_statement(ratings, "at 35°", brief=True)
+    assert brief.startswith("At 35°, the **LSBG** lives longer in every comparison.")
+    assert "pinion root ×0.9" in brief and "life ×" not in brief
+    assert len(brief) < len(life_statement(ratings, "at 35°")) / 2

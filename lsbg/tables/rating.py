@@ -145,7 +145,7 @@ def life_table(ratings) -> pd.DataFrame:
 RESOLVED_STRESS_DIFFERENCE = 0.03
 
 
-def life_statement(ratings, where=""):
+def life_statement(ratings, where="", brief=False):
     """One sentence on the paper's third claim, from :func:`life_table`.
 
     A type is said to live longer only where every FE stress that the table
@@ -160,6 +160,9 @@ def life_statement(ratings, where=""):
         ``{gear type: rating dataset}`` with both ``"SBG"`` and ``"LSBG"``.
     where : str
         Where it holds, opening the sentence ("at 35°").
+    brief : bool
+        Only the verdict and the stress ratios (for a report's first screen);
+        else every comparison with its life ratio and range.
 
     Returns
     -------
@@ -200,6 +203,24 @@ def life_statement(ratings, where=""):
     iso_text = (f"By ISO 10300 the stresses differ only through K_v (×"
                 f"{iso['stress ratio LSBG/SBG'].iloc[0]:.4g}). " if not iso.empty else "")
     opening = f"{where[0].upper()}{where[1:]}, {verdict}" if where else verdict[0].upper() + verdict[1:]
+    if brief:
+        ratio_of = dict(zip(fe["stress"], fe["stress ratio LSBG/SBG"]))
+
+        def group(rows):
+            return ", ".join(f"{short} ×{ratio_of[name]:.3g}" for short, name in rows
+                             if name in ratio_of)
+
+        text = f"{opening}. Largest FE stresses LSBG/SBG: " + group(
+            (("contact", "pitting, FE largest pressure"),
+             ("pinion root", "root, pinion, FE largest stress"),
+             ("gear root", "root, gear, FE largest stress")))
+        displaced = group((("contact", "pitting, displaced, FE largest pressure"),
+                           ("pinion root", "root, pinion, displaced, FE largest stress"),
+                           ("gear root", "root, gear, displaced, FE largest stress")))
+        if displaced:
+            text += f"; at the worst displaced corner {displaced}"
+        return (text + f". By ISO 10300 equal but for K_v; differences within "
+                f"{RESOLVED_STRESS_DIFFERENCE:.0%} are ties.")
     return (f"{opening} (LSBG over SBG; "
             + "; ".join(lines) + "). " + iso_text
             + "A life ratio follows the stress ratio to the power p = 6–16, so only stress "
