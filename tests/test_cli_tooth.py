@@ -226,3 +226,42 @@ def test_points_under_compliance_fe_need_the_compliance_template(point, tmp_path
                      "--mesh-out", str(tmp_path / "mesh{spiral}.nc")])
     assert code == 2 and "needs --compliance-out" in capsys.readouterr().err
     assert not (tmp_path / "geo35").exists()
+
+
+def test_the_envelope_and_the_rating_beside_the_fe_stresses(point, tmp_path, capsys):
+    """`lsbg ltca --envelope`: the FE loaded TCA at the four corners of E and P at +-0.1
+    mm; the aligned assembly lies inside them, so the worst corner's largest pressure is
+    no smaller than the aligned one's less the sampling of 48 positions. `lsbg rate` puts
+    both beside ISO 10300."""
+    envelope = tmp_path / "envelope.nc"
+    assert cli.main(["ltca", "--geometry", str(point["geo"]), "--config", str(point["config"]),
+                     "--compliance", "fe", "--compliance-file", str(point["compliance"]),
+                     *COARSE, "--phases", "48", "--envelope", "--out", str(envelope)]) == 0
+    with xr.open_dataset(envelope) as env, xr.open_dataset(point["fe"]) as aligned:
+        assert list(env["corner"].values) == ["E+0.1 P+0.1", "E+0.1 P-0.1", "E-0.1 P+0.1",
+                                              "E-0.1 P-0.1"]
+        assert env["displacement"].sel(corner="E-0.1 P+0.1").values.tolist() == [-0.1, 0.1]
+        worst = float(env["max_contact_pressure"].max())
+        assert worst >= 0.9 * float(aligned["max_contact_pressure"].max())
+        # the corners differ: displacement moves the load
+        peaks = env["max_contact_pressure"].max("mesh_phase").values
+        assert np.ptp(peaks) > 0.01 * peaks.max()
+    rating = tmp_path / "rating.nc"
+    assert cli.main(["rate", "--geometry", str(point["geo"]), "--config", str(point["config"]),
+                     "--fe-ltca", str(point["fe"]), "--fe-envelope", str(envelope),
+                     "--out", str(rating)]) == 0
+    with xr.open_dataset(rating) as ds:
+        assert float(ds["fe_displaced_max_contact_pressure"].max()) == pytest.approx(worst)
+        assert ds["contact_safety"].sel(member="pinion") < 1  # the paper's load: 4x the rating
+        assert ds.attrs["dynamic_factor_source"].startswith("K_v = 1")
+    # the envelope needs the FE compliance; an envelope of another load is refused
+    capsys.readouterr()
+    assert cli.main(["ltca", "--geometry", str(point["geo"]), "--envelope", "--out",
+                     str(tmp_path / "x.nc")]) == 2
+    assert "--envelope: needs the FE compliance" in capsys.readouterr().err
+    other = tmp_path / "other.yaml"
+    other.write_text(yaml.safe_dump({"simulation": {"load_torque_N_m": 1000}}))
+    assert cli.main(["rate", "--geometry", str(point["geo"]), "--config", str(other),
+                     "--fe-envelope", str(envelope), "--out", str(tmp_path / "z.nc")]) == 2
+    assert "computed at 1964.99 N m, the rating's load is 1000 N m" in capsys.readouterr().err
+    assert not (tmp_path / "x.nc").exists() and not (tmp_path / "z.nc").exists()

@@ -7,10 +7,11 @@ import pytest
 import xarray as xr
 
 from lsbg.design import GearPairDesign
-from lsbg.rating.dataset import envelope_corners, rating_dataset
+from lsbg.rating.dataset import rating_dataset
 from lsbg.rating.iso10300 import RatingConditions, RatingMaterial, rate
 from lsbg.rating.virtual import rating_geometry
 from lsbg.tables.rating import life_statement, life_table, rating_table
+from lsbg.tca.misalignment import envelope_corners
 
 
 def fe_ltca(pressure, pinion, gear):
@@ -29,10 +30,15 @@ def rating(trace, pressure, pinion, gear, displaced_factor=1.2):
     result = rate(rating_geometry(design), 1964.99 * 9 / 37, math.radians(7703), material,
                   conditions)
     corners = envelope_corners(["E", "P"], 0.1)
-    displaced = {label: (values, fe_ltca(pressure * displaced_factor ** k, pinion, gear))
-                 for k, (label, values) in enumerate(corners.items())}
+    ltcas = [fe_ltca(pressure * displaced_factor ** k, pinion, gear) for k in range(4)]
+    envelope = xr.Dataset(
+        {name: (("corner", "mesh_phase"), np.stack([ds[name].values for ds in ltcas]))
+         for name in ("max_contact_pressure", "root_stress_pinion", "root_stress_gear")},
+        coords={"corner": list(corners), "axis": ["E", "P"]})
+    envelope["displacement"] = (("corner", "axis"),
+                                np.array([list(v.values()) for v in corners.values()]))
     return rating_dataset(result, design, material, conditions, "test",
-                          fe_ltca(pressure, pinion, gear), displaced)
+                          fe_ltca(pressure, pinion, gear), envelope)
 
 
 def test_envelope_corners_are_every_sign():

@@ -353,6 +353,7 @@ def test_a_changed_setting_reruns_only_the_runs_that_use_it(study, tmp_path):
     # (and the rating: its FE loaded TCA and its K_v's line run)
     _line_model = (["paper_ltca"] * 2 + ["fe_ltca"] * 2 + ["sensitivity"] * 2
                    + ["convergence_line"] * 2 + ["contact_state"] * 2 + ["rating"] * 2
+                   + ["fe_envelope"] * 2
                    + ["combine", "summary", "report_paper", "report_sweep",
                       "report_verification", "all"])
     assert rules_of(jobs) == sorted(_line_model), output
@@ -386,7 +387,7 @@ _AGGREGATES = ["combine", "summary", "report_paper", "report_sweep", "report_ver
 #: Every job of the test study.
 _EVERYTHING = (["paper_geometry"] * 2 + ["paper_ltca"] * 2 + ["sensitivity"] * 2
                + _CONVERGENCE + ["contact_state"] * 2 + ["tooth_compliance"] * 2
-               + ["fe_ltca"] * 2 + ["rating"] * 2 + _AGGREGATES)
+               + ["fe_ltca"] * 2 + ["fe_envelope"] * 2 + ["rating"] * 2 + _AGGREGATES)
 CODE_CHANGES = {
     # (the rating reads the line run that the convergence table writes, and its K_v
     # comes through lsbg.summary, which reads lsbg.stats)

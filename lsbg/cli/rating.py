@@ -34,12 +34,9 @@ def add_rate_parser(subparsers):
     parser.add_argument("--fe-ltca", metavar="LTCA.nc",
                         help="the design point's loaded TCA with the FE compliance (lsbg ltca "
                              "--compliance fe) at the same load")
-    parser.add_argument("--compliance-file", metavar="COMPLIANCE.nc",
-                        help="the design point's FE compliance (lsbg compliance): with it, the "
-                             "FE loaded TCA is also solved at each corner of the assembly's "
-                             "displacement envelope (misalignment_map.axes at "
-                             "+-misalignment_map.range of --config, on top of its misalignment "
-                             "section) and the largest stresses there written beside")
+    parser.add_argument("--fe-envelope", metavar="ENVELOPE.nc",
+                        help="the FE loaded TCA at the corners of the assembly's displacement "
+                             "envelope (lsbg ltca --compliance fe --envelope) at the same load")
     parser.add_argument("--out", required=True, metavar="RATING.nc", help="output NetCDF file")
     parser.set_defaults(handler=run_rate)
 
@@ -63,8 +60,9 @@ def run_rate(args):
     if rating.get("dynamic_factor", "lsbg") == "lsbg":
         if args.run:
             run = open_run(args.run)
-            if design.attrs_difference(run.attrs) is not None:
-                key, stored, value = design.attrs_difference(run.attrs)
+            difference = design.attrs_difference(run.attrs)
+            if difference is not None:
+                key, stored, value = difference
                 raise CommandError(f"--run {args.run}: design {key} = {stored!r}, the "
                                    f"geometry's {value!r}")
             try:
@@ -94,16 +92,14 @@ def run_rate(args):
                                                           "root_stress_pinion",
                                                           "root_stress_gear"),
                           ("load_torque_N_m",), "--fe-ltca")
-        if not math.isclose(float(fe.attrs["load_torque_N_m"]), load, rel_tol=1e-9):
-            raise CommandError(f"--fe-ltca {args.fe_ltca}: computed at "
-                               f"{fe.attrs['load_torque_N_m']!r} N m, the rating's load is "
-                               f"{load!r} N m")
-        if design.attrs_difference(fe.attrs) is not None:
-            key, stored, value = design.attrs_difference(fe.attrs)
-            raise CommandError(f"--fe-ltca {args.fe_ltca}: design {key} = {stored!r}, the "
-                               f"geometry's {value!r}")
-    displaced = _envelope_ltcas(args, design, load) if args.compliance_file else None
-    ds = rating_dataset(result, design, material, conditions, source, fe, displaced)
+        fe = _same_point(fe, design, load, "--fe-ltca")
+    envelope = None
+    if args.fe_envelope:
+        envelope = _same_point(open_dataset(
+            args.fe_envelope, "FE envelope", ("max_contact_pressure", "root_stress_pinion",
+                                              "root_stress_gear", "displacement"),
+            ("load_torque_N_m",), "--fe-envelope"), design, load, "--fe-envelope")
+    ds = rating_dataset(result, design, material, conditions, source, fe, envelope)
     write_dataset(ds, args.out)
     ratio = design.gear_teeth / design.pinion_teeth
     print(f"lsbg rate: sigma_H {result.contact_stress / 1e6:.0f} MPa (S_H "
@@ -116,40 +112,16 @@ def run_rate(args):
     return 0
 
 
-def _envelope_ltcas(args, design, load):
-    """{corner: (displacements, FE loaded TCA)} at the corners of the V-H envelope."""
-    from lsbg.cli.options import contact_from_args
-    from lsbg.geometry import GearPair
-    from lsbg.rating.dataset import envelope_corners
-    from lsbg.tca.misalignment import DISPLACEMENTS
-    from lsbg.tca.separation import RealFlanks
-    from lsbg.tooth.analysis import fe_ltca_for_geometry
-    from lsbg.tooth.config import compliance_for_design, tooth_from_config
-
-    contact, tooth, modification, misalignment, vh = read_study_sections(
-        args.config, "contact", "tooth", "flank_modification", "misalignment",
-        "misalignment_map")
-    try:
-        material, settings, positions = tooth_from_config(tooth)
-    except ValueError as err:
-        raise CommandError(str(err)) from None
-    axes = vh.get("axes") or ["E", "P"]
-    half_range = float(vh.get("range") or 0.1)
-    pair = GearPair(design)
-    compliance, _ = compliance_for_design(pair, material, settings, args.compliance_file)
-    args.contact_model, args.compliance = "line", "fe"
-    params = contact_from_args(args)
-    out = {}
-    for label, values in envelope_corners(axes, half_range).items():
-        corner = dict(misalignment)
-        for letter, value in values.items():
-            key = DISPLACEMENTS[letter][1]
-            corner[key] = float(corner.get(key) or 0.0) + value
-        try:
-            flanks = RealFlanks.from_config(modification, corner)
-            ltca = fe_ltca_for_geometry(args.geometry, load, params, compliance,
-                                        phases=positions, flanks=flanks)
-        except ValueError as err:
-            raise CommandError(f"the displaced assembly {label}: {err}") from None
-        out[label] = (values, ltca)
-    return out
+def _same_point(ds, design, load, option):
+    """``ds`` if it was computed for ``design`` at ``load`` [N m], else a CommandError."""
+    source = ds.encoding.get("source", "")
+    if not math.isclose(float(ds.attrs["load_torque_N_m"]), load, rel_tol=1e-9):
+        raise CommandError(f"{option} {source}: computed at "
+                           f"{float(ds.attrs['load_torque_N_m']):g} N m, the rating's load is "
+                           f"{load:g} N m")
+    difference = design.attrs_difference(ds.attrs)
+    if difference is not None:
+        key, stored, value = difference
+        raise CommandError(f"{option} {source}: design {key} = {stored!r}, the geometry's "
+                           f"{value!r}")
+    return ds

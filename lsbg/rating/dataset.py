@@ -15,7 +15,7 @@ import re
 
 import numpy as np
 
-__all__ = ["rating_dataset", "envelope_corners", "MEMBERS"]
+__all__ = ["rating_dataset", "MEMBERS"]
 
 MEMBERS = ("pinion", "gear")
 
@@ -25,33 +25,8 @@ def _attribute_name(symbol):
     return "factor_" + re.sub(r"[^0-9A-Za-z_]", "_", symbol)
 
 
-def envelope_corners(axes, half_range):
-    """The corners of a V-H envelope: every sign of each displacement.
-
-    Parameters
-    ----------
-    axes : sequence of str
-        Displacement letters (``E``, ``P``, ``G``, ``Sigma``).
-    half_range : float
-        Largest displacement either way [mm; deg for Sigma].
-
-    Returns
-    -------
-    dict
-        ``{label: {letter: value}}``, e.g. ``"E+0.1 P-0.1": {"E": 0.1, "P": -0.1}``,
-        in configuration units.
-    """
-    import itertools
-
-    out = {}
-    for signs in itertools.product((1, -1), repeat=len(axes)):
-        values = {a: s * half_range for a, s in zip(axes, signs)}
-        out[" ".join(f"{a}{v:+g}" for a, v in values.items())] = values
-    return out
-
-
 def rating_dataset(rating, design, material, conditions, dynamic_factor_source, fe_ltca=None,
-                   displaced=None):
+                   envelope=None):
     """The rating of one design point, with the FE stresses beside it.
 
     Parameters
@@ -65,10 +40,9 @@ def rating_dataset(rating, design, material, conditions, dynamic_factor_source, 
     fe_ltca : xarray.Dataset, optional
         The design point's FE loaded TCA (``lsbg ltca --compliance fe``) at
         the same load.
-    displaced : dict, optional
-        ``{corner label: (displacements {letter: value}, FE loaded TCA)}`` at
-        the corners of the assembly's displacement envelope
-        (:func:`envelope_corners`).
+    envelope : xarray.Dataset, optional
+        The FE loaded TCA's stresses at the corners of the assembly's
+        displacement envelope (:func:`lsbg.tooth.analysis.fe_envelope`).
 
     Returns
     -------
@@ -135,31 +109,28 @@ def rating_dataset(rating, design, material, conditions, dynamic_factor_source, 
         })
         attrs["fe_ltca_load_torque_N_m"] = float(fe_ltca.attrs.get("load_torque_N_m", np.nan))
     coords = {"member": ("member", list(MEMBERS))}
-    if displaced:
-        labels = list(displaced)
-        letters = list(next(iter(displaced.values()))[0])
-        peaks = [_fe_peaks(ltca) for _, ltca in displaced.values()]
+    if envelope is not None:
+        pressure = envelope["max_contact_pressure"]
         variables.update({
-            "displacement": (("corner", "axis"),
-                             np.array([[d[a] for a in letters] for d, _ in displaced.values()],
-                                      dtype=float),
-                             {"units": "mm (deg for Sigma)",
-                              "long_name": "assembly displacement at each corner of the "
-                                           "envelope"}),
+            "displacement": (("corner", "axis"), envelope["displacement"].values,
+                             dict(envelope["displacement"].attrs)),
             "fe_displaced_max_contact_pressure": (
-                "corner", np.array([p[0] for p in peaks]),
+                "corner", pressure.max("mesh_phase").values,
                 {"units": "MPa", "long_name": "largest Hertz pressure over the mesh cycle, "
                                               "displaced assembly (FE loaded TCA)"}),
             "fe_displaced_median_contact_pressure": (
-                "corner", np.array([p[1] for p in peaks]),
+                "corner", pressure.median("mesh_phase").values,
                 {"units": "MPa", "long_name": "median over the mesh cycle of each position's "
                                               "largest Hertz pressure, displaced assembly"}),
             "fe_displaced_max_root_stress": (
-                ("corner", "member"), np.array([p[2] for p in peaks]),
+                ("corner", "member"),
+                np.stack([envelope[f"root_stress_{m}"].max("mesh_phase").values
+                          for m in MEMBERS], axis=1),
                 {"units": "MPa", "long_name": "largest root stress over the mesh cycle, "
                                               "displaced assembly (FE loaded TCA)"}),
         })
-        coords.update(corner=("corner", labels), axis=("axis", letters))
+        coords.update(corner=("corner", [str(c) for c in envelope["corner"].values]),
+                      axis=("axis", [str(a) for a in envelope["axis"].values]))
     return xr.Dataset(variables, coords=coords, attrs=attrs)
 
 

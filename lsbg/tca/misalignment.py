@@ -29,7 +29,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Misalignment", "MISALIGNMENT_CONFIG_KEYS", "DISPLACEMENTS", "member_frames"]
+__all__ = ["Misalignment", "MISALIGNMENT_CONFIG_KEYS", "DISPLACEMENTS", "member_frames",
+           "envelope_corners"]
 
 _MM = 1e-3
 
@@ -160,3 +161,28 @@ def member_frames(pair, misalignment):
     gear_turn = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
     gear_shift = misalignment.gear_axial * (gear_turn @ a2)
     return pinion_shift, gear_turn, gear_shift
+
+
+def envelope_corners(axes, half_range):
+    """The corners of a V-H envelope: every sign of each displacement.
+
+    Parameters
+    ----------
+    axes : sequence of str
+        Displacement letters (``E``, ``P``, ``G``, ``Sigma``).
+    half_range : float
+        Largest displacement either way [mm; deg for Sigma].
+
+    Returns
+    -------
+    dict
+        ``{label: {letter: value}}``, e.g. ``"E+0.1 P-0.1": {"E": 0.1, "P": -0.1}``,
+        in configuration units.
+    """
+    import itertools
+
+    out = {}
+    for signs in itertools.product((1, -1), repeat=len(axes)):
+        values = {a: s * half_range for a, s in zip(axes, signs)}
+        out[" ".join(f"{a}{v:+g}" for a, v in values.items())] = values
+    return out

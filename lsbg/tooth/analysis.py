@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["fe_ltca_for_geometry", "fe_ltca"]
+__all__ = ["fe_ltca_for_geometry", "fe_ltca", "fe_envelope"]
 
 #: Variables of the complementarity LTCA that replace or join the line model's.
 _FE_VARIABLES = ("transmission_error", "mesh_stiffness", "max_contact_pressure",
@@ -120,3 +120,88 @@ def fe_ltca_for_geometry(geometry_dir, load_torque, contact_params, compliance, 
     params = contact_params.replace(model="line")
     return fe_ltca(MeshContact(pair, params, separation=separation), compliance, load_torque,
                    phases)
+
+
+def fe_envelope(pair, contact_params, compliance, load_torque, phases, modification, misalignment,
+                axes, half_range):
+    """The FE loaded TCA's stresses at the corners of the assembly's displacement envelope.
+
+    At each corner (every sign of each displacement of ``axes`` at
+    ``half_range``, :func:`lsbg.tca.misalignment.envelope_corners`, added to
+    ``misalignment``) the complementarity LTCA on the FE compliance
+    (:func:`lsbg.tooth.ltca.fe_loaded_tca`) gives the largest Hertz pressure
+    and the root stresses at each mesh position; the line model's LTCA on
+    the slice table is not needed here.
+
+    Parameters
+    ----------
+    pair : lsbg.geometry.GearPair
+    contact_params : lsbg.contact.ContactParameters
+        The line model's bands (its model and compliance are set here).
+    compliance : xarray.Dataset
+        The design point's FE compliance.
+    load_torque : float
+        Torque on the gear [N m].
+    phases : int
+        Mesh positions over one base pitch [-].
+    modification, misalignment : dict
+        The ``flank_modification`` and ``misalignment`` sections (config units).
+    axes : sequence of str
+        Displacement letters (``E``, ``P``, ``G``, ``Sigma``).
+    half_range : float
+        Largest displacement either way [mm; deg for Sigma].
+
+    Returns
+    -------
+    xarray.Dataset
+        ``max_contact_pressure``, ``root_stress_pinion``, ``root_stress_gear``
+        over (corner, mesh_phase) [MPa]; ``displacement`` (corner, axis).
+
+    Raises
+    ------
+    ValueError
+        A corner whose displacement loses contact or closes the backlash,
+        naming it.
+    """
+    import xarray as xr
+
+    from lsbg.contact import MeshContact
+    from lsbg.tca.misalignment import DISPLACEMENTS, envelope_corners
+    from lsbg.tca.separation import RealFlanks
+    from lsbg.tooth.ltca import fe_loaded_tca
+
+    params = contact_params.replace(model="line")
+    corners = envelope_corners(list(axes), float(half_range))
+    pressure, roots = [], {"pinion": [], "gear": []}
+    for label, values in corners.items():
+        corner = dict(misalignment or {})
+        for letter, value in values.items():
+            key = DISPLACEMENTS[letter][1]
+            corner[key] = float(corner.get(key) or 0.0) + value
+        try:
+            separation = RealFlanks.from_config(modification, corner).separation(pair)
+            out = fe_loaded_tca(MeshContact(pair, params, separation=separation), compliance,
+                                load_torque, phases=phases)
+        except ValueError as err:
+            raise ValueError(f"the displaced assembly {label}: {err}") from None
+        pressure.append(out["max_contact_pressure"].values)
+        for member in roots:
+            roots[member].append(out[f"root_stress_{member}"].values)
+    phase = out["mesh_phase"]
+    dims = ("corner", "mesh_phase")
+    return xr.Dataset(
+        {"max_contact_pressure": (dims, np.array(pressure), {
+            "units": "MPa", "long_name": "largest Hertz pressure at each mesh position"}),
+         **{f"root_stress_{m}": (dims, np.array(v), {
+             "units": "MPa", "long_name": f"largest root stress of the {m} at each position"})
+            for m, v in roots.items()},
+         "displacement": (("corner", "axis"),
+                          np.array([[values[a] for a in axes] for values in corners.values()]),
+                          {"units": "mm (deg for Sigma)",
+                           "long_name": "assembly displacement added at each corner"})},
+        coords={"corner": list(corners), "axis": list(axes), "mesh_phase": phase.values},
+        attrs={"title": "FE loaded TCA at the corners of the displacement envelope",
+               "load_torque_N_m": float(load_torque), "phases": int(phases),
+               "envelope_half_range": float(half_range),
+               **{f"design_{k}": v for k, v in pair.design.to_config().items()}})
+

@@ -3,8 +3,8 @@
 # the `rating` section (K_v: the dynamic factor of the point's line-model run),
 # and writes the stresses, safety factors and rated torques of both members beside
 # the largest contact pressure and root stresses of the FE loaded TCA, aligned and
-# at each corner of the assembly's displacement envelope (misalignment_map.axes at
-# +-misalignment_map.range; solved here on the FE compliance) (results/rating/*.nc).
+# at each corner of the assembly's displacement envelope (rule fe_envelope,
+# tooth.smk) (results/rating/*.nc).
 # The paper report compares them (its service-life section).
 
 import re
@@ -16,7 +16,7 @@ rule rating:
         config=ancient(FILES["study_config"]),
         run=lambda w: STUDY.rating_run(w.trace),
         fe_ltca=lambda w: [STUDY.fe_ltca(w.trace, w.spiral)],
-        compliance=FILES["compliance"],
+        envelope=FILES["fe_envelope"],
         sources=sources("rating"),
     output:
         FILES["rating"],
@@ -27,12 +27,6 @@ rule rating:
         speed=config["simulation"]["pinion_speed_deg_s"],
         steady_state=config["statistics"]["steady_state_after_s"],
         tooth=plan.canonical(config["tooth"]),
-        # the envelope's corners: the V-H map's axes and range, on the misalignment
-        # section, the crowned flanks and the line model's bands
-        envelope=plan.canonical({k: config["misalignment_map"][k] for k in ("axes", "range")}),
-        flanks=plan.canonical({"misalignment": config["misalignment"],
-                               "flank_modification": config["flank_modification"]}),
-        contact=simulation_params(SWEEP_ENGINE, "line")["contact"],
         run=lambda wildcards, input: f"--run {input.run}" if input.run else "",
     wildcard_constraints:
         spiral=re.escape(PAPER_SPIRAL),
@@ -47,5 +41,4 @@ rule rating:
         CONDA_ENV
     shell:
         "lsbg -v rate --geometry {input.geometry} --config {input.config} {params.run}"
-        " --fe-ltca {input.fe_ltca} --compliance-file {input.compliance} --out {output}"
-        " > {log} 2>&1"
+        " --fe-ltca {input.fe_ltca} --fe-envelope {input.envelope} --out {output} > {log} 2>&1"

@@ -72,3 +72,41 @@ if not STUDY.own_compliance:
         shell:
             "lsbg -v ltca --geometry {input.geometry} --config {input.config} --compliance fe"
             " --compliance-file {input.compliance} --out {output} > {log} 2>&1"
+
+
+# The FE loaded TCA at the corners of the assembly's displacement envelope
+# (misalignment_map.axes at +-misalignment_map.range, on the misalignment section):
+# the largest contact pressure and root stresses at each corner and position, for
+# the rating's "with displacement" (results/tooth/*_envelope.nc). In both modes:
+# the paper's compliance is computed here.
+rule fe_envelope:
+    input:
+        geometry=FILES["geometry"],
+        config=ancient(FILES["study_config"]),
+        compliance=FILES["compliance"],
+        sources=sources("ltca"),
+    output:
+        FILES["fe_envelope"],
+    params:
+        # Rerun trigger: the load, the line model's bands, the flanks, the envelope and
+        # the tooth's settings.
+        load=config["simulation"]["load_torque_N_m"],
+        contact=simulation_params(SWEEP_ENGINE, "line")["contact"],
+        flanks=plan.canonical({"misalignment": config["misalignment"],
+                               "flank_modification": config["flank_modification"]}),
+        envelope=plan.canonical({k: config["misalignment_map"][k] for k in ("axes", "range")}),
+        tooth=plan.canonical(config["tooth"]),
+    wildcard_constraints:
+        spiral=re.escape(PAPER_SPIRAL),
+    priority: plan.job_priority("fe_envelope")
+    log:
+        "logs/fe_envelope/{trace}_beta{spiral}.log",
+    threads: 1
+    resources:
+        mem_mb=2000,
+        runtime=10,
+    conda:
+        CONDA_ENV
+    shell:
+        "lsbg -v ltca --geometry {input.geometry} --config {input.config} --compliance fe"
+        " --compliance-file {input.compliance} --envelope --out {output} > {log} 2>&1"
