@@ -26,7 +26,7 @@ __all__ = ["PAPER_TRACES", "CONTACT_MODELS", "REPORT_NAMES", "STUDY_SECTIONS", "
            "design_points", "speed_labels", "speed_keywords", "canonical", "yaml_text",
            "write_study_config", "simulation_params", "simulation_runtime", "map_steps",
            "CONTACT_STATE_SECTIONS", "contact_state_params", "JOB_SECONDS", "GATE_RULES",
-           "job_priority", "Study"]
+           "job_priority", "envelope_positions", "Study"]
 
 #: Both traces run at the paper's design point (the paper compares them).
 PAPER_TRACES = ("logarithmic", "circular")
@@ -240,6 +240,26 @@ JOB_SECONDS = {"tooth_compliance": 30, "sweep_points": 15, "sweep_contact_state"
                "fe_ltca": 4, "summary": 3, "combine": 2, "rating": 2, "fe_envelope": 16}
 #: Short jobs that every report and aggregate waits for: before all others, in this order.
 GATE_RULES = ("paper_geometry", "paper_ltca")
+
+
+def envelope_positions(config):
+    """Mesh positions of each FE loaded TCA of the displacement envelope (rule fe_envelope).
+
+    Half the aligned LTCA's (``tooth.ltca_positions``, at least 8): measured on
+    the paper's pair (35 deg, both members, four corners), 100 positions put
+    the largest contact pressure and root stresses within 0.5 % (their medians
+    over the cycle within 0.3 %) of 200 positions', in 5.7 s instead of 9.6 s.
+
+    Parameters
+    ----------
+    config : dict
+        The study configuration, defaults filled in.
+
+    Returns
+    -------
+    int
+    """
+    return max(8, int(config["tooth"].get("ltca_positions", 200)) // 2)
 
 
 def job_priority(rule):

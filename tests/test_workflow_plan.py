@@ -77,6 +77,8 @@ def test_every_run_and_file_of_the_default_study_is_planned_once(default):
     assert study.rating_files == ["results/rating/logarithmic_beta35.nc",
                                   "results/rating/circular_beta35.nc"]
     assert study.rating_run("circular") == ["results/runs/circular_beta35_line_compiled.nc"]
+    # the displaced assemblies' FE loaded TCAs: half the aligned one's positions
+    assert plan.envelope_positions(default) == default["tooth"]["ltca_positions"] // 2 == 100
 
 
 def test_the_fe_compliance_is_planned_at_the_paper_point_or_everywhere(default):

@@ -96,6 +96,7 @@ rule fe_envelope:
                                "flank_modification": config["flank_modification"]}),
         envelope=plan.canonical({k: config["misalignment_map"][k] for k in ("axes", "range")}),
         tooth=plan.canonical(config["tooth"]),
+        phases=plan.envelope_positions(config),
     wildcard_constraints:
         spiral=re.escape(PAPER_SPIRAL),
     priority: plan.job_priority("fe_envelope")
@@ -109,4 +110,5 @@ rule fe_envelope:
         CONDA_ENV
     shell:
         "lsbg -v ltca --geometry {input.geometry} --config {input.config} --compliance fe"
-        " --compliance-file {input.compliance} --envelope --out {output} > {log} 2>&1"
+        " --compliance-file {input.compliance} --envelope --phases {params.phases}"
+        " --out {output} > {log} 2>&1"
