@@ -17,7 +17,7 @@ PLOTTING = ("figures", "reports", "cli")
 #: modules of its own layer or of layers before it.
 LAYERS = (
     ("numba_cache",),
-    ("design",),
+    ("design", "sections"),
     ("vectors",),
     ("geometry", "polyhedra", "theory"),
     ("solids", "render", "files", "mass", "urdf", "step"),

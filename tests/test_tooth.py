@@ -118,13 +118,19 @@ def test_uniform_bed_as_compliance_reproduces_the_line_model(contact):
         assert eps == pytest.approx(pinion * contact.e1 - gear * contact.e2, rel=1e-9)
 
 
-def test_contact_problem_is_complementary_and_balanced(pair, compliance, contact):
+@pytest.fixture(scope="module")
+def problem(pair, compliance, contact):
+    """The contact problem at 0.3 base pitches: FE compliance, its points, matrix and the
+    flanks' relative curvature and thicknesses there."""
     fe = FECompliance(compliance, pair, contact.orientation,
                       contact.arrays[2][0, :contact.params.slices, 0])
     points = contact_points(contact, 0.3 * contact.pitch)
     weights = fe.weights(points)
-    matrix = fe.matrix(points, weights)
-    curvature, h1, h2 = fe.point_values(points, weights)
+    return (fe, points, fe.matrix(points, weights), *fe.point_values(points, weights))
+
+
+def test_contact_problem_is_complementary_and_balanced(problem, contact):
+    fe, points, matrix, curvature, h1, h2 = problem
 
     def local(forces):
         return local_approach(forces / points.length, curvature, h1, h2, fe.young, fe.poisson)
@@ -170,13 +176,8 @@ def test_local_approach_keeps_growing_past_the_formulas_range():
     assert np.allclose(approach[ordinary], formula, rtol=1e-14, atol=0)
 
 
-def test_newton_finds_the_secant_fixed_point_from_any_start(pair, compliance, contact):
-    fe = FECompliance(compliance, pair, contact.orientation,
-                      contact.arrays[2][0, :contact.params.slices, 0])
-    points = contact_points(contact, 0.3 * contact.pitch)
-    weights = fe.weights(points)
-    matrix = fe.matrix(points, weights)
-    curvature, h1, h2 = fe.point_values(points, weights)
+def test_newton_finds_the_secant_fixed_point_from_any_start(problem, contact):
+    fe, points, matrix, curvature, h1, h2 = problem
     lines = HertzLines(points.length, curvature, h1, h2, fe.young, fe.poisson)
     secant = solve_contact(matrix, points, TORQUE, contact.e2, lines.approach)
     newton = solve_contact(matrix, points, TORQUE, contact.e2, lines.approach, lines.tangent)

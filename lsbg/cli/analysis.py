@@ -64,7 +64,7 @@ def run_ltca(args):
         except ValueError as err:
             raise CommandError(str(err)) from None
     params = contact_from_args(args)
-    flanks = flanks_from_args(args)
+    flanks = flanks_from_args(args)  # checks the flank sections before any work
     if args.envelope:
         return _run_envelope(args, params, load)
     try:
@@ -99,22 +99,17 @@ def run_ltca(args):
 
 def _run_envelope(args, params, load):
     """``lsbg ltca --envelope``: the FE loaded TCA at the envelope's corners [exit code]."""
-    from lsbg.cli.options import _assignments
+    from lsbg.cli.options import flank_sections_from_args
     from lsbg.cli.tooth import compliance_from_args
     from lsbg.files import read_design
     from lsbg.geometry import GearPair
     from lsbg.results import write_dataset
-    from lsbg.tca.misalignment import DISPLACEMENTS
     from lsbg.tooth.analysis import fe_envelope
 
     if params.compliance != "fe":
         raise CommandError("--envelope: needs the FE compliance (--compliance fe)")
-    modification, misalignment, vh = read_study_sections(
-        args.config, "flank_modification", "misalignment", "misalignment_map")
-    modification = {**modification, **_assignments(args.modification, "--modification")}
-    given = _assignments(args.misalignment, "--misalignment")
-    misalignment = {**misalignment, **{DISPLACEMENTS[k][1] if k in DISPLACEMENTS else k: v
-                                       for k, v in given.items()}}
+    modification, misalignment = flank_sections_from_args(args)
+    (vh,) = read_study_sections(args.config, "misalignment_map")
     axes, half_range = vh.get("axes") or ["E", "P"], vh.get("range") or 0.1
     pair = GearPair(read_design(args.geometry))
     compliance, positions = compliance_from_args(args, pair, args.compliance_file)

@@ -253,11 +253,10 @@ def _assignments(texts, option):
     return out
 
 
-def flanks_from_args(args):
-    """The real flanks (:class:`lsbg.tca.separation.RealFlanks`) of ``--config``'s
-    ``flank_modification`` and ``misalignment`` sections and the options."""
+def flank_sections_from_args(args):
+    """``--config``'s ``flank_modification`` and ``misalignment`` sections with the
+    options' keys set (``--misalignment`` letters as their keys), in config units."""
     from lsbg.tca.misalignment import DISPLACEMENTS
-    from lsbg.tca.separation import RealFlanks
 
     modification, misalignment = read_study_sections(getattr(args, "config", None),
                                                      "flank_modification", "misalignment")
@@ -265,6 +264,15 @@ def flanks_from_args(args):
     given = _assignments(args.misalignment, "--misalignment")
     misalignment = {**misalignment, **{DISPLACEMENTS[k][1] if k in DISPLACEMENTS else k: v
                                        for k, v in given.items()}}
+    return modification, misalignment
+
+
+def flanks_from_args(args):
+    """The real flanks (:class:`lsbg.tca.separation.RealFlanks`) of ``--config``'s
+    ``flank_modification`` and ``misalignment`` sections and the options."""
+    from lsbg.tca.separation import RealFlanks
+
+    modification, misalignment = flank_sections_from_args(args)
     try:
         return RealFlanks.from_config(modification, misalignment)
     except ValueError as err:

@@ -59,12 +59,7 @@ def run_rate(args):
     kv, source = None, "K_v = 1: no run given"
     if rating.get("dynamic_factor", "lsbg") == "lsbg":
         if args.run:
-            run = open_run(args.run)
-            difference = design.attrs_difference(run.attrs)
-            if difference is not None:
-                key, stored, value = difference
-                raise CommandError(f"--run {args.run}: design {key} = {stored!r}, the "
-                                   f"geometry's {value!r}")
+            run = _same_point(open_run(args.run), design, None, "--run")
             try:
                 after = statistics_options(statistics).get("steady_state_after", 0.2)
             except ValueError as err:
@@ -113,9 +108,11 @@ def run_rate(args):
 
 
 def _same_point(ds, design, load, option):
-    """``ds`` if it was computed for ``design`` at ``load`` [N m], else a CommandError."""
+    """``ds`` if it was computed for ``design`` (and, unless None, at ``load`` [N m]),
+    else a CommandError."""
     source = ds.encoding.get("source", "")
-    if not math.isclose(float(ds.attrs["load_torque_N_m"]), load, rel_tol=1e-9):
+    if load is not None and not math.isclose(float(ds.attrs["load_torque_N_m"]), load,
+                                             rel_tol=1e-9):
         raise CommandError(f"{option} {source}: computed at "
                            f"{float(ds.attrs['load_torque_N_m']):g} N m, the rating's load is "
                            f"{load:g} N m")

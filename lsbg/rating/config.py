@@ -59,6 +59,7 @@ def rating_from_config(section, tooth_section=None, dynamic_factor=None):
         Naming ``rating.<key>`` (or ``tooth.<key>``) and its value.
     """
     from lsbg.rating.iso10300 import RatingConditions, RatingMaterial
+    from lsbg.sections import config_key, section_objects
 
     section = dict(section or {})
     values = {"material": {}, "conditions": {}}
@@ -84,19 +85,15 @@ def rating_from_config(section, tooth_section=None, dynamic_factor=None):
                              ("poisson_ratio", "poisson_ratio", 1.0)):
         if tooth.get(key) is not None:
             values["material"][field] = tooth[key] * unit
-    built = {}
-    for target, cls in (("material", RatingMaterial), ("conditions", RatingConditions)):
-        try:
-            built[target] = cls(**values[target])
-        except ValueError as err:
-            field = str(err).split(" ", 1)[0]
-            key = next((k for k, (t, f, _) in RATING_CONFIG_KEYS.items()
-                        if t == target and f == field), None)
-            if key is None:
-                key = {"young_modulus": "young_modulus_GPa"}.get(field, field)
-                raise ValueError(f"tooth.{key} = {tooth.get(key)!r}: {err}") from None
-            value = section.get(key, values[target].get(field))
-            raise ValueError(f"rating.{key} = {value!r}: {err}") from None
+    def named(target, field):
+        key = config_key(RATING_CONFIG_KEYS, target, field)
+        if key is not None:
+            return f"rating.{key}", section.get(key, values[target].get(field))
+        key = {"young_modulus": "young_modulus_GPa"}.get(field, field)
+        return f"tooth.{key}", tooth.get(key)
+
+    built = section_objects(values, {"material": RatingMaterial, "conditions": RatingConditions},
+                            named, "rating")
     return built["material"], built["conditions"]
 
 

@@ -95,47 +95,38 @@ def rating_dataset(rating, design, material, conditions, dynamic_factor_source, 
         **rating_fields(material, conditions),
         **{_attribute_name(k): float(v) for k, v in factors.items()},
     }
-    if fe_ltca is not None:
-        peak, median, roots = _fe_peaks(fe_ltca)
-        variables.update({
-            "fe_max_contact_pressure": scalar(peak, "MPa",
-                                              "largest Hertz pressure over the mesh cycle "
-                                              "(FE loaded TCA)"),
-            "fe_median_contact_pressure": scalar(
-                median, "MPa",
-                "median over the mesh cycle of each position's largest Hertz pressure"),
-            "fe_max_root_stress": member(roots, "MPa", "largest tensile principal stress in "
-                                         "the root fillet over the mesh cycle (FE loaded TCA)"),
-        })
-        attrs["fe_ltca_load_torque_N_m"] = float(fe_ltca.attrs.get("load_torque_N_m", np.nan))
     coords = {"member": ("member", list(MEMBERS))}
+    if fe_ltca is not None:
+        variables.update(_fe_stresses(fe_ltca, "fe", ""))
+        attrs["fe_ltca_load_torque_N_m"] = float(fe_ltca.attrs.get("load_torque_N_m", np.nan))
     if envelope is not None:
-        pressure = envelope["max_contact_pressure"]
-        variables.update({
-            "displacement": (("corner", "axis"), envelope["displacement"].values,
-                             dict(envelope["displacement"].attrs)),
-            "fe_displaced_max_contact_pressure": (
-                "corner", pressure.max("mesh_phase").values,
-                {"units": "MPa", "long_name": "largest Hertz pressure over the mesh cycle, "
-                                              "displaced assembly (FE loaded TCA)"}),
-            "fe_displaced_median_contact_pressure": (
-                "corner", pressure.median("mesh_phase").values,
-                {"units": "MPa", "long_name": "median over the mesh cycle of each position's "
-                                              "largest Hertz pressure, displaced assembly"}),
-            "fe_displaced_max_root_stress": (
-                ("corner", "member"),
-                np.stack([envelope[f"root_stress_{m}"].max("mesh_phase").values
-                          for m in MEMBERS], axis=1),
-                {"units": "MPa", "long_name": "largest root stress over the mesh cycle, "
-                                              "displaced assembly (FE loaded TCA)"}),
-        })
+        variables.update(_fe_stresses(envelope, "fe_displaced", ", displaced assembly"))
+        variables["displacement"] = (("corner", "axis"), envelope["displacement"].values,
+                                     dict(envelope["displacement"].attrs))
         coords.update(corner=("corner", [str(c) for c in envelope["corner"].values]),
                       axis=("axis", [str(a) for a in envelope["axis"].values]))
     return xr.Dataset(variables, coords=coords, attrs=attrs)
 
 
-def _fe_peaks(ltca):
-    """(largest pressure, median of the per-position largest, root maxima) [MPa]."""
-    pressure = np.asarray(ltca["max_contact_pressure"].values, dtype=float)
-    roots = [float(ltca[f"root_stress_{m}"].max()) for m in MEMBERS]
-    return float(pressure.max()), float(np.median(pressure)), roots
+def _fe_stresses(ltca, prefix, what):
+    """An FE loaded TCA's largest stresses over the mesh cycle as variables [MPa].
+
+    ``ltca`` holds ``max_contact_pressure`` and ``root_stress_<member>`` over
+    ``mesh_phase`` (and, for the displacement envelope, ``corner``); the
+    variables keep its other dimensions.
+    """
+    pressure = ltca["max_contact_pressure"]
+    lead = tuple(d for d in pressure.dims if d != "mesh_phase")
+    roots = np.stack([ltca[f"root_stress_{m}"].max("mesh_phase").values for m in MEMBERS],
+                     axis=-1)
+    source = f"{what} (FE loaded TCA)"
+    return {
+        f"{prefix}_max_contact_pressure": (lead, pressure.max("mesh_phase").values, {
+            "units": "MPa", "long_name": f"largest Hertz pressure over the mesh cycle{source}"}),
+        f"{prefix}_median_contact_pressure": (lead, pressure.median("mesh_phase").values, {
+            "units": "MPa", "long_name": "median over the mesh cycle of each position's "
+                                         f"largest Hertz pressure{source}"}),
+        f"{prefix}_max_root_stress": ((*lead, "member"), roots, {
+            "units": "MPa", "long_name": "largest tensile principal stress in the root fillet "
+                                         f"over the mesh cycle{source}"}),
+    }

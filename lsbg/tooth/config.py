@@ -16,6 +16,8 @@ import logging
 import math
 from pathlib import Path
 
+from lsbg.sections import config_key, section_objects
+
 __all__ = ["TOOTH_CONFIG_KEYS", "TOOTH_DEFAULTS", "tooth_from_config",
            "compliance_for_design", "fe_design_points", "tooth_problems"]
 
@@ -84,17 +86,12 @@ def tooth_from_config(section):
     positions = values["ltca"].get("positions", TOOTH_DEFAULTS["ltca_positions"])
     if not 8 <= positions <= 2000:
         raise ValueError(f"tooth.ltca_positions = {positions!r}: must lie in [8, 2000]")
-    built = {}
-    for target, cls in (("material", ToothMaterial), ("mesh", FEMeshSettings)):
-        try:
-            built[target] = cls(**values[target])
-        except ValueError as err:
-            field = str(err).split(" ", 1)[0]
-            key = next((k for k, (t, f, _) in TOOTH_CONFIG_KEYS.items()
-                        if t == target and f == field), None)
-            if key is None:
-                raise ValueError(f"tooth: {err}") from None
-            raise ValueError(f"tooth.{key} = {section.get(key)!r}: {err}") from None
+    def named(target, field):
+        key = config_key(TOOTH_CONFIG_KEYS, target, field)
+        return None if key is None else (f"tooth.{key}", section.get(key))
+
+    built = section_objects(values, {"material": ToothMaterial, "mesh": FEMeshSettings}, named,
+                            "tooth")
     return built["material"], built["mesh"], int(positions)
 
 
