@@ -32,7 +32,7 @@ STAGE_MODULES = {
                  "ltca", "tca"),
     "ltca": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "ltca",
              "results", "theory", "tca", "tooth", "step", "polyhedra", "solids", "mass",
-             "sections"),
+             "sections", "sensitivity"),
     "tooth": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "results",
               "theory", "ltca", "tca", "tooth", "step", "polyhedra", "solids", "mass",
               "sections"),
@@ -46,7 +46,7 @@ STAGE_MODULES = {
     "speed": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "results",
               "theory", "spectra", "speed", "ltca", "tca"),
     "contact_state": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics",
-                      "ltca", "results", "theory", "tca"),
+                      "ltca", "results", "theory", "tca", "sensitivity"),
     "rating": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "results",
                "theory", "ltca", "tca", "rating", "summary", "stats", "spectra", "runs",
                "combine", "sections"),
@@ -55,7 +55,8 @@ STAGE_MODULES = {
     # the notebooks' imports too (tests/test_stages.py reads them)
     "report": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "results",
                "theory", "stats", "spectra", "runs", "combine", "summary", "ltca", "reports",
-               "verification", "tables", "figures", "sensitivity", "speed", "tca", "rating"),
+               "verification", "tables", "figures", "sensitivity", "speed", "tca", "rating",
+               "sections"),
 }
 
 #: Stage -> where its command starts: ``"module:function"`` of the lsbg.cli

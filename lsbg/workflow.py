@@ -57,6 +57,8 @@ FILES = {
     "compliance": "results/tooth/{trace}_beta{spiral}_compliance.nc",
     "fe_ltca": "results/tooth/{trace}_beta{spiral}_ltca.nc",
     "fe_envelope": "results/tooth/{trace}_beta{spiral}_envelope.nc",
+    "fe_case": "results/tooth/{trace}_beta{spiral}_{case}_ltca.nc",
+    "vh_case": "results/vh/{trace}_beta{spiral}_{case}.nc",
     "rating": "results/rating/{trace}_beta{spiral}.nc",
     "report": "reports/{name}.html",
 }
@@ -227,23 +229,24 @@ def simulation_runtime(config, runs=1):
 #: Wall time [s] of one job of each rule in the default study, measured with
 #: ``snakemake -j2`` on the 2-core reference machine (tests/benchmarks/bench_study.py,
 #: 2026-11-24). Only their order matters: it is the order of :func:`job_priority`.
-#: contact_state (``lsbg misalignment-map`` at the paper's point, 9 x 9 cells) about
-#: 6 s; sweep_contact_state (the other ten angles of a trace, 5 x 5 cells each) about
+#: contact_state (``lsbg misalignment-map`` at the paper's point, 9 x 9 cells, and the
+#: 5 x 5 maps of its sensitivity cases) about 13 s; sweep_contact_state (the other ten angles of a trace, 5 x 5 cells each) about
 #: 15 s; they fill the cores before the aggregates and the reports that read them.
 #: tooth_compliance (the FE compliance of the paper's point, both members) about 10 s:
-#: it starts first, as soon as its geometry is there. fe_envelope (four FE loaded TCAs
-#: of the paper's point, about 6 s) is ranked with the batches so that it runs early,
+#: it starts first, as soon as its geometry is there. fe_sensitivity (the FE loaded TCAs
+#: of the paper's point at the envelope's four corners and of the crowning cases, about
+#: 7 s) is ranked with the batches so that it runs early,
 #: beside them, and not on the reports' critical path.
 JOB_SECONDS = {"tooth_compliance": 30, "sweep_points": 15, "sweep_contact_state": 15,
                "convergence_point": 14, "report_paper": 12, "report_verification": 8,
-               "report_sweep": 8, "convergence_line": 6, "contact_state": 6, "sensitivity": 4,
-               "fe_ltca": 4, "summary": 3, "combine": 2, "rating": 2, "fe_envelope": 16}
+               "report_sweep": 8, "convergence_line": 6, "contact_state": 13, "sensitivity": 4,
+               "fe_ltca": 4, "summary": 3, "combine": 2, "rating": 2, "fe_sensitivity": 16}
 #: Short jobs that every report and aggregate waits for: before all others, in this order.
 GATE_RULES = ("paper_geometry", "paper_ltca")
 
 
 def envelope_positions(config):
-    """Mesh positions of each FE loaded TCA of the displacement envelope (rule fe_envelope).
+    """Mesh positions of each FE loaded TCA of the displacement envelope (rule fe_sensitivity).
 
     Half the aligned LTCA's (``tooth.ltca_positions``, at least 8): measured on
     the paper's pair (35 deg, both members, four corners), 100 positions put
@@ -321,11 +324,10 @@ class Study:
         self.reference = {m: [e for e in c["engines"]["reference"].get(m, [])
                               if e != self.sweep_engine] for m in CONTACT_MODELS}
         self.paper_engine = c["engines"]["paper"]
-        from lsbg.sensitivity import case_name
+        from lsbg.sensitivity import study_cases
 
-        #: sensitivity case -> (contact key, factor)
-        self.sensitivity = {case_name(key, factor): (key, factor)
-                            for key, factors in c["sensitivity"].items() for factor in factors}
+        #: sensitivity case -> (key, factor, switch value or corner label)
+        self.sensitivity = study_cases(c["sensitivity"], c["misalignment_map"])
 
     # -------------------------------------------------------- design points
     def batch_spirals(self, trace):
@@ -475,6 +477,33 @@ class Study:
     def paper_vh_maps(self):
         return [self.vh_map(t, self.paper_spiral) for t in PAPER_TRACES]
 
+    def case_options(self, stage):
+        """``--case KEY=VALUE`` options of the ``sensitivity`` section's entries that
+        reach ``stage`` (:data:`lsbg.sensitivity.CASE_STAGES`)."""
+        from lsbg.sensitivity import CASE_STAGES
+
+        return " ".join(f"--case {key}={value!r}" for key, values in
+                        self.config["sensitivity"].items() if stage in CASE_STAGES[key]
+                        for value in values)
+
+    def stage_cases(self, stage):
+        """The sensitivity cases (names) that reach ``stage``."""
+        from lsbg.sensitivity import stage_cases
+
+        return list(stage_cases(self.sensitivity, stage))
+
+    def vh_cases(self, trace=None):
+        """The paper point's V-H maps of the contact-state sensitivity cases."""
+        traces = PAPER_TRACES if trace is None else (trace,)
+        return [_format(FILES["vh_case"], trace=t, spiral=self.paper_spiral, case=case)
+                for case in self.stage_cases("contact_state") for t in traces]
+
+    def fe_cases(self, trace=None):
+        """The paper point's FE loaded TCAs of the crowning sensitivity cases."""
+        traces = PAPER_TRACES if trace is None else (trace,)
+        return [_format(FILES["fe_case"], trace=t, spiral=self.paper_spiral, case=case)
+                for case in self.stage_cases("fe_ltca") for t in traces]
+
     def sensitivity_runs(self, trace=None):
         traces = PAPER_TRACES if trace is None else (trace,)
         return [_format(FILES["sensitivity_run"], trace=t, spiral=self.paper_spiral, case=case)
@@ -548,7 +577,8 @@ class Study:
         """What ``rule all`` asks for."""
         extra = [FILES["speed_curve"]] if self.speed_sweep else []
         return [*self.reports.values(), FILES["sweep"], FILES["summary"], *self.tca_files,
-                *self.vh_maps, *self.tooth_files, *self.rating_files, *extra]
+                *self.vh_maps, *self.vh_cases(), *self.tooth_files, *self.fe_cases(),
+                *self.rating_files, *extra]
 
     # ------------------------------------------------------------ wildcards
     @property

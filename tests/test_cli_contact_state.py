@@ -87,6 +87,38 @@ def test_misalignment_map_command_and_its_tca(world):
     assert xr.open_dataset(tca).sizes["mesh_phase"] == 40
 
 
+def test_sensitivity_cases_of_the_map_and_the_loaded_tca_are_the_options_they_stand_for(world):
+    """A case is the same command with the case's settings: crowning x1 is the base map
+    itself, crowning x2 the map of twice the config's ease-off, stiffness x2 the map on
+    twice the bed (its unloaded half unchanged)."""
+    root = world["root"]
+    base, doubled = root / "vh_base.nc", root / "vh_doubled.nc"
+    assert run(["misalignment-map", "--geometry", world["geometry"], "--config", world["config"],
+                "--out", base, "--case", "crowning=1", "--case", "crowning=2",
+                "--case", "line_stiffness_N_per_mm_um=2",
+                "--case-out", root / "vh_{case}.nc"]) == 0
+    assert run(["misalignment-map", "--geometry", world["geometry"], "--config", world["config"],
+                "--modification", "lengthwise_crowning_um=50",
+                "--modification", "profile_crowning_um=10", "--out", doubled]) == 0
+    one, two = xr.open_dataset(root / "vh_crowning_x1.nc"), xr.open_dataset(root / "vh_crowning_x2.nc")
+    assert one.attrs["sensitivity_case"] == "crowning_x1"
+    xr.testing.assert_equal(one.drop_attrs(), xr.open_dataset(base).drop_attrs())
+    xr.testing.assert_equal(two.drop_attrs(), xr.open_dataset(doubled).drop_attrs())
+    stiff = xr.open_dataset(root / "vh_line_stiffness_N_per_mm_um_x2.nc")
+    xr.testing.assert_equal(stiff["transmission_error_unloaded_pp"], one["transmission_error_unloaded_pp"])
+    assert not np.allclose(stiff["transmission_error_loaded_pp"], one["transmission_error_loaded_pp"])
+    # the loaded TCA's case: the command with the doubled ease-off
+    assert run(["ltca", "--geometry", world["geometry"], "--config", world["config"],
+                "--phases", "16", "--out", root / "ltca.nc", "--case", "crowning=2",
+                "--case-out", root / "ltca_{case}.nc"]) == 0
+    assert run(["ltca", "--geometry", world["geometry"], "--config", world["config"],
+                "--phases", "16", "--modification", "lengthwise_crowning_um=50",
+                "--modification", "profile_crowning_um=10", "--out", root / "ltca2.nc"]) == 0
+    case, direct = xr.open_dataset(root / "ltca_crowning_x2.nc"), xr.open_dataset(root / "ltca2.nc")
+    np.testing.assert_array_equal(case["transmission_error"], direct["transmission_error"])
+    assert case.attrs["sensitivity_case"] == "crowning_x2"
+
+
 @pytest.mark.parametrize("argv, message", [
     (["tca", "--misalignment", "X=1"], "misalignment.X = 1: unknown key"),
     (["tca", "--modification", "lengthwise_crowning_um=-3"],

@@ -117,17 +117,23 @@ def no_work(monkeypatch):
         monkeypatch.setattr(target, started)
 
 
-@pytest.mark.parametrize("case", TABLE)
-def test_bad_input_is_one_line_naming_the_file_exit_2(world, case, capsys, no_work):
-    line, named = TABLE[case]
+def one_line_exit_2(world, line, capsys):
+    """Run ``line`` (formatted with the world's paths): exit code 2, one line on stderr
+    naming the command, no traceback, nothing written; the line."""
     argv = [word.format(**world) for word in line.split()]
     before = sorted(world["root"].rglob("*"))
     assert cli.main(argv) == 2
     out, err = capsys.readouterr()
     assert "Traceback" not in out + err
     assert err.startswith(f"lsbg {argv[0]}: error: ") and err.count("\n") == 1, err
-    assert world[named].name in err
     assert sorted(world["root"].rglob("*")) == before         # nothing written
+    return err
+
+
+@pytest.mark.parametrize("case", TABLE)
+def test_bad_input_is_one_line_naming_the_file_exit_2(world, case, capsys, no_work):
+    line, named = TABLE[case]
+    assert world[named].name in one_line_exit_2(world, line, capsys)
 
 
 def test_edited_design_json_says_how_to_regenerate(world, capsys):
@@ -161,3 +167,37 @@ def test_real_process_prints_no_traceback(world):
     assert done.stderr == (f"lsbg convergence: error: {world['file']}: a file, not a geometry "
                            f"directory (written by 'lsbg geometry')\n")
     assert "Traceback" not in done.stdout
+
+
+#: Sensitivity cases given to a command that cannot take them, or badly: one line, exit
+#: 2, before any work, nothing written.
+CASE_ERRORS = {
+    "ltca case of another stage": (
+        "ltca --geometry {geo} --case mesh_damping_ratio=2 --case-out {root}/c_{{case}}.nc "
+        "--out {out}", "--case 'mesh_damping_ratio=2': a mesh_damping_ratio case does not "
+                       "change this analysis"),
+    "ltca case without a template": (
+        "ltca --geometry {geo} --case crowning=2 --out {out}",
+        "--case: needs --case-out, a file template with {case}"),
+    "sensitivity negative crowning": (
+        "sensitivity --geometry {geo} --case crowning=-1 --out {root}/s_{{case}}.nc",
+        "sensitivity.crowning factor -1: must be a number >= 0"),
+    "sensitivity unknown envelope": (
+        "sensitivity --geometry {geo} --case displacement=corners --out {root}/s_{{case}}.nc",
+        "sensitivity.displacement value 'corners'"),
+    "sensitivity cases on one file": (
+        "sensitivity --geometry {geo} --case crowning=0.5 --case crowning=2 --out {root}/s.nc",
+        "the cases would write the same file"),
+    "misalignment-map even case steps": (
+        "misalignment-map --geometry {geo} --case crowning=2 --case-steps 4 "
+        "--case-out {root}/v_{{case}}.nc --out {root}/vh.nc", "--case-steps 4"),
+    "rate case run without a name": (
+        "rate --geometry {geo} --case-run {out} --out {root}/r.nc", "must be CASE=RUN.nc"),
+}
+
+
+@pytest.mark.parametrize("case", CASE_ERRORS)
+def test_bad_sensitivity_cases_are_one_line_exit_2(world, case, capsys, no_work):
+    line, message = CASE_ERRORS[case]
+    err = one_line_exit_2(world, line, capsys)
+    assert message in err, err

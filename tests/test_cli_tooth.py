@@ -265,3 +265,42 @@ def test_the_envelope_and_the_rating_beside_the_fe_stresses(point, tmp_path, cap
                      "--fe-envelope", str(envelope), "--out", str(tmp_path / "z.nc")]) == 2
     assert "computed at 1964.99 N m, the rating's load is 1000 N m" in capsys.readouterr().err
     assert not (tmp_path / "x.nc").exists() and not (tmp_path / "z.nc").exists()
+
+
+def test_a_case_run_rates_the_pair_with_its_own_dynamic_factor(point, tmp_path):
+    """`lsbg rate --case-run`: the pair rated again with each case run's K_v is the
+    rating with that K_v given as a number (rating.dynamic_factor), and the cases
+    differ from the base only where K_v does."""
+    from lsbg.summary import run_dynamic_factor
+
+    runs = {}
+    for name, damping in (("base", 0.05), ("mesh_damping_ratio_x0.2", 0.01)):
+        runs[name] = tmp_path / f"{name}.nc"
+        assert cli.main(["simulate", "--geometry", str(point["geo"]), "--engine", "compiled",
+                         "--contact-model", "line", "--duration", "0.06", "--ramp-time", "0.01",
+                         "--samples", "30", "--full-rate-after", "0.02",
+                         "--set-contact", f"mesh_damping_ratio={damping}",
+                         "--out", str(runs[name])]) == 0
+    rating = tmp_path / "rating.nc"
+    # the study's steady state (0.2 s) is beyond these short runs: said, not a traceback
+    assert cli.main(["rate", "--geometry", str(point["geo"]), "--run", str(runs["base"]),
+                     "--out", str(rating)]) == 2
+    assert not rating.exists()
+    steady = tmp_path / "steady.yaml"
+    steady.write_text(yaml.safe_dump({"statistics": {"steady_state_after_s": 0.02}}))
+    assert cli.main(["rate", "--geometry", str(point["geo"]), "--config", str(steady),
+                     "--run", str(runs["base"]),
+                     "--case-run", f"mesh_damping_ratio_x0.2={runs['mesh_damping_ratio_x0.2']}",
+                     "--out", str(rating)]) == 0
+    with xr.open_dataset(runs["mesh_damping_ratio_x0.2"]) as run:
+        kv = max(run_dynamic_factor(run, 0.02), 1.0)
+    given = tmp_path / "given.nc"
+    assert cli.main(["rate", "--geometry", str(point["geo"]), "--set-rating",
+                     f"dynamic_factor={kv!r}", "--out", str(given)]) == 0
+    with xr.open_dataset(rating) as ds, xr.open_dataset(given) as direct:
+        case = ds.sel(case="mesh_damping_ratio_x0.2")
+        assert float(case["case_dynamic_factor"]) == pytest.approx(kv, rel=1e-12)
+        assert float(case["case_contact_stress"]) == pytest.approx(
+            float(direct["contact_stress"]), rel=1e-12)
+        np.testing.assert_allclose(case["case_root_stress"], direct["root_stress"], rtol=1e-12)
+        assert kv != pytest.approx(float(ds.attrs["factor_K_v"]), rel=1e-6)

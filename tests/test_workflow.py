@@ -110,11 +110,16 @@ def test_default_and_test_configs_are_valid_and_plan_the_study(tmp_path):
         assert rule in rules_of(jobs)
     # the contact state: the paper's point of each trace a job of its own, the other
     # angles of a trace one job; an unloaded TCA and a V-H map per design point
+    # (at the paper's point also the maps of the sensitivity cases that reach it)
+    cases = ("line_stiffness_N_per_mm_um_x0.5", "line_stiffness_N_per_mm_um_x2",
+             "crowning_x0", "crowning_x0.5", "crowning_x2")
     state = {out for rule, out in jobs if rule == "contact_state"}
-    assert state == {f"results/tca/{t}_beta35.nc, results/vh/{t}_beta35.nc" for t in traces}
+    assert state == {", ".join([f"results/tca/{t}_beta35.nc", f"results/vh/{t}_beta35.nc",
+                                *(f"results/vh/{t}_beta35_{c}.nc" for c in cases)])
+                     for t in traces}
     assert rules_of(jobs).count("sweep_contact_state") == len(traces)
     maps = [f for rule, out in jobs if rule in ("contact_state", "sweep_contact_state")
-            for f in out.split(", ") if f.startswith("results/vh/")]
+            for f in out.split(", ") if f.startswith("results/vh/") and "_x" not in f]
     assert len(maps) == len(set(maps)) == len(points)
     # The settings lsbg reads, as validated (schema defaults filled in).
     written = yaml.safe_load((tmp_path / "results" / "config.yaml").read_text(encoding="utf-8"))
@@ -266,8 +271,9 @@ def test_study_writes_the_summary_table(study):
     assert list(table.columns) == list(SUMMARY_COLUMNS)
     runs = table[~table.engine.isin(["ltca", "tca"])].groupby("run").size()
     # two traces x (point, line) x compiled, the point model on pybullet, the line model
-    # on scipy, two sensitivity cases (damping x2, the tooth's FE compliance) x two traces
-    assert len(runs) == 12
+    # on scipy, three sensitivity cases (damping x2, the tooth's FE compliance, crowning
+    # x0.5) x two traces
+    assert len(runs) == 14
     speed = table[table.quantity == "gear_speed"]
     assert (abs(speed["mean"] - 1873.703) / 1873.703 < 0.02).all()
     mesh = table[table.engine == "ltca"]
@@ -353,7 +359,7 @@ def test_a_changed_setting_reruns_only_the_runs_that_use_it(study, tmp_path):
     # (and the rating: its FE loaded TCA and its K_v's line run)
     _line_model = (["paper_ltca"] * 2 + ["fe_ltca"] * 2 + ["sensitivity"] * 2
                    + ["convergence_line"] * 2 + ["contact_state"] * 2 + ["rating"] * 2
-                   + ["fe_envelope"] * 2
+                   + ["fe_sensitivity"] * 2
                    + ["combine", "summary", "report_paper", "report_sweep",
                       "report_verification", "all"])
     assert rules_of(jobs) == sorted(_line_model), output
@@ -378,7 +384,9 @@ def test_a_changed_setting_reruns_only_the_runs_that_use_it(study, tmp_path):
     # The rating's own settings: its jobs and the paper report
     extra = write_yaml(tmp_path / "rating.yaml", {"rating": {"application_factor": 1.25}})
     jobs, output = dry_run(study, extra)
-    assert rules_of(jobs) == sorted(["rating", "rating", "report_paper", "all"]), output
+    # (the sweep report rates every design point by the standard)
+    assert rules_of(jobs) == sorted(["rating", "rating", "report_paper", "report_sweep",
+                                     "all"]), output
 
 
 _CONVERGENCE = ["convergence_point"] * 2 + ["convergence_line"] * 2
@@ -387,7 +395,7 @@ _AGGREGATES = ["combine", "summary", "report_paper", "report_sweep", "report_ver
 #: Every job of the test study.
 _EVERYTHING = (["paper_geometry"] * 2 + ["paper_ltca"] * 2 + ["sensitivity"] * 2
                + _CONVERGENCE + ["contact_state"] * 2 + ["tooth_compliance"] * 2
-               + ["fe_ltca"] * 2 + ["fe_envelope"] * 2 + ["rating"] * 2 + _AGGREGATES)
+               + ["fe_ltca"] * 2 + ["fe_sensitivity"] * 2 + ["rating"] * 2 + _AGGREGATES)
 CODE_CHANGES = {
     # (the rating reads the line run that the convergence table writes, and its K_v
     # comes through lsbg.summary, which reads lsbg.stats)
@@ -397,7 +405,11 @@ CODE_CHANGES = {
     # stage lists both (lsbg.stages), so a change reruns the study
     "lsbg/ltca.py": _EVERYTHING,
     "lsbg/tca/vh_map.py": _EVERYTHING,
-    "lsbg/sensitivity.py": ["sensitivity"] * 2 + [r for r in _AGGREGATES if r != "combine"],
+    # (the cases reach the contact state's and the loaded TCA's commands, lsbg ltca
+    # --case, and the rating reads the cases' runs)
+    "lsbg/sensitivity.py": (["sensitivity"] * 2 + ["contact_state"] * 2 + ["fe_sensitivity"] * 2
+                            + ["paper_ltca"] * 2 + ["fe_ltca"] * 2 + ["rating"] * 2
+                            + _AGGREGATES),
     # every run at the paper's point reads its geometry; the convergence tables write
     # every engine's run there; the FE segment is lofted through the STEP solid's
     # sections (lsbg.step, lsbg.solids)

@@ -72,7 +72,17 @@ def test_every_run_and_file_of_the_default_study_is_planned_once(default):
         "--default-run", "pybullet=results/runs/circular_beta35_point_pybullet.nc"]
     assert study.targets == [*study.reports.values(), plan.FILES["sweep"],
                              plan.FILES["summary"], *study.tca_files, *study.vh_maps,
-                             *study.tooth_files, *study.rating_files]
+                             *study.vh_cases(), *study.tooth_files, *study.fe_cases(),
+                             *study.rating_files]
+    # the sensitivity cases: every case's run; the V-H maps and FE loaded TCAs of the
+    # cases that reach them (crowning and line stiffness; crowning)
+    assert len(study.sensitivity_runs()) == 2 * len(study.sensitivity) == 2 * 13
+    assert {f.rsplit("_beta35_", 1)[1] for f in study.vh_cases()} == {
+        f"{case}.nc" for case in ("crowning_x0", "crowning_x0.5", "crowning_x2",
+                                  "line_stiffness_N_per_mm_um_x0.5",
+                                  "line_stiffness_N_per_mm_um_x2")}
+    assert {f.rsplit("_beta35_", 1)[1] for f in study.fe_cases()} == {
+        f"{case}_ltca.nc" for case in ("crowning_x0", "crowning_x0.5", "crowning_x2")}
     # the ISO 10300 rating: the paper's point of each trace, K_v from its line run
     assert study.rating_files == ["results/rating/logarithmic_beta35.nc",
                                   "results/rating/circular_beta35.nc"]
@@ -167,7 +177,12 @@ def test_sensitivity_and_speed_sweep_runs_are_named_by_case_and_speed():
     assert len(study.speed_runs) == 2 * grid["count"]
     assert plan.FILES["speed_curve"] in study.targets
     cases = study.sensitivity_runs()
-    assert len(cases) == len(set(cases)) == 2 * sum(len(f) for f in config["sensitivity"].values())
+    # every entry one case, but an envelope: one case per corner of the V-H envelope
+    corners = 2 ** len(config["misalignment_map"]["axes"])
+    entries = sum(len(v) * (corners if k == "displacement" else 1)
+                  for k, v in config["sensitivity"].items())
+    assert len(cases) == len(set(cases)) == 2 * entries
+    assert any("_displaced_E-0.1_P+0.1.nc" in case for case in cases)
 
 
 def test_simulation_params_hold_only_what_the_run_reads(default):

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import sys
 
-from lsbg.cli.options import (CommandError, add_contact_options, check_output, contact_from_args,
-                              flanks_from_args, read_study_sections)
+from lsbg.cli.options import (CommandError, add_case_options, add_contact_options, check_output,
+                              contact_from_args, flanks_from_args, read_study_sections)
 
 __all__ = ["add_ltca_parser", "add_combine_parser", "add_summary_parser", "add_report_parser"]
 
@@ -45,15 +45,15 @@ def add_ltca_parser(subparsers):
                              "of --config at +-misalignment_map.range, added to its "
                              "misalignment section) and write the largest contact pressure and "
                              "root stresses at each corner and mesh position to --out")
+    add_case_options(parser, "fe_ltca")
     parser.add_argument("--out", required=True, metavar="MESH.nc", help="output NetCDF file")
     parser.set_defaults(handler=run_ltca, contact_model="line")
 
 
 def run_ltca(args):
     """Handler of ``lsbg ltca`` [exit code]."""
+    from lsbg.cli.cases import cases_from_args
     from lsbg.dynamics import SimulationSettings
-    from lsbg.ltca import ltca_for_geometry
-    from lsbg.results import write_dataset
 
     check_output(args.out, "--out")
     (simulation,) = read_study_sections(args.config, "simulation")
@@ -65,17 +65,36 @@ def run_ltca(args):
             raise CommandError(str(err)) from None
     params = contact_from_args(args)
     flanks = flanks_from_args(args)  # checks the flank sections before any work
+    cases = cases_from_args(args, "fe_ltca", args.case_out)
+    compliance = positions = None
+    if params.compliance == "fe":
+        from lsbg.cli.tooth import compliance_from_args
+        from lsbg.files import read_design
+        from lsbg.geometry import GearPair
+
+        pair = GearPair(read_design(args.geometry))
+        compliance, positions = compliance_from_args(args, pair, args.compliance_file)
     if args.envelope:
-        return _run_envelope(args, params, load)
+        _run_envelope(args, params, load, compliance, positions)
+    else:
+        _write_ltca(args, params, load, flanks, compliance, positions, args.out)
+    for name, case_params, case_flanks, path in cases:
+        print(f"lsbg ltca: case {name}")
+        _write_ltca(args, case_params.replace(compliance=params.compliance), load, case_flanks,
+                    compliance, positions, path, case=name)
+    return 0
+
+
+def _write_ltca(args, params, load, flanks, compliance, positions, path, case=None):
+    """One loaded TCA of ``lsbg ltca`` (uniform bed, or the FE ``compliance``) -> ``path``
+    (``case``: the sensitivity case's name, recorded)."""
+    from lsbg.ltca import ltca_for_geometry
+    from lsbg.results import write_dataset
+
     try:
-        if params.compliance == "fe":
-            from lsbg.cli.tooth import compliance_from_args
-            from lsbg.files import read_design
-            from lsbg.geometry import GearPair
+        if compliance is not None:
             from lsbg.tooth.analysis import fe_ltca_for_geometry
 
-            pair = GearPair(read_design(args.geometry))
-            compliance, positions = compliance_from_args(args, pair, args.compliance_file)
             ds = fe_ltca_for_geometry(args.geometry, load, params, compliance,
                                       phases=args.phases or positions, flanks=flanks)
         else:
@@ -84,8 +103,10 @@ def run_ltca(args):
     except ValueError as err:
         raise CommandError(str(err)) from None
     ds.attrs["history"] += f"; {' '.join(['lsbg', *sys.argv[1:]])}"
-    write_dataset(ds, args.out)
-    if params.compliance == "fe":
+    if case:
+        ds.attrs["sensitivity_case"] = case
+    write_dataset(ds, path)
+    if compliance is not None:
         print(f"lsbg ltca: FE compliance, max contact pressure "
               f"{ds.attrs['max_contact_pressure_MPa']:.4g} MPa, max root stress pinion / gear "
               f"{ds.attrs['max_root_stress_pinion_MPa']:.4g} / "
@@ -93,26 +114,23 @@ def run_ltca(args):
     print(f"lsbg ltca: {ds.attrs['phases']} phases, transmission error "
           f"{ds.attrs['transmission_error_peak_to_peak_urad']:.4g} urad peak to peak, mesh "
           f"stiffness {ds.attrs['mesh_stiffness_per_face_width_N_per_mm_um']:.4g} N/(mm um) "
-          f"-> {args.out}")
-    return 0
+          f"-> {path}")
 
 
-def _run_envelope(args, params, load):
-    """``lsbg ltca --envelope``: the FE loaded TCA at the envelope's corners [exit code]."""
+def _run_envelope(args, params, load, compliance, positions):
+    """``lsbg ltca --envelope``: the FE loaded TCA at the envelope's corners -> ``--out``."""
     from lsbg.cli.options import flank_sections_from_args
-    from lsbg.cli.tooth import compliance_from_args
     from lsbg.files import read_design
     from lsbg.geometry import GearPair
     from lsbg.results import write_dataset
     from lsbg.tooth.analysis import fe_envelope
 
-    if params.compliance != "fe":
+    if compliance is None:
         raise CommandError("--envelope: needs the FE compliance (--compliance fe)")
     modification, misalignment = flank_sections_from_args(args)
     (vh,) = read_study_sections(args.config, "misalignment_map")
     axes, half_range = vh.get("axes") or ["E", "P"], vh.get("range") or 0.1
     pair = GearPair(read_design(args.geometry))
-    compliance, positions = compliance_from_args(args, pair, args.compliance_file)
     try:
         ds = fe_envelope(pair, params, compliance, load, args.phases or positions, modification,
                          misalignment, axes, half_range)
@@ -124,7 +142,6 @@ def _run_envelope(args, params, load):
     print(f"lsbg ltca --envelope: {ds.sizes['corner']} corners of {', '.join(axes)} at "
           f"+-{half_range:g}; largest contact pressure {float(worst.max()):.4g} MPa at "
           f"{str(worst.idxmax().values)} -> {args.out}")
-    return 0
 
 
 # ---------------------------------------------------------------- combine

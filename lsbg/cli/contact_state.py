@@ -5,8 +5,9 @@ from __future__ import annotations
 import argparse
 import sys
 
-from lsbg.cli.options import (CommandError, add_contact_options, add_flank_options, check_output,
-                              contact_from_args, flanks_from_args, read_study_sections)
+from lsbg.cli.options import (CommandError, add_case_options, add_contact_options,
+                              add_flank_options, check_output, contact_from_args,
+                              flanks_from_args, read_study_sections)
 
 __all__ = ["add_tca_parser", "add_misalignment_map_parser"]
 
@@ -139,11 +140,15 @@ def add_misalignment_map_parser(subparsers):
                         help="also write the unloaded TCA of the undisplaced cell at the "
                              "'tca' section's resolution (as 'lsbg tca --out'), in the same "
                              "process")
+    add_case_options(parser, "contact_state")
+    parser.add_argument("--case-steps", type=int, metavar="N",
+                        help="values per axis of each case's map, odd (default: --steps)")
     parser.set_defaults(handler=run_misalignment_map, contact_model="line")
 
 
 def run_misalignment_map(args):
     """Handler of ``lsbg misalignment-map`` [exit code]."""
+    from lsbg.cli.cases import cases_from_args
     from lsbg.dynamics import SimulationSettings
     from lsbg.files import fill_template, number_label
     from lsbg.results import write_dataset
@@ -177,6 +182,13 @@ def run_misalignment_map(args):
     # the secant of one assembly (docs/model.md, "The tooth itself").
     params = contact_from_args(args).replace(compliance="uniform")
     flanks = flanks_from_args(args)
+    cases = cases_from_args(args, "contact_state", args.case_out)
+    if cases and len(points) > 1:
+        raise CommandError("--case: one design point only (not with --spiral-angles)")
+    try:
+        case_values = axis_values(section["range"], args.case_steps or section["steps"])
+    except ValueError as err:
+        raise CommandError(f"--case-steps {args.case_steps}: {err}") from None
     pairs = [_design_pair(point["geometry"]) for point in points]
     for point in points:
         check_output(point["out"], "--out")
@@ -203,4 +215,17 @@ def run_misalignment_map(args):
               f"{a[f'pattern_shift_lengthwise_per_0_1_{first}']:.3g} mm per 0.1 {first} and "
               f"{a[f'pattern_shift_lengthwise_per_0_1_{second}']:.3g} mm per 0.1 {second} "
               f"towards the heel -> {point['out']}")
+    for name, case_params, case_flanks, path in cases:
+        try:
+            ds = misalignment_map(pairs[0], case_flanks.modification, section["axes"],
+                                  (case_values, case_values), load,
+                                  case_params.replace(compliance="uniform"),
+                                  base=case_flanks.misalignment, positions=section["positions"])
+        except ValueError as err:
+            raise CommandError(f"case {name}: {err}") from None
+        ds.attrs["history"] = " ".join(["lsbg", *sys.argv[1:]])
+        ds.attrs["sensitivity_case"] = name
+        write_dataset(ds, path)
+        print(f"lsbg misalignment-map: case {name}, {len(case_values)} x {len(case_values)} "
+              f"cells -> {path}")
     return 0

@@ -374,3 +374,20 @@ def slice_stiffness_from_args(args, params, geometry_dir, load_torque):
         return SliceStiffness.from_dataset(ds)
     except ValueError as err:
         raise CommandError(f"--fe-ltca {path}: {err}") from None
+
+
+# ------------------------------------------------------------ sensitivity cases
+def add_case_options(parser, stage, out=True):
+    """Add ``--case KEY=VALUE`` (repeatable) and, with ``out``, ``--case-out TEMPLATE``:
+    the sensitivity cases (:mod:`lsbg.sensitivity`) of ``stage`` that a command
+    computes beside its own output, in the same process."""
+    # (lsbg.sensitivity is imported when the cases are read, not here: building the
+    # parser must not make every stage depend on it, lsbg.stages)
+    parser.add_argument("--case", action="append", default=[], metavar="KEY=VALUE",
+                        help=f"a sensitivity case as in the sensitivity section whose key "
+                             f"reaches the {stage.replace('_', ' ')} (lsbg.sensitivity."
+                             f"CASE_STAGES), e.g. crowning=0.5; repeatable")
+    if out:
+        parser.add_argument("--case-out", metavar="FILE.nc",
+                            help="output file template of the cases, with the field {case} "
+                                 "(the case's name, e.g. crowning_x0.5)")

@@ -37,6 +37,10 @@ def add_rate_parser(subparsers):
     parser.add_argument("--fe-envelope", metavar="ENVELOPE.nc",
                         help="the FE loaded TCA at the corners of the assembly's displacement "
                              "envelope (lsbg ltca --compliance fe --envelope) at the same load")
+    parser.add_argument("--case-run", action="append", default=[], metavar="CASE=RUN.nc",
+                        help="a sensitivity case's line-model run (lsbg sensitivity) of the same "
+                             "design point: the pair is rated again with its dynamic factor as "
+                             "K_v (where rating.dynamic_factor is 'lsbg'); repeatable")
     parser.add_argument("--out", required=True, metavar="RATING.nc", help="output NetCDF file")
     parser.set_defaults(handler=run_rate)
 
@@ -44,43 +48,47 @@ def add_rate_parser(subparsers):
 def run_rate(args):
     """Handler of ``lsbg rate`` [exit code]."""
     from lsbg.files import read_design
-    from lsbg.rating.config import rating_from_config
+    from lsbg.rating.config import rate_design
     from lsbg.rating.dataset import rating_dataset
-    from lsbg.rating.iso10300 import rate
-    from lsbg.rating.virtual import rating_geometry
     from lsbg.results import open_dataset, open_run, write_dataset
-    from lsbg.summary import run_dynamic_factor, statistics_options
+    from lsbg.summary import statistics_options
 
     rating, tooth, simulation, statistics = read_study_sections(
         args.config, "rating", "tooth", "simulation", "statistics")
     rating = {**rating, **_assignments(args.set_rating, "--set-rating")}
     check_output(args.out, "--out")
     design = read_design(args.geometry)
-    kv, source = None, "K_v = 1: no run given"
-    if rating.get("dynamic_factor", "lsbg") == "lsbg":
-        if args.run:
-            run = _same_point(open_run(args.run), design, None, "--run")
-            try:
-                after = statistics_options(statistics).get("steady_state_after", 0.2)
-            except ValueError as err:
-                raise CommandError(str(err)) from None
-            kv, source = run_dynamic_factor(run, after), f"the run {args.run}"
-    else:
-        source = "rating.dynamic_factor"
     try:
-        material, conditions = rating_from_config(rating, tooth, kv)
+        after = statistics_options(statistics).get("steady_state_after", 0.2)
     except ValueError as err:
         raise CommandError(str(err)) from None
+    by_run = rating.get("dynamic_factor", "lsbg") == "lsbg"
+    kv, source = None, "K_v = 1: no run given"
+    if by_run and args.run:
+        run = _same_point(open_run(args.run), design, None, "--run")
+        kv, source = _dynamic_factor(run, after, "--run"), f"the run {args.run}"
+    elif not by_run:
+        source = "rating.dynamic_factor"
+    case_factors = {}
+    for text in args.case_run:
+        name, sep, path = text.partition("=")
+        if not sep or not name.strip() or not path:
+            raise CommandError(f"--case-run {text!r}: must be CASE=RUN.nc")
+        if by_run:
+            run = _same_point(open_run(path), design, None, "--case-run")
+            case_factors[name.strip()] = _dynamic_factor(run, after, "--case-run")
     load = float(simulation.get("load_torque_N_m", 1964.99))
     speed = math.radians(float(simulation.get("pinion_speed_deg_s", 7703)))
-    geometry = rating_geometry(design, effective_face_width=conditions.effective_face_width,
-                               **({"tool_edge_radius": tooth["fillet_radius_module"]}
-                                  if tooth.get("fillet_radius_module") else {}))
-    try:
-        result = rate(geometry, load * design.pinion_teeth / design.gear_teeth, speed, material,
-                      conditions)
-    except ValueError as err:
-        raise CommandError(f"{args.geometry}: {err}") from None
+
+    def rated(dynamic_factor):
+        try:
+            return rate_design(design, rating, tooth, load, speed, dynamic_factor)
+        except ValueError as err:
+            raise CommandError(f"{args.geometry}: {err}" if not str(err).startswith(
+                ("rating.", "tooth.")) else str(err)) from None
+
+    result, material, conditions = rated(kv)
+    cases = {name: rated(factor)[0] for name, factor in case_factors.items()}
     fe = None
     if args.fe_ltca:
         fe = open_dataset(args.fe_ltca, "FE loaded TCA", ("max_contact_pressure",
@@ -94,7 +102,7 @@ def run_rate(args):
             args.fe_envelope, "FE envelope", ("max_contact_pressure", "root_stress_pinion",
                                               "root_stress_gear", "displacement"),
             ("load_torque_N_m",), "--fe-envelope"), design, load, "--fe-envelope")
-    ds = rating_dataset(result, design, material, conditions, source, fe, envelope)
+    ds = rating_dataset(result, design, material, conditions, source, fe, envelope, cases)
     write_dataset(ds, args.out)
     ratio = design.gear_teeth / design.pinion_teeth
     print(f"lsbg rate: sigma_H {result.contact_stress / 1e6:.0f} MPa (S_H "
@@ -105,6 +113,18 @@ def run_rate(args):
           f"{result.rated_pinion_torque_bending * ratio:.0f} N m (root) against {load:g} N m "
           f"-> {args.out}", file=sys.stdout)
     return 0
+
+
+def _dynamic_factor(run, after, option):
+    """A run's dynamic factor over its steady state from ``after`` [s], or a CommandError
+    when the run's full-rate record holds none of it."""
+    from lsbg.summary import run_dynamic_factor
+
+    if "time_full" not in run.coords or float(run["time_full"].max()) <= after:
+        raise CommandError(f"{option} {run.encoding.get('source', '')}: its full-rate record "
+                           f"ends before the steady state (statistics.steady_state_after_s = "
+                           f"{after:g} s): no dynamic factor")
+    return run_dynamic_factor(run, after)
 
 
 def _same_point(ds, design, load, option):

@@ -52,16 +52,21 @@ def add_sensitivity_parser(subparsers):
     parser = subparsers.add_parser(
         "sensitivity", help="line-model runs with one contact setting scaled per case",
         description="For each --case KEY=FACTOR, run the line model of --geometry with the "
-                    "contact setting KEY of --config scaled by FACTOR, and write it to --out "
-                    "with {case} replaced by the case's name (KEY_xFACTOR). One process for "
-                    "all cases; every case is checked before the first run.")
+                    "setting KEY of --config scaled by FACTOR (or switched, or displaced), "
+                    "and write it to --out with {case} replaced by the case's name "
+                    "(KEY_xFACTOR, KEY_VALUE, displaced_CORNER). One process for all cases; "
+                    "every case is checked before the first run.")
     add_simulation_options(parser, contact_model=False)
     add_fe_ltca_option(parser)
     parser.add_argument("--case", action="append", required=True, metavar="KEY=FACTOR",
                         help="a case: KEY one of mesh_damping_ratio, line_stiffness_N_per_mm_um, "
-                             "slices (FACTOR scales it), or compliance=fe / compliance=uniform "
-                             "(the line model on the tooth's FE stiffness, from --fe-ltca, or "
-                             "on the uniform bed); repeatable")
+                             "slices (FACTOR scales it), crowning (FACTOR scales the "
+                             "flank_modification's crowning and bias; 0: conjugate flanks), "
+                             "compliance=fe / compliance=uniform (the line model on the tooth's "
+                             "FE stiffness, from --fe-ltca, or on the uniform bed), or "
+                             "displacement=envelope (one case per corner of the displacement "
+                             "envelope: misalignment_map.axes of --config at +-its range); "
+                             "repeatable")
     parser.add_argument("--out", required=True, metavar="RUN.nc",
                         help="output NetCDF file template with the field {case}")
     parser.set_defaults(handler=run_sensitivity, contact_model="line")
@@ -69,35 +74,18 @@ def add_sensitivity_parser(subparsers):
 
 def run_sensitivity(args):
     """Handler of ``lsbg sensitivity`` [exit code]."""
-    import yaml
-
-    from lsbg.contact import ContactParameters
+    from lsbg.cli.cases import cases_from_args
     from lsbg.dynamics import SimulationError, simulate
-    from lsbg.files import fill_template
     from lsbg.results import write_dataset
-    from lsbg.sensitivity import case_name, scaled_contact
 
-    settings, base = simulation_from_args(args)
-    flanks = flanks_from_args(args)
-    cases = {}
-    for text in args.case:
-        key, sep, value = text.partition("=")
-        try:
-            factor = yaml.safe_load(value) if sep else None
-            changed = scaled_contact(base.to_config(), key.strip(), factor)
-            params = ContactParameters.from_config({**base.to_config(), **changed})
-            name = case_name(key.strip(), factor)
-            slices = slice_stiffness_from_args(args, params, args.geometry, settings.load_torque)
-            cases[name] = (params, slices, fill_template(args.out, "--out", case=name))
-        except (ValueError, TypeError, KeyError) as err:
-            raise CommandError(f"--case {text!r}: {err}") from None
-    if len({path for *_, path in cases.values()}) < len(cases):
-        raise CommandError(f"--out {args.out!r}: the cases would write the same file; put "
-                           f"{{case}} in it")
-    for *_, path in cases.values():
-        check_output(path, "--out")
+    settings, _ = simulation_from_args(args)
+    flanks_from_args(args)  # checks the flank sections before any work
+    cases = []
+    for name, params, flanks, path in cases_from_args(args, "dynamics", args.out, "--out"):
+        slices = slice_stiffness_from_args(args, params, args.geometry, settings.load_torque)
+        cases.append((name, params, flanks, slices, path))
     command = " ".join(["lsbg", *sys.argv[1:]])
-    for name, (params, slices, path) in cases.items():
+    for name, params, flanks, slices, path in cases:
         try:
             ds = simulate(args.geometry, settings, params, command=command, flanks=flanks,
                           slice_stiffness=slices)

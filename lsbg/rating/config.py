@@ -14,7 +14,7 @@ from __future__ import annotations
 import dataclasses
 import math
 
-__all__ = ["RATING_CONFIG_KEYS", "rating_from_config", "rating_problems"]
+__all__ = ["RATING_CONFIG_KEYS", "rating_from_config", "rate_design", "rating_problems"]
 
 #: Key of the ``rating`` section -> (object, field, SI value of one unit of the key).
 RATING_CONFIG_KEYS = {
@@ -95,6 +95,46 @@ def rating_from_config(section, tooth_section=None, dynamic_factor=None):
     built = section_objects(values, {"material": RatingMaterial, "conditions": RatingConditions},
                             named, "rating")
     return built["material"], built["conditions"]
+
+
+def rate_design(design, section, tooth_section, gear_torque, pinion_speed,
+                dynamic_factor=None):
+    """A design point rated with a study's ``rating`` and ``tooth`` sections.
+
+    Parameters
+    ----------
+    design : lsbg.design.GearPairDesign
+    section, tooth_section : dict
+        The ``rating`` and ``tooth`` sections (:func:`rating_from_config`;
+        the tooth's fillet radius is the tool's edge radius).
+    gear_torque : float
+        The load on the gear [N m].
+    pinion_speed : float
+        [rad/s].
+    dynamic_factor : float, optional
+        K_v measured by lsbg [-] (:func:`rating_from_config`).
+
+    Returns
+    -------
+    rating : lsbg.rating.iso10300.BevelRating
+    material : lsbg.rating.iso10300.RatingMaterial
+    conditions : lsbg.rating.iso10300.RatingConditions
+
+    Raises
+    ------
+    ValueError
+        A bad key (named), or a design the standard cannot rate.
+    """
+    from lsbg.rating.iso10300 import rate
+    from lsbg.rating.virtual import rating_geometry
+
+    tooth_section = tooth_section or {}
+    material, conditions = rating_from_config(section, tooth_section, dynamic_factor)
+    radius = tooth_section.get("fillet_radius_module")
+    geometry = rating_geometry(design, effective_face_width=conditions.effective_face_width,
+                               **({"tool_edge_radius": radius} if radius else {}))
+    pinion_torque = gear_torque * design.pinion_teeth / design.gear_teeth
+    return rate(geometry, pinion_torque, pinion_speed, material, conditions), material, conditions
 
 
 def rating_fields(material, conditions):

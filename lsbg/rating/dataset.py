@@ -26,7 +26,7 @@ def _attribute_name(symbol):
 
 
 def rating_dataset(rating, design, material, conditions, dynamic_factor_source, fe_ltca=None,
-                   envelope=None):
+                   envelope=None, cases=None):
     """The rating of one design point, with the FE stresses beside it.
 
     Parameters
@@ -43,6 +43,9 @@ def rating_dataset(rating, design, material, conditions, dynamic_factor_source, 
     envelope : xarray.Dataset, optional
         The FE loaded TCA's stresses at the corners of the assembly's
         displacement envelope (:func:`lsbg.tooth.analysis.fe_envelope`).
+    cases : dict, optional
+        ``{sensitivity case: BevelRating}``: the same pair rated with the
+        dynamic factor of each case's run (:mod:`lsbg.sensitivity`).
 
     Returns
     -------
@@ -105,6 +108,20 @@ def rating_dataset(rating, design, material, conditions, dynamic_factor_source, 
                                      dict(envelope["displacement"].attrs))
         coords.update(corner=("corner", [str(c) for c in envelope["corner"].values]),
                       axis=("axis", [str(a) for a in envelope["axis"].values]))
+    if cases:
+        names = list(cases)
+        variables.update({
+            "case_dynamic_factor": ("case", [cases[n].factors["K_v"] for n in names],
+                                    {"units": "1", "long_name": "K_v of the case's run"}),
+            "case_contact_stress": ("case", [cases[n].contact_stress * mpa for n in names],
+                                    {"units": "MPa", "long_name": "contact stress sigma_H with "
+                                     "the case's K_v"}),
+            "case_root_stress": (("case", "member"),
+                                 [np.array(cases[n].root_stress) * mpa for n in names],
+                                 {"units": "MPa", "long_name": "root stress sigma_F with the "
+                                  "case's K_v"}),
+        })
+        coords["case"] = ("case", names)
     return xr.Dataset(variables, coords=coords, attrs=attrs)
 
 

@@ -7,9 +7,10 @@
 # config (flank_modification, misalignment, tca, misalignment_map); the map has
 # misalignment_map.steps values per axis at the paper's point, sweep_steps at
 # the others. The geometry comes from the study's point rules (points.smk). The
-# paper's point of each trace is a job of its own; the other angles of a trace
-# are one job (one start-up, about 2 s, instead of one per angle), as in
-# points.smk.
+# paper's point of each trace is a job of its own, which also maps the
+# sensitivity cases that reach the contact state (crowning, line stiffness;
+# lsbg.sensitivity) at sweep_steps; the other angles of a trace are one job (one
+# start-up, about 2 s, instead of one per angle), as in points.smk.
 
 
 rule contact_state:
@@ -24,8 +25,14 @@ rule contact_state:
     output:
         tca=FILES["tca"],
         vh=FILES["vh_map"],
+        # the contact-state sensitivity cases (crowning, line stiffness)
+        cases=[template(FILES["vh_case"], case=case)
+               for case in STUDY.stage_cases("contact_state")],
     params:
         steps=lambda wildcards: STUDY.map_steps(wildcards.spiral),
+        cases=STUDY.case_options("contact_state"),
+        case_out=lambda w: template(FILES["vh_case"], trace=w.trace, spiral=w.spiral),
+        case_steps=config["misalignment_map"]["sweep_steps"],
         # Rerun trigger: the contact-state sections, the steps, the line model's
         # settings and the load of the loaded TCAs.
         settings=lambda wildcards: plan.contact_state_params(config, wildcards.spiral,
@@ -43,7 +50,9 @@ rule contact_state:
         CONDA_ENV
     shell:
         "lsbg -v misalignment-map --geometry {input.geometry} --config {input.config}"
-        " --steps {params.steps} --out {output.vh} --tca-out {output.tca} > {log} 2>&1"
+        " --steps {params.steps} --out {output.vh} --tca-out {output.tca}"
+        " {params.cases} --case-steps {params.case_steps} --case-out '{params.case_out}'"
+        " > {log} 2>&1"
 
 
 CONTACT_BATCH = STUDY.batch_spirals(STUDY.traces[0])

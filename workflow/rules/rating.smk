@@ -3,8 +3,9 @@
 # the `rating` section (K_v: the dynamic factor of the point's line-model run),
 # and writes the stresses, safety factors and rated torques of both members beside
 # the largest contact pressure and root stresses of the FE loaded TCA, aligned and
-# at each corner of the assembly's displacement envelope (rule fe_envelope,
-# tooth.smk) (results/rating/*.nc).
+# at each corner of the assembly's displacement envelope (rule fe_sensitivity,
+# tooth.smk), and rated again with the K_v of each sensitivity case's run
+# (results/rating/*.nc).
 # The paper report compares them (its service-life section).
 
 import re
@@ -17,6 +18,8 @@ rule rating:
         run=lambda w: STUDY.rating_run(w.trace),
         fe_ltca=lambda w: [STUDY.fe_ltca(w.trace, w.spiral)],
         envelope=FILES["fe_envelope"],
+        # K_v of each sensitivity case's run: the standard's cells of the life claim
+        case_runs=lambda w: STUDY.sensitivity_runs(w.trace) if STUDY.rating_run(w.trace) else [],
         sources=sources("rating"),
     output:
         FILES["rating"],
@@ -28,6 +31,9 @@ rule rating:
         steady_state=config["statistics"]["steady_state_after_s"],
         tooth=plan.canonical(config["tooth"]),
         run=lambda wildcards, input: f"--run {input.run}" if input.run else "",
+        case_runs=lambda wildcards, input: " ".join(
+            f"--case-run '{case}={path}'" for case, path in zip(STUDY.sensitivity,
+                                                               input.case_runs)),
     wildcard_constraints:
         spiral=re.escape(PAPER_SPIRAL),
     priority: plan.job_priority("rating")
@@ -41,4 +47,5 @@ rule rating:
         CONDA_ENV
     shell:
         "lsbg -v rate --geometry {input.geometry} --config {input.config} {params.run}"
-        " --fe-ltca {input.fe_ltca} --fe-envelope {input.envelope} --out {output} > {log} 2>&1"
+        " --fe-ltca {input.fe_ltca} --fe-envelope {input.envelope} {params.case_runs}"
+        " --out {output} > {log} 2>&1"

@@ -13,7 +13,9 @@ rule report_paper:
         sweep=FILES["sweep"],
         tca=STUDY.paper_tca_files,
         vh=STUDY.paper_vh_maps,
+        vh_cases=STUDY.vh_cases(),
         fe_ltca=[STUDY.fe_ltca(t, PAPER_SPIRAL) for t in plan.PAPER_TRACES],
+        fe_cases=STUDY.fe_cases(),
         rating=STUDY.rating_files,
         sources=sources("report"),
     output:
@@ -27,7 +29,9 @@ rule report_paper:
         geometry=lambda wildcards, input: yaml_list(input.geometry),
         tca=lambda wildcards, input: yaml_list(input.tca),
         vh=lambda wildcards, input: yaml_list(input.vh),
+        vh_cases=lambda wildcards, input: yaml_list(input.vh_cases),
         fe_ltca=lambda wildcards, input: yaml_list(input.fe_ltca),
+        fe_cases=lambda wildcards, input: yaml_list(input.fe_cases),
         rating=lambda wildcards, input: yaml_list(input.rating),
         paper_engine=STUDY.paper_engine,
         line_engine=SWEEP_ENGINE,
@@ -50,6 +54,7 @@ rule report_paper:
         " --param 'mesh_files={params.meshes}' --param 'geometry_dirs={params.geometry}'"
         " --param 'tca_files={params.tca}' --param 'vh_files={params.vh}'"
         " --param 'fe_ltca_files={params.fe_ltca}' --param 'rating_files={params.rating}'"
+        " --param 'vh_case_files={params.vh_cases}' --param 'fe_case_files={params.fe_cases}'"
         " --param paper_engine={params.paper_engine}"
         " --param line_engine={params.line_engine}"
         " --param steady_state_after_s={params.steady_state_after}"
@@ -66,6 +71,7 @@ rule report_sweep:
         summary=FILES["summary"],
         speed_curve=[FILES["speed_curve"]] if STUDY.speed_sweep else [],
         vh=STUDY.vh_maps,
+        config=ancient(FILES["study_config"]),
         sources=sources("report"),
     output:
         report(STUDY.reports["sweep"], caption="../report/reports.rst", category="Reports",
@@ -74,6 +80,8 @@ rule report_sweep:
         notebook_dir=lambda wildcards, input: os.path.dirname(input.notebook),
         vh=lambda wildcards, input: yaml_list(input.vh),
         steady_state_after=config["statistics"]["steady_state_after_s"],
+        # Rerun trigger: the ISO 10300 rating's settings (the config file is ancient)
+        rating=plan.canonical({k: config[k] for k in ("rating", "tooth")}),
     priority: plan.job_priority("report_sweep")
     log:
         "logs/report_sweep/sweep.log",
@@ -87,6 +95,7 @@ rule report_sweep:
         "lsbg -v report sweep --notebook-dir {params.notebook_dir} --out {output}"
         " --param sweep_file={input.sweep} --param summary_file={input.summary}"
         " --param 'speed_curve_file={input.speed_curve}' --param 'vh_files={params.vh}'"
+        " --param config_file={input.config}"
         " --param steady_state_after_s={params.steady_state_after} > {log} 2>&1"
 
 

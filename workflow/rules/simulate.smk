@@ -53,8 +53,7 @@ if STUDY.sensitivity:
              for case in STUDY.sensitivity],
         params:
             fe_ltca=fe_ltca_option,
-            cases=" ".join(f"--case {key}={factor!r}"
-                           for key, factor in STUDY.sensitivity.values()),
+            cases=STUDY.case_options("dynamics"),
             out=lambda w: template(FILES["sensitivity_run"], trace=w.trace, spiral=PAPER_SPIRAL),
             engine=SWEEP_ENGINE,
             settings=simulation_params(SWEEP_ENGINE, "line"),

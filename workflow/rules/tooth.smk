@@ -77,19 +77,22 @@ if not STUDY.own_compliance:
 # The FE loaded TCA at the corners of the assembly's displacement envelope
 # (misalignment_map.axes at +-misalignment_map.range, on the misalignment section):
 # the largest contact pressure and root stresses at each corner and position, for
-# the rating's "with displacement" (results/tooth/*_envelope.nc). In both modes:
-# the paper's compliance is computed here.
-rule fe_envelope:
+# the rating's "with displacement" (results/tooth/*_envelope.nc); and, in the same
+# process on the same compliance, the FE loaded TCA of each sensitivity case that
+# reaches it (crowning; results/tooth/*_{case}_ltca.nc), for the service-life
+# claim's sensitivity table. In both modes: the paper's compliance is computed here.
+rule fe_sensitivity:
     input:
         geometry=FILES["geometry"],
         config=ancient(FILES["study_config"]),
         compliance=FILES["compliance"],
         sources=sources("ltca"),
     output:
-        FILES["fe_envelope"],
+        envelope=FILES["fe_envelope"],
+        cases=[template(FILES["fe_case"], case=case) for case in STUDY.stage_cases("fe_ltca")],
     params:
         # Rerun trigger: the load, the line model's bands, the flanks, the envelope and
-        # the tooth's settings.
+        # the tooth's settings (the cases: their options).
         load=config["simulation"]["load_torque_N_m"],
         contact=simulation_params(SWEEP_ENGINE, "line")["contact"],
         flanks=plan.canonical({"misalignment": config["misalignment"],
@@ -97,11 +100,13 @@ rule fe_envelope:
         envelope=plan.canonical({k: config["misalignment_map"][k] for k in ("axes", "range")}),
         tooth=plan.canonical(config["tooth"]),
         phases=plan.envelope_positions(config),
+        cases=STUDY.case_options("fe_ltca"),
+        case_out=lambda w: template(FILES["fe_case"], trace=w.trace, spiral=w.spiral),
     wildcard_constraints:
         spiral=re.escape(PAPER_SPIRAL),
-    priority: plan.job_priority("fe_envelope")
+    priority: plan.job_priority("fe_sensitivity")
     log:
-        "logs/fe_envelope/{trace}_beta{spiral}.log",
+        "logs/fe_sensitivity/{trace}_beta{spiral}.log",
     threads: 1
     resources:
         mem_mb=2000,
@@ -111,4 +116,4 @@ rule fe_envelope:
     shell:
         "lsbg -v ltca --geometry {input.geometry} --config {input.config} --compliance fe"
         " --compliance-file {input.compliance} --envelope --phases {params.phases}"
-        " --out {output} > {log} 2>&1"
+        " {params.cases} --case-out '{params.case_out}' --out {output.envelope} > {log} 2>&1"
