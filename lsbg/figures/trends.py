@@ -207,3 +207,33 @@ def plot_sensitivity(table):
     ax.plot([], [], "o", color="0.35", mfc="white", label="ranking does not hold")
     figure_legend(fig, ncols=2)
     return fig
+
+
+def plot_rating_against_angle(table):
+    """ISO 10300's contact and root stresses of both types against spiral angle.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        From :func:`lsbg.tables.rating.rating_by_angle` (MPa).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Left: the contact stress sigma_H; right: the root stress sigma_F of
+        the pinion (solid) and the gear (dashed); one colour per type.
+    """
+    fig, axes = new_figure(1, 2, width=10)
+    for gear_type, part in _by_type(table.rename(columns={"spiral_angle": "spiral_angle_deg"})):
+        x = part["spiral_angle_deg"]
+        axes[0, 0].plot(x, part["contact_stress"], "o-", ms=4, color=type_color(gear_type),
+                        label=gear_type)
+        axes[0, 1].plot(x, part["root_stress_pinion"], "o-", ms=4, color=type_color(gear_type))
+        axes[0, 1].plot(x, part["root_stress_gear"], "s--", ms=4, color=type_color(gear_type))
+    axes[0, 0].set_ylabel("contact stress σ_H [MPa]")
+    axes[0, 1].set_ylabel("root stress σ_F [MPa] (pinion —, gear --)")
+    for ax in axes[0]:
+        ax.grid(True, alpha=0.3)
+        _angles(ax, table["spiral_angle"])
+    figure_legend(fig)
+    return fig

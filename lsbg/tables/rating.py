@@ -19,7 +19,7 @@ import pandas as pd
 
 from lsbg.runs import TYPE_ORDER
 
-__all__ = ["rating_table", "life_table", "life_statement", "LIFE_STRESSES",
+__all__ = ["rating_table", "life_table", "life_statement", "rating_by_angle", "LIFE_STRESSES",
            "RESOLVED_STRESS_DIFFERENCE"]
 
 
@@ -225,3 +225,65 @@ def life_statement(ratings, where="", brief=False):
             + "; ".join(lines) + "). " + iso_text
             + "A life ratio follows the stress ratio to the power p = 6–16, so only stress "
             f"differences beyond the FE model's {RESOLVED_STRESS_DIFFERENCE:.0%} scatter count.")
+
+
+def rating_by_angle(config, summary, engine="compiled"):
+    """ISO 10300 at every design point of a sweep, with each point's own K_v.
+
+    The standard needs only the geometry and the load: every design point of
+    the summary table is rated with the study's ``rating`` and ``tooth``
+    sections at its load and speed, K_v from the point's line-model run (the
+    summary table's ``dynamic_factor``; 1 where there is none, or the
+    section's number).
+
+    Parameters
+    ----------
+    config : dict
+        The study's settings as validated (``results/config.yaml``): its
+        ``design``, ``rating``, ``tooth`` and ``simulation`` sections.
+    summary : pandas.DataFrame
+        The summary table (:func:`lsbg.summary.summary_table`): its design
+        points (``trace``, ``spiral_angle_deg``) and dynamic factors.
+    engine : str
+        The engine of the line-model runs whose K_v is taken.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Per gear type and spiral angle [deg]: ``K_v``, ``contact_stress``,
+        ``root_stress_pinion``, ``root_stress_gear`` [MPa],
+        ``contact_safety``, ``bending_safety_pinion``, ``bending_safety_gear``,
+        ``rated_gear_torque_contact`` [N m].
+    """
+    import math
+
+    from lsbg.design import TRACE_LABELS, GearPairDesign
+    from lsbg.rating.config import rate_design
+
+    simulation = config.get("simulation", {})
+    load = float(simulation.get("load_torque_N_m", 1964.99))
+    speed = math.radians(float(simulation.get("pinion_speed_deg_s", 7703)))
+    factors = summary[(summary.contact_model == "line") & (summary.engine == engine)
+                      & summary.dynamic_factor.notna()]
+    rows = []
+    points = summary[["trace", "spiral_angle_deg"]].drop_duplicates()
+    for trace, angle in sorted(points.itertuples(index=False, name=None)):
+        if trace not in TRACE_LABELS:
+            continue
+        design = GearPairDesign.from_config({**config["design"], "trace": trace,
+                                             "spiral_angle_deg": float(angle)})
+        kv = factors[(factors.trace == trace) & np.isclose(factors.spiral_angle_deg, angle)]
+        kv = float(kv.dynamic_factor.iloc[0]) if len(kv) else None
+        rating, _, _ = rate_design(design, config.get("rating", {}), config.get("tooth", {}),
+                                   load, speed, kv)
+        ratio = design.gear_teeth / design.pinion_teeth
+        rows.append({"gear_type": TRACE_LABELS[trace], "spiral_angle": float(angle),
+                     "K_v": rating.factors["K_v"],
+                     "contact_stress": rating.contact_stress / 1e6,
+                     "root_stress_pinion": rating.root_stress[0] / 1e6,
+                     "root_stress_gear": rating.root_stress[1] / 1e6,
+                     "contact_safety": min(rating.contact_safety),
+                     "bending_safety_pinion": rating.bending_safety[0],
+                     "bending_safety_gear": rating.bending_safety[1],
+                     "rated_gear_torque_contact": rating.rated_pinion_torque_contact * ratio})
+    return pd.DataFrame(rows)
