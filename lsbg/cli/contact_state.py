@@ -194,11 +194,15 @@ def run_misalignment_map(args):
         check_output(point["out"], "--out")
         if point["tca"]:
             check_output(point["tca"], "--tca-out")
+    # the unloaded TCAs of the design point's map, reused by its cases' maps where their
+    # flanks and cells are the same (the line-stiffness cases, the cells of a coarser map)
+    unloaded = {}
     for pair, point in zip(pairs, points):
+        unloaded.clear()
         try:
             ds = misalignment_map(pair, flanks.modification, section["axes"], (values, values),
                                   load, params, base=flanks.misalignment,
-                                  positions=section["positions"])
+                                  positions=section["positions"], unloaded=unloaded)
         except ValueError as err:
             raise CommandError(str(err)) from None
         ds.attrs["history"] = " ".join(["lsbg", *sys.argv[1:]])
@@ -220,7 +224,8 @@ def run_misalignment_map(args):
             ds = misalignment_map(pairs[0], case_flanks.modification, section["axes"],
                                   (case_values, case_values), load,
                                   case_params.replace(compliance="uniform"),
-                                  base=case_flanks.misalignment, positions=section["positions"])
+                                  base=case_flanks.misalignment, positions=section["positions"],
+                                  unloaded=unloaded)
         except ValueError as err:
             raise CommandError(f"case {name}: {err}") from None
         ds.attrs["history"] = " ".join(["lsbg", *sys.argv[1:]])
