@@ -9,6 +9,7 @@ import numpy as np
 import pandas as pd
 import pytest
 import xarray as xr
+import yaml
 
 from lsbg import cli, reports, speed
 from lsbg.combine import combine_runs
@@ -144,8 +145,9 @@ def test_paper_report(study_files, tmp_path):
               "4. The tangential contact force", "5. Normality", "6. Histograms",
               "7. Xbar-R control charts", "8. Simulated means", "9. The paper", "10. Which gear",
               "11. Agreement", "12. What the paper", "13. The line model",
-              "14. Dynamics under the line model", "15. Model-form sensitivity",
-              "16. The contact state", "17. The tooth itself", "18. Service life", "19. Conclusion", "Appendix A. The summary statistics",
+              "14. Dynamics under the line model", "15. Claim 1, transmission stability",
+              "16. Claim 2, the contact state", "17. The tooth itself", "18. Claim 3, service life",
+              "19. Conclusion", "Appendix A. The summary statistics",
               "Appendix B. Inputs and settings"],
         # pair picture, Fig. 8, 9-10, 11, 12, 13, 14, 15 (2), 16, 17 (2), 18 (2); sampling
         # luck, spectrum, full-rate stretch; TE and stiffness, load sharing, contact
@@ -164,9 +166,16 @@ def test_paper_report(study_files, tmp_path):
             maps[gear_type(ds)] = ds.load()
     totals = {t: contact_state.pattern_movement(ds)["total"] for t, ds in maps.items()}
     steadier = min(totals, key=totals.get)
-    # the finding, Section 16 and the conclusion
-    assert html.count(f"the <strong>{steadier}</strong>'s bearing pattern moves less") == 3
-    assert "Contact state</strong> (the paper's second claim" in html
+    # Section 16's statement; the claim's answer in the finding, Section 16 and the
+    # conclusion, from its model-form table (here the baseline's cell alone)
+    assert html.count(f"the <strong>{steadier}</strong>'s bearing pattern moves less") == 1
+    assert html.count("<strong>Contact state</strong> (the LSBG's tooth contact state is better; "
+                      "1 cells, Section 16)") == 2
+    assert (f"bearing pattern's movement per 0.1 mm of displacement</strong> at 35°: the "
+            f"<strong>{steadier}</strong> is lower in every one of the 1 cells") in html
+    assert "<strong>Answer (claim 1):</strong>" in html and "<strong>Answer (claim 2):</strong>" in html
+    # no rating in this study: the third claim is said to be untested, not answered
+    assert html.count("<strong>Service life</strong>: not tested by this study") == 2
     # numbers are computed from the runs
     runs = open_pair(study_files["runs"][("circular", "point", "pybullet")],
                            study_files["runs"][("logarithmic", "point", "pybullet")])
@@ -184,8 +193,10 @@ def test_paper_report(study_files, tmp_path):
     assert "survives the model form" in html or "no ranking is stated" in html
     # the finding states the answer with its numbers and scopes it to this spiral angle
     finding = html[html.index('class="lsbg-finding"'):html.index("<h2", html.index("</div>", html.index('class="lsbg-finding"')))]
-    assert "Answer at 35°" in finding and "std(SBG)/std(LSBG) = " in finding
-    assert "this study ran no other spiral angle" in finding
+    assert "<strong>Stability</strong> (the LSBG's gear speed and contact force fluctuate less; " \
+           "4 cells, Section 15)" in finding
+    assert "std(SBG)/std(LSBG) " in finding and "at 35°" in finding
+    assert "ran no other spiral angle" in finding
     # Appendix A recomputes the summary table's rows of this design point, attached in full
     table = pd.read_csv(study_files["summary"])
     assert '<td class="text">contact torque</td><td class="text">N·m</td>' in html
@@ -198,18 +209,27 @@ def test_paper_report(study_files, tmp_path):
 
 def test_sweep_report(study_files, tmp_path):
     out = tmp_path / "sweep.html"
+    config = tmp_path / "config.yaml"
+    config.write_text(yaml.safe_dump({"design": {}, "rating": {}, "tooth": {},
+                                      "simulation": {"load_torque_N_m": 1964.99}}))
     reports.render_report("sweep", out, {"sweep_file": study_files["sweep"],
                                          "summary_file": study_files["summary"],
                                          "speed_curve_file": study_files["speed_curve"],
-                                         "vh_files": study_files["vh"],
+                                         "vh_files": study_files["vh"], "config_file": config,
                                          "steady_state_after_s": 0.01})
     html = check_html(out, ["Spiral-angle sweep", "1. Loaded tooth contact",
                             "2. Fluctuations against", "3. Which type",
                             "4. The dynamic-factor curve", "5. The design points",
-                            "6. The contact state against spiral angle", "7. Conclusion", "Appendix A. The loaded TCA", "Appendix B. Inputs"],
+                            "6. The contact state against spiral angle",
+                            "7. The paper's three claims against spiral angle", "8. Conclusion",
+                            "Appendix A. The loaded TCA", "Appendix B. Inputs"],
                       # loaded TCA, fluctuations, ratios, speed curve, Campbell map, the
-                      # contact state against spiral angle
-                      images=6, code_snippets=["tables.sweep_fluctuation_table", "import xarray"])
+                      # contact state against spiral angle, ISO 10300 against spiral angle
+                      images=7, code_snippets=["tables.sweep_fluctuation_table", "import xarray"])
+    # the three claims per angle; the standard rates the two types alike at 35°
+    assert "ISO 10300 contact stress LSBG/SBG" in html
+    assert "ISO 10300 pinion root stress: lives longer" in html
+    assert "the standard rates the two types alike at every angle" in html
     assert "std(SBG)/std(LSBG)" in html and "static TE peak to peak [µrad]" in html
     assert "natural frequency [Hz]" in html and "3 speeds" in html
     # the point model's dynamic factors get their sentence; the full table is attached
@@ -281,9 +301,9 @@ def test_notebooks_declare_the_interface_parameters():
         "paper": {"runs", "sensitivity_runs", "mesh_files", "geometry_dirs", "paper_engine",
                   "line_engine", "steady_state_after_s", "chart_window_start_s",
                   "chart_window_stop_s", "subgroup_size", "sweep_file", "tca_files", "vh_files",
-                  "fe_ltca_files", "rating_files"},
+                  "fe_ltca_files", "rating_files", "vh_case_files", "fe_case_files"},
         "sweep": {"sweep_file", "summary_file", "speed_curve_file", "steady_state_after_s",
-                  "vh_files"},
+                  "vh_files", "config_file"},
         "verification": {"convergence_files", "geometry_dirs", "runs", "mesh_files",
                          "steady_state_after_s"},
     }

@@ -133,7 +133,7 @@ def test_claims_by_angle_puts_each_claim_beside_the_others():
     table = claims.claims_by_angle(ratios, contact, rating).set_index("spiral angle [deg]")
     assert table.loc[30.0, "stability, gear angular velocity: calmer"] == "neither"
     assert table.loc[35.0, "contact state: pattern moves less"] == "SBG"
-    assert table.loc[35.0, "ISO 10300 σ_H LSBG/SBG"] == pytest.approx(3200 / 3000)
-    assert table.loc[35.0, "ISO 10300 σ_H: lives longer"] == "SBG"
-    assert table.loc[35.0, "ISO 10300 σ_F pinion: lives longer"] == "LSBG"
-    assert table.loc[30.0, "ISO 10300 σ_H: lives longer"] == "tie"
+    assert table.loc[35.0, "ISO 10300 contact stress LSBG/SBG"] == pytest.approx(3200 / 3000)
+    assert table.loc[35.0, "ISO 10300 contact stress: lives longer"] == "SBG"
+    assert table.loc[35.0, "ISO 10300 pinion root stress: lives longer"] == "LSBG"
+    assert table.loc[30.0, "ISO 10300 contact stress: lives longer"] == "tie"

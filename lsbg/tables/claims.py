@@ -454,7 +454,8 @@ def claims_by_angle(ratios, contact, rating):
     if not rating.empty:
         wide = rating.pivot(index="spiral_angle", columns="gear_type")
         for angle in wide.index:
-            for name, words in (("contact_stress", "σ_H"), ("root_stress_pinion", "σ_F pinion")):
+            for name, words in (("contact_stress", "contact stress"),
+                                ("root_stress_pinion", "pinion root stress")):
                 sbg, lsbg = wide.loc[angle, (name, "SBG")], wide.loc[angle, (name, "LSBG")]
                 row(angle)[f"ISO 10300 {words} LSBG/SBG"] = lsbg / sbg
                 row(angle)[f"ISO 10300 {words}: lives longer"] = _better(
