@@ -201,3 +201,18 @@ def test_bad_sensitivity_cases_are_one_line_exit_2(world, case, capsys, no_work)
     line, message = CASE_ERRORS[case]
     err = one_line_exit_2(world, line, capsys)
     assert message in err, err
+
+
+@pytest.mark.parametrize("line", [
+    "simulate --geometry {geo} --out /proc/nope/run.nc",
+    "ltca --geometry {geo} --out /proc/nope/mesh.nc",
+    "geometry --out /proc/nope/geo",
+    "combine --runs {truncated} --out /proc/nope/sweep.nc",
+    "report paper --out /proc/nope/p.html",
+    "rate --geometry {geo} --out /proc/nope/r.nc",
+])
+def test_an_output_folder_that_cannot_be_created_is_one_line(world, line, capsys, no_work):
+    """/proc takes no new entries even for root, whom os.access lets write anywhere: the
+    command says so before its work, instead of a traceback from mkdir at its end."""
+    err = one_line_exit_2(world, line, capsys)
+    assert "/proc/nope" in err and "cannot create files in /proc" in err, err

@@ -286,6 +286,20 @@ def test_failing_notebook_raises_and_writes_nothing(study_files, tmp_path):
     assert list(tmp_path.iterdir()) == []
 
 
+def test_a_failing_notebook_is_exit_2_naming_the_cell(study_files, tmp_path, capsys):
+    parameters = {**paper_parameters(study_files), "mesh_files": [tmp_path / "missing.nc"]}
+    argv = ["report", "paper", "--out", str(tmp_path / "p.html")]
+    for key, value in parameters.items():
+        text = (f"[{', '.join(str(v) for v in value)}]" if isinstance(value, list)
+                else str(value))
+        argv += ["--param", f"{key}={text}"]
+    assert cli.main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("lsbg report: error: report 'paper': notebook paper.ipynb failed in "
+                          "cell ") and "missing.nc" in err, err
+    assert err.count("\n") == 1 and not (tmp_path / "p.html").exists()
+
+
 def test_bad_report_input_exit_2(tmp_path, capsys):
     out = tmp_path / "x.html"
     assert cli.main(["report", "nosuch", "--out", str(out)]) == 2

@@ -294,9 +294,8 @@ def run_report(args):
                             timeout=args.timeout)
     except ValueError as err:
         raise CommandError(str(err)) from None
-    except ReportError as err:
-        print(f"lsbg report: error: {err}", file=sys.stderr)
-        return 1
+    except ReportError as err:  # the failing cell and its error, in one line: exit 2
+        raise CommandError(str(err).splitlines()[0] if str(err) else repr(err)) from None
     print(f"lsbg report: {args.name} -> {out}")
     return 0
 

@@ -60,6 +60,17 @@ def check_output(path, option, directory=False):
     if not os.access(folder, os.W_OK | os.X_OK):
         raise CommandError(f"{option} {path}: cannot write in {folder} (permission denied or "
                            f"read-only)")
+    # root passes os.access everywhere, and some folders take no new entries whatever
+    # their mode (/proc, a full or read-only mount): create a file there and remove it
+    import tempfile
+
+    try:
+        handle, probe = tempfile.mkstemp(prefix=".lsbg-probe-", dir=folder)
+    except OSError as error:
+        raise CommandError(f"{option} {path}: cannot create files in {folder} "
+                           f"({error.strerror})") from None
+    os.close(handle)
+    os.unlink(probe)
 
 
 # What each design key means; the unit comes from the key's suffix.
