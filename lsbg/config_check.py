@@ -73,7 +73,7 @@ from lsbg.workflow import design_points, map_steps
 
 __all__ = [
     "key_path", "check_config", "nonfinite_problems", "schema_problems", "fill_defaults",
-    "contact_state_cache_dir", "AD_MIN_SAMPLES"
+    "contact_state_cache_dir", "duplicate_key_problems", "AD_MIN_SAMPLES"
 ]
 
 
@@ -118,6 +118,40 @@ def check_config(config, schema):
     problems += _contact_state_problems(config, pairs) + tooth_problems(
         config, pairs, *memory_limit_gb(config)) + rating_problems(config, pairs)
     return list(dict.fromkeys(problems))
+
+
+def duplicate_key_problems(paths):
+    """Keys given twice in one mapping of a configuration file, one line each.
+
+    Snakemake (like YAML) keeps the last of two equal keys without a word, so a
+    file that sets ``contact.slices`` twice runs with whichever came last;
+    lsbg refuses it, naming the file, both lines and the key's path.
+
+    Parameters
+    ----------
+    paths : iterable of str or os.PathLike
+        The configuration files Snakemake read (``workflow.configfiles``).
+
+    Returns
+    -------
+    list of str
+    """
+    import yaml
+
+    from lsbg.files import DuplicateKeyError, load_yaml
+
+    problems = []
+    for path in paths:
+        relative = os.path.relpath(path)
+        name = str(path) if relative.startswith("..") else relative
+        try:
+            with open(path, encoding="utf-8") as handle:
+                load_yaml(handle, name)
+        except DuplicateKeyError as error:
+            problems.append(str(error))
+        except (OSError, yaml.YAMLError):  # Snakemake has read it, or says why not itself
+            continue
+    return problems
 
 
 # ----------------------------------------------------------- values, schema

@@ -32,7 +32,7 @@ from lsbg.design import CONFIG_KEYS, TRACES, DesignError, GearPairDesign
 __all__ = ["FILE_NAMES", "OPTIONAL_FILE_NAMES", "MANIFEST", "InputError", "InputFileNotFoundError", "read_record",
            "read_design", "geometry_directory", "write_manifest", "design_digest",
            "file_digest", "number_label", "fill_template", "temporary_beside",
-           "remove_stale_temporaries"]
+           "remove_stale_temporaries", "load_yaml", "DuplicateKeyError"]
 
 #: File names inside a geometry directory (all listed in its manifest).
 FILE_NAMES = {
@@ -394,3 +394,57 @@ def fill_template(template, option, **fields):
     except (KeyError, IndexError, ValueError) as error:
         raise ValueError(f"{option} {template!r}: bad template ({error!r}); fields: "
                          f"{', '.join('{' + name + '}' for name in fields)}") from None
+
+
+class DuplicateKeyError(ValueError):
+    """A YAML mapping names a key twice: YAML keeps the last silently, lsbg refuses."""
+
+
+def load_yaml(stream, name="<yaml>"):
+    """Read YAML (as ``yaml.safe_load``) refusing a key given twice in one mapping.
+
+    Parameters
+    ----------
+    stream : str or file
+    name : str
+        The file's name, for the message.
+
+    Raises
+    ------
+    DuplicateKeyError
+        ``"{name}: line M: key 'contact.slices' again (first at line N): YAML
+        would keep only the last"``: the key's path through the mappings.
+    yaml.YAMLError
+        Not valid YAML.
+    """
+    import yaml
+
+    text = stream if isinstance(stream, str) else stream.read()
+    node = yaml.compose(text, Loader=yaml.SafeLoader)
+    if node is None:
+        return None
+    _refuse_duplicate_keys(node, name, [])
+    loader = yaml.SafeLoader(text)
+    try:
+        return loader.construct_document(node)
+    finally:
+        loader.dispose()
+
+
+def _refuse_duplicate_keys(node, name, path):
+    import yaml
+
+    if isinstance(node, yaml.MappingNode):
+        seen = {}
+        for key, value in node.value:
+            label = str(key.value) if isinstance(key, yaml.ScalarNode) else str(key.start_mark)
+            line = key.start_mark.line + 1
+            if label in seen:
+                raise DuplicateKeyError(
+                    f"{name}: line {line}: key {'.'.join([*path, label])!r} again (first at line "
+                    f"{seen[label]}): YAML would keep only the last")
+            seen[label] = line
+            _refuse_duplicate_keys(value, name, [*path, label])
+    elif isinstance(node, yaml.SequenceNode):
+        for k, item in enumerate(node.value):
+            _refuse_duplicate_keys(item, name, [*path, f"[{k}]"])

@@ -46,6 +46,8 @@ def world(tmp_path_factory):
     write_dataset(xr.Dataset({"x": ("t", np.arange(5.0))}), w["not_a_run"])
     w["garbage_yaml"] = root / "garbage.yaml"
     w["garbage_yaml"].write_text("design: [unclosed\n")
+    w["duplicated"] = root / "duplicated.yaml"
+    w["duplicated"].write_text("contact:\n  slices: 10\n  slices: 30\n")
     w["out"] = root / "out.nc"                              # never written by a bad command
     return w
 
@@ -191,6 +193,9 @@ CASE_ERRORS = {
     "misalignment-map even case steps": (
         "misalignment-map --geometry {geo} --case crowning=2 --case-steps 4 "
         "--case-out {root}/v_{{case}}.nc --out {root}/vh.nc", "--case-steps 4"),
+    "a configuration file with a key twice": (
+        "simulate --geometry {geo} --config {duplicated} --out {out}",
+        "line 3: key 'contact.slices' again (first at line 2)"),
     "rate case run without a name": (
         "rate --geometry {geo} --case-run {out} --out {root}/r.nc", "must be CASE=RUN.nc"),
 }

@@ -453,3 +453,15 @@ def test_snakemake_stops_before_any_job_with_one_clean_message(tmp_path, name):
         assert returncode != 0 and re.search(r'bad\.yaml", line 2', verbose), verbose
     else:
         assert "invalid configuration" in output and f"config key {key}" in output, output
+
+
+def test_a_configuration_file_with_a_key_twice_is_refused(tmp_path):
+    from lsbg.config_check import duplicate_key_problems
+
+    good, bad = tmp_path / "good.yaml", tmp_path / "bad.yaml"
+    good.write_text("contact:\n  slices: 10\n")
+    bad.write_text("contact:\n  slices: 10\n  model: line\n  slices: 30\n")
+    assert duplicate_key_problems([good, tmp_path / "missing.yaml"]) == []
+    (problem,) = duplicate_key_problems([good, bad])
+    assert problem.endswith("bad.yaml: line 4: key 'contact.slices' again (first at line 2): "
+                            "YAML would keep only the last")

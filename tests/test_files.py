@@ -11,6 +11,7 @@ import time
 
 import numpy as np
 import pytest
+from pathlib import Path
 import xarray as xr
 
 from lsbg import files
@@ -336,3 +337,21 @@ def test_write_geometry_removes_stale_temporary_directories(geometry, tmp_path):
     assert not any(path.exists() for path in stale)
     assert other.exists()
     assert files.read_design(target) == GearPairDesign()
+
+
+def test_yaml_with_a_key_twice_is_refused_naming_both_lines(tmp_path):
+    import yaml
+
+    from lsbg.files import DuplicateKeyError, load_yaml
+
+    for name in ("config.yaml", "config-test.yaml", "config-speed.yaml"):
+        text = (Path(__file__).resolve().parents[1] / "workflow" / name).read_text()
+        assert load_yaml(text) == yaml.safe_load(text)      # the same reader otherwise
+    with pytest.raises(DuplicateKeyError, match=r"^c.yaml: line 5: key 'contact.slices' again "
+                                                r"\(first at line 3\)"):
+        load_yaml("simulation: {}\ncontact:\n  slices: 10\n  model: line\n  slices: 30\n",
+                  "c.yaml")
+    with pytest.raises(DuplicateKeyError, match=r"key 'sweeps.\[1\].mu' again"):
+        load_yaml("sweeps:\n- {mu: 1}\n- mu: 1\n  mu: 2\n")
+    # the same key in two mappings is no duplicate
+    assert load_yaml("a: {x: 1}\nb: {x: 2}\n") == {"a": {"x": 1}, "b": {"x": 2}}

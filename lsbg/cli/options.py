@@ -147,9 +147,13 @@ def add_design_options(parser):
 def _read_yaml(path, option="--design"):
     import yaml
 
+    from lsbg.files import DuplicateKeyError, load_yaml
+
     try:
         with open(path, encoding="utf-8") as handle:
-            data = yaml.safe_load(handle)
+            data = load_yaml(handle, str(path))
+    except DuplicateKeyError as error:
+        raise CommandError(f"{option} {error}") from None
     except OSError as error:
         raise CommandError(f"{option} {path}: {error.strerror}") from None
     except yaml.YAMLError as error:

@@ -40,6 +40,10 @@ def check_config(config):
     if workflow.remote_exec or workflow.subprocess_exec:
         config_check.fill_defaults(config, schema)
         return
+    duplicated = config_check.duplicate_key_problems(workflow.configfiles)
+    if duplicated:
+        logger.error("invalid configuration file:\n" + "\n".join(f"  {p}" for p in duplicated))
+        sys.exit(1)
     problems = config_check.check_config(config, schema)
     if problems:
         logger.error("invalid configuration (keys as in workflow/schemas/config.schema.yaml):\n"
