@@ -32,7 +32,10 @@ configuration that returns its problem lines):
    estimated from its mesh size (:func:`geometry_cost`), against
    ``limits.memory_gb`` and ``limits.geometry_minutes``; each run's record
    against ``limits.memory_gb`` and the line model's slices against the
-   runtime the simulation rules request (:func:`run_cost_problems`);
+   runtime the simulation rules request (:func:`run_cost_problems`); the
+   load and the pinion speed against what the teeth of each contact model
+   can carry and the full-rate record can resolve
+   (:func:`lsbg.resources.load_problems`);
 8. the contact state at each design point that passed 6 and 7 (odd map steps
    first; :func:`lsbg.tca.checks.contact_state_problems`): the relief within
    the backlash, the misalignment and the V-H map's corners neither losing
@@ -67,8 +70,8 @@ import numpy as np
 from lsbg.design import CONFIG_KEYS, DesignError, GearPairDesign
 from lsbg.files import number_label
 from lsbg.resources import (
-    engines_run, geometry_cost, memory_limit_gb, run_cost_problems, run_memory_gb,
-    speed_sweep_problems)
+    engines_run, geometry_cost, load_problems, memory_limit_gb, run_cost_problems,
+    run_memory_gb, speed_sweep_problems)
 from lsbg.workflow import design_points, map_steps
 
 __all__ = [
@@ -115,6 +118,7 @@ def check_config(config, schema):
     from lsbg.rating.config import rating_problems
     from lsbg.tooth.config import tooth_problems
 
+    problems += load_problems(config, pairs)
     problems += _contact_state_problems(config, pairs) + tooth_problems(
         config, pairs, *memory_limit_gb(config)) + rating_problems(config, pairs)
     return list(dict.fromkeys(problems))

@@ -24,7 +24,8 @@ __all__ = [
     "PYBULLET_SECONDS_PER_STEP", "run_memory_gb", "run_cost_problems", "engines_run",
     "GEOMETRY_MEMORY_BASE_GB", "GEOMETRY_BYTES_PER_VERTEX", "GEOMETRY_SECONDS_BASE",
     "GEOMETRY_SECONDS_PER_VERTEX", "GEOMETRY_TIME_EXPONENT", "geometry_cost",
-    "machine_memory_gb", "memory_limit_gb", "speed_sweep_problems"
+    "machine_memory_gb", "memory_limit_gb", "speed_sweep_problems", "STEP_SLOPE",
+    "mesh_torque_capacity", "load_problems"
 ]
 
 
@@ -276,3 +277,110 @@ def speed_sweep_problems(config):
                             f"{speed['samples_per_mesh']!r}), about {need:.3g} GB, more than "
                             f"{source} = {limit:.3g} GB")
     return problems
+
+
+#: Largest slope of the STEP ramp of the pinion speed over its mean slope: the
+#: smoothstep 3 s^2 - 2 s^3 rises at most 1.5 times as fast as a straight ramp [-].
+STEP_SLOPE = 1.5
+
+
+def mesh_torque_capacity(pair, contact, model):
+    """The gear torque beyond which a contact model certainly leaves its range [N m].
+
+    An upper bound of what the teeth can carry before the contact law stops the
+    run (:mod:`lsbg.dynamics`: the approach of a line-model slice beyond
+    ``line_approach_limit_mm``, a point contact's penetration beyond its
+    depth d): every tooth pair that can be in mesh (the total contact ratio,
+    rounded up) carrying its most at once, on a full-face contact line of
+    length b / cos(beta_m) for the line model, along the normal at the mean
+    point, at the gear's mean pitch radius.
+
+    Parameters
+    ----------
+    pair : lsbg.geometry.GearPair
+    contact : dict
+        The ``contact`` section (paper units).
+    model : {"line", "point"}
+
+    Returns
+    -------
+    float
+        [N m].
+    """
+    d = pair.design
+    pairs_in_mesh = math.ceil(float(pair.contact_ratio()["total"]))
+    if model == "line":
+        per_length = contact["line_stiffness_N_per_mm_um"] * 1e9 * contact[
+            "line_approach_limit_mm"] * 1e-3  # [N/m]
+        normal = per_length * pairs_in_mesh * d.face_width / math.cos(d.spiral_angle)
+    else:
+        stiffness = contact["stiffness_N_per_mm1_5"]  # [N/mm^e]
+        normal = pairs_in_mesh * stiffness * contact["penetration_depth_mm"] ** contact["exponent"]
+    tangential = normal * math.cos(d.mean_normal_pressure_angle) * math.cos(d.spiral_angle)
+    return tangential * d.mean_pitch_radius(2)
+
+
+def load_problems(config, pairs):
+    """Loads and pinion speeds no contact model could carry, before any job.
+
+    The gear's peak torque is the load plus its inertia times the largest
+    acceleration of the STEP ramp (:data:`STEP_SLOPE` times the final gear
+    speed over ``simulation.ramp_time_s``); it must stay below the
+    :func:`mesh_torque_capacity` of every contact model the study runs, at every
+    design point. The tooth-mesh frequency z1 n must also lie below the
+    full-rate record's Nyquist frequency, or the record the verdict rests on
+    aliases the mesh itself.
+
+    Parameters
+    ----------
+    config : dict
+        The configuration, defaults filled in.
+    pairs : dict
+        ``(trace, spiral label) -> GearPair`` of the design points that passed.
+
+    Returns
+    -------
+    list of str
+        One line per problem, naming the key and its value.
+    """
+    from lsbg.mass import quadrature_mass_properties
+
+    simulation, contact = config["simulation"], config["contact"]
+    models = ("line", "point")  # both run at the paper's point (the speed sweep: its own guard)
+    speeds = [("simulation.pinion_speed_deg_s", simulation["pinion_speed_deg_s"])]
+    torques = [("simulation.load_torque_N_m", simulation["load_torque_N_m"])]
+    torques += [(f"load_sweep.torques_N_m[{k}]", t) for k, t in
+                enumerate((config.get("load_sweep") or {}).get("torques_N_m", []))]
+    problems = []
+    nyquist = simulation["full_rate_hz"] / 2
+    for key, speed in speeds:
+        teeth = config["design"].get("pinion_teeth", 9)
+        mesh = teeth * speed / 360.0
+        if mesh > nyquist:
+            problems.append(f"{key} = {speed!r}: its tooth-mesh frequency {mesh:.4g} Hz is beyond "
+                            f"the full-rate record's Nyquist frequency {nyquist:.4g} Hz "
+                            f"(simulation.full_rate_hz = {simulation['full_rate_hz']!r})")
+    ramp = simulation["ramp_time_s"]
+    worst = {}  # the problem's key text -> (peak, capacity, where): the tightest point
+    for (trace, spiral), pair in pairs.items():
+        d = pair.design
+        inertia = quadrature_mass_properties(pair, 2).axial_inertia
+        for model in models:
+            capacity = mesh_torque_capacity(pair, contact, model)
+            for key, speed in speeds:
+                gear_speed = math.radians(speed) * d.pinion_teeth / d.gear_teeth
+                inertial = inertia * STEP_SLOPE * gear_speed / ramp if ramp > 0 else 0.0
+                for torque_key, torque in torques:
+                    peak = torque + inertial
+                    if peak <= capacity:
+                        continue
+                    culprit = (f"{key} = {speed!r} (with simulation.ramp_time_s = {ramp!r}: "
+                               f"{inertial:.3g} N m to accelerate the gear)"
+                               if inertial > torque else f"{torque_key} = {torque!r}")
+                    if culprit not in worst or capacity < worst[culprit][1]:
+                        worst[culprit] = (peak, capacity, f"{model} model, {trace} {spiral} deg")
+    for culprit, (peak, capacity, where) in worst.items():
+        problems.append(f"{culprit}: the gear's peak torque {peak:.3g} N m is beyond what the "
+                        f"teeth can carry, at most {capacity:.3g} N m ({where}) before the "
+                        f"contact law stops the run")
+    return list(dict.fromkeys(problems))

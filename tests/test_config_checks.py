@@ -224,6 +224,19 @@ BEYOND_SCHEMA = {
         {"contact": {"slices": 2}, "sensitivity": {"slices": [0.5]}}, "sensitivity.slices[0]"),
     "sensitivity beyond the damping range": ({"sensitivity": {"mesh_damping_ratio": [100]}},
                                              "sensitivity.mesh_damping_ratio[0] = 100"),
+    # absurd but finite: loads and speeds the teeth cannot carry, a mesh frequency the
+    # full-rate record cannot resolve
+    "a load no tooth carries": ({"simulation": {"load_torque_N_m": 1e12}},
+                                "simulation.load_torque_N_m = 1000000000000.0: the gear's peak "
+                                "torque 1e+12 N m is beyond what the teeth can carry"),
+    "a load sweep torque no tooth carries": ({"load_sweep": {"torques_N_m": [1000, 5e5]}},
+                                             "load_sweep.torques_N_m[1] = 500000.0"),
+    "a speed whose ramp no tooth carries": (
+        {"simulation": {"pinion_speed_deg_s": 700000, "ramp_time_s": 0.0005}},
+        "simulation.pinion_speed_deg_s = 700000 (with simulation.ramp_time_s = 0.0005"),
+    "a mesh frequency beyond the full-rate record": (
+        {"simulation": {"pinion_speed_deg_s": 2e6}},
+        "its tooth-mesh frequency 5e+04 Hz is beyond the full-rate record's Nyquist"),
     "speeds too close for file names": (
         {"speed_sweep": {"pinion_speeds_deg_s": {"start": 10, "stop": 10.0001, "count": 5}}},
         "speed_sweep.pinion_speeds_deg_s"),
