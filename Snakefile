@@ -12,7 +12,7 @@
 # only; the plan (config checks, design points, file names) is lsbg.workflow,
 # glued in by workflow/rules/common.smk. The speed sweep
 # (workflow/rules/speed.smk, e.g. --configfile workflow/config-speed.yaml) and
-# extensions (workflow/extensions/*.smk) are included when their config key is set.
+# extensions (workflow/extensions/*.smk) are included when `extensions:` names them.
 
 from snakemake.utils import min_version
 
@@ -42,9 +42,14 @@ if STUDY.speed_sweep:
     include: "workflow/rules/speed.smk"
 
 
-if config.get("load_sweep"):
+if STUDY.sweeps:
 
-    include: "workflow/extensions/load_sweep.smk"
+    include: "workflow/rules/sweeps.smk"
+
+
+for extension in config["extensions"]:
+
+    include: f"workflow/extensions/{extension}.smk"
 
 
 # results/config.yaml (the settings lsbg reads) follows the configuration of

@@ -44,7 +44,11 @@ configuration that returns its problem lines):
 9. the tooth section, the compliance case and each FE compliance's estimated
    cost (:func:`lsbg.tooth.config.tooth_problems`);
 10. the rating section and the paper point's ISO 10300 rating
-    (:func:`lsbg.rating.config.rating_problems`).
+    (:func:`lsbg.rating.config.rating_problems`);
+11. the sweeps (:func:`lsbg.sweep_checks.sweep_problems`): every point of every
+    sweep through the schema and steps 4, 6 and 7 as if its values were set in
+    their own sections, at the sweep's own design points; points that give one
+    file name; the number of runs against the resource guard.
 
 A YAML syntax error in a ``--configfile`` never reaches this module:
 Snakemake 9 reads that file before the Snakefile and stops with
@@ -76,7 +80,7 @@ from lsbg.workflow import design_points, map_steps
 
 __all__ = [
     "key_path", "check_config", "nonfinite_problems", "schema_problems", "fill_defaults",
-    "contact_state_cache_dir", "duplicate_key_problems", "AD_MIN_SAMPLES"
+    "contact_state_cache_dir", "AD_MIN_SAMPLES"
 ]
 
 
@@ -105,6 +109,10 @@ def check_config(config, schema):
         One line per problem, each starting with the key path and its value
         in the configuration's units; empty if the configuration is valid.
     """
+    if "load_sweep" in config:  # the extension became an instance of the sweeps section
+        from lsbg.sweep_checks import load_sweep_moved
+
+        return [load_sweep_moved(config["load_sweep"])]
     nonfinite = nonfinite_problems(config)
     flagged = {line.split(" = ", 1)[0] for line in nonfinite}
     problems = nonfinite + [line for line in schema_problems(config, schema)
@@ -121,41 +129,36 @@ def check_config(config, schema):
     problems += load_problems(config, pairs)
     problems += _contact_state_problems(config, pairs) + tooth_problems(
         config, pairs, *memory_limit_gb(config)) + rating_problems(config, pairs)
+    if not problems and config.get("sweeps"):
+        problems += _sweeps_problems(config, schema, pairs)
     return list(dict.fromkeys(problems))
 
 
-def duplicate_key_problems(paths):
-    """Keys given twice in one mapping of a configuration file, one line each.
+def _sweeps_problems(config, schema, pairs):
+    """The ``sweeps`` section (:func:`lsbg.sweep_checks.sweep_problems`): each point through
+    the schema and steps 4, 6 and 7, at the sweep's own design points."""
+    from lsbg.sweep_checks import sweep_problems
+    from lsbg.tca.separation import RealFlanks
 
-    Snakemake (like YAML) keeps the last of two equal keys without a word, so a
-    file that sets ``contact.slices`` twice runs with whichever came last;
-    lsbg refuses it, naming the file, both lines and the key's path.
+    def check(changed, sweep):
+        problems = (schema_problems(changed, schema) or _settings_problems(changed)
+                    + run_cost_problems(changed))
+        points = {k: v for k, v in pairs.items() if k[0] in sweep.traces
+                  and k[1] in {number_label(a) for a in sweep.spiral_angles}}
+        if any(k.split(".", 1)[0] in ("design", "flank_modification", "misalignment")
+               for k in sweep.keys):  # the point's own design and flanks at its points
+            points = {}
+            where = {**changed, "paper_spiral_angle_deg": sweep.spiral_angles[0],
+                     "sweep": {**changed["sweep"], "traces": list(sweep.traces),
+                               "spiral_angles_deg": list(sweep.spiral_angles)}}
+            problems += _design_problems(where, points)
+            try:
+                RealFlanks.from_config(changed["flank_modification"], changed["misalignment"])
+            except ValueError as error:
+                problems.append(str(error))
+        return problems + load_problems(changed, points)
 
-    Parameters
-    ----------
-    paths : iterable of str or os.PathLike
-        The configuration files Snakemake read (``workflow.configfiles``).
-
-    Returns
-    -------
-    list of str
-    """
-    import yaml
-
-    from lsbg.files import DuplicateKeyError, load_yaml
-
-    problems = []
-    for path in paths:
-        relative = os.path.relpath(path)
-        name = str(path) if relative.startswith("..") else relative
-        try:
-            with open(path, encoding="utf-8") as handle:
-                load_yaml(handle, name)
-        except DuplicateKeyError as error:
-            problems.append(str(error))
-        except (OSError, yaml.YAMLError):  # Snakemake has read it, or says why not itself
-            continue
-    return problems
+    return sweep_problems(config, check)
 
 
 # ----------------------------------------------------------- values, schema
@@ -267,8 +270,6 @@ def _name_problems(config):
     for key, factors in config["sensitivity"].items():
         problems += _label_clashes(factors, f"sensitivity.{key}",
                                    label=lambda factor, key=key: case_name(key, factor))
-    if config.get("load_sweep"):
-        problems += _label_clashes(config["load_sweep"]["torques_N_m"], "load_sweep.torques_N_m")
     return problems
 
 

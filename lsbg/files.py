@@ -32,7 +32,8 @@ from lsbg.design import CONFIG_KEYS, TRACES, DesignError, GearPairDesign
 __all__ = ["FILE_NAMES", "OPTIONAL_FILE_NAMES", "MANIFEST", "InputError", "InputFileNotFoundError", "read_record",
            "read_design", "geometry_directory", "write_manifest", "design_digest",
            "file_digest", "number_label", "fill_template", "temporary_beside",
-           "remove_stale_temporaries", "load_yaml", "DuplicateKeyError"]
+           "remove_stale_temporaries", "load_yaml", "DuplicateKeyError",
+           "duplicate_key_problems"]
 
 #: File names inside a geometry directory (all listed in its manifest).
 FILE_NAMES = {
@@ -448,3 +449,37 @@ def _refuse_duplicate_keys(node, name, path):
     elif isinstance(node, yaml.SequenceNode):
         for k, item in enumerate(node.value):
             _refuse_duplicate_keys(item, name, [*path, f"[{k}]"])
+
+
+def duplicate_key_problems(paths):
+    """Keys given twice in one mapping of a configuration file, one line each.
+
+    Snakemake (like YAML) keeps the last of two equal keys without a word, so a
+    file that sets ``contact.slices`` twice runs with whichever came last;
+    lsbg refuses it, naming the file, both lines and the key's path.
+
+    Parameters
+    ----------
+    paths : iterable of str or os.PathLike
+        The configuration files Snakemake read (``workflow.configfiles``).
+
+    Returns
+    -------
+    list of str
+    """
+    import os
+
+    import yaml
+
+    problems = []
+    for path in paths:
+        relative = os.path.relpath(path)
+        name = str(path) if relative.startswith("..") else relative
+        try:
+            with open(path, encoding="utf-8") as handle:
+                load_yaml(handle, name)
+        except DuplicateKeyError as error:
+            problems.append(str(error))
+        except (OSError, yaml.YAMLError):  # Snakemake has read it, or says why not itself
+            continue
+    return problems

@@ -112,8 +112,8 @@ def engines_run(config):
     engines = config["engines"]
     run = {engines["sweep"], *(e for model in CONTACT_MODELS
                                for e in engines["reference"].get(model, []))}
-    if config.get("load_sweep"):
-        run.add(config["load_sweep"].get("engine", engines["sweep"]))
+    run |= {sweep.get("engine", engines["sweep"]) for sweep in (config.get("sweeps") or {}).values()
+            if isinstance(sweep, dict)}
     if config.get("speed_sweep"):
         run.add(config["speed_sweep"]["engine"])
     return run
@@ -349,8 +349,6 @@ def load_problems(config, pairs):
     models = ("line", "point")  # both run at the paper's point (the speed sweep: its own guard)
     speeds = [("simulation.pinion_speed_deg_s", simulation["pinion_speed_deg_s"])]
     torques = [("simulation.load_torque_N_m", simulation["load_torque_N_m"])]
-    torques += [(f"load_sweep.torques_N_m[{k}]", t) for k, t in
-                enumerate((config.get("load_sweep") or {}).get("torques_N_m", []))]
     problems = []
     nyquist = simulation["full_rate_hz"] / 2
     for key, speed in speeds:

@@ -47,6 +47,10 @@ STAGE_MODULES = {
               "theory", "spectra", "speed", "ltca", "tca"),
     "contact_state": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics",
                       "ltca", "results", "theory", "tca", "sensitivity"),
+    "sweep": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "ltca",
+              "results", "theory", "tca", "sweeps", "sweep_dataset", "summary", "stats",
+              "spectra", "runs", "export", "solids", "polyhedra", "mass", "urdf", "render",
+              "step", "numba_cache", "combine"),
     "rating": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "results",
                "theory", "ltca", "tca", "rating", "summary", "stats", "spectra", "runs",
                "combine", "sections"),
@@ -96,6 +100,8 @@ STAGE_ENTRIES = {
     "aggregate": ("cli.analysis:run_combine", "cli.analysis:run_summary",
                   "cli.options:read_study_sections", "cli.options:_read_yaml"),
     "report": ("cli.analysis:run_report",),
+    "sweep": ("cli.sweep:run_sweep_run", "cli.sweep:run_sweep_combine",
+              "cli.options:read_study_sections", "cli.options:_read_yaml"),
 }
 
 

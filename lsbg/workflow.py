@@ -60,6 +60,9 @@ FILES = {
     "fe_case": "results/tooth/{trace}_beta{spiral}_{case}_ltca.nc",
     "vh_case": "results/vh/{trace}_beta{spiral}_{case}.nc",
     "rating": "results/rating/{trace}_beta{spiral}.nc",
+    "sweep_run": "results/sweeps/{name}/{trace}_beta{spiral}_{point}.nc",
+    "sweep_dataset": "results/sweeps/{name}.nc",
+    "sweep_table": "results/sweeps/{name}.csv",
     "report": "reports/{name}.html",
 }
 
@@ -325,9 +328,12 @@ class Study:
                               if e != self.sweep_engine] for m in CONTACT_MODELS}
         self.paper_engine = c["engines"]["paper"]
         from lsbg.sensitivity import study_cases
+        from lsbg.sweeps import sweeps_from_config
 
         #: sensitivity case -> (key, factor, switch value or corner label)
         self.sensitivity = study_cases(c["sensitivity"], c["misalignment_map"])
+        #: the parameter sweeps of the ``sweeps`` section (lsbg.sweeps.Sweep)
+        self.sweeps = sweeps_from_config(c)
 
     # -------------------------------------------------------- design points
     def batch_spirals(self, trace):
@@ -504,6 +510,20 @@ class Study:
         return [_format(FILES["fe_case"], trace=t, spiral=self.paper_spiral, case=case)
                 for case in self.stage_cases("fe_ltca") for t in traces]
 
+    @property
+    def sweep_files(self):
+        """Each parameter sweep's dataset and summary table."""
+        return [_format(FILES[kind], name=sweep.name) for sweep in self.sweeps
+                for kind in ("sweep_dataset", "sweep_table")]
+
+    def parameter_sweep_runs(self, sweep, batch=None):
+        """A parameter sweep's runs (of a batch of its points) at its design points."""
+        patterns = sweep.patterns()
+        chosen = range(len(patterns)) if batch is None else batch
+        return [_format(FILES["sweep_run"], name=sweep.name, trace=t, spiral=number_label(a),
+                        point=patterns[i])
+                for t in sweep.traces for a in sweep.spiral_angles for i in chosen]
+
     def sensitivity_runs(self, trace=None):
         traces = PAPER_TRACES if trace is None else (trace,)
         return [_format(FILES["sensitivity_run"], trace=t, spiral=self.paper_spiral, case=case)
@@ -578,7 +598,7 @@ class Study:
         extra = [FILES["speed_curve"]] if self.speed_sweep else []
         return [*self.reports.values(), FILES["sweep"], FILES["summary"], *self.tca_files,
                 *self.vh_maps, *self.vh_cases(), *self.tooth_files, *self.fe_cases(),
-                *self.rating_files, *extra]
+                *self.rating_files, *self.sweep_files, *extra]
 
     # ------------------------------------------------------------ wildcards
     @property

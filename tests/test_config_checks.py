@@ -34,8 +34,9 @@ OPTIONAL_SECTIONS = {
                     "pinion_speeds_deg_s": {"start": 3000, "stop": 9000, "count": 3},
                     "engine": "compiled", "mesh_cycles": 100, "min_window_s": 0.05,
                     "settle_time_s": 0.05, "ramp_time_s": 0.05, "samples_per_mesh": 32},
-    "load_sweep": {"torques_N_m": [1000, 3000], "traces": ["logarithmic"],
-                   "engine": "compiled", "contact_model": "point"},
+    "sweeps": {"s": {"contact.dynamic_friction": [0, 0.1], "traces": ["logarithmic"],
+                     "engine": "compiled", "contact_model": "point", "batch_size": 2}},
+    "extensions": ["mesh_mode"],
     "limits": {"memory_gb": 8, "geometry_minutes": 10},
 }
 
@@ -136,6 +137,8 @@ def bad_values(schema):
         return out
     if kind == "object":
         return [("wrong type", [1, 2])]
+    if kind == "string" and "pattern" in schema:
+        return [("wrong type", 7), ("not matching its pattern", "no such/name")]
     raise AssertionError(f"no invalid values for {schema}")
 
 
@@ -167,7 +170,6 @@ def fuzz_variants(schema=SCHEMA, path=()):
 
 #: Sweep values that name files: two that differ below the names' 6 decimals.
 ROUNDED = [(["sweep", "spiral_angles_deg"], [30, 30.0000001]),
-           (["load_sweep", "torques_N_m"], [1000, 1000.0000004]),
            (["sensitivity", "mesh_damping_ratio"], [2, 2.0000001]),
            (["sensitivity", "line_stiffness_N_per_mm_um"], [0.5, 0.5000000001]),
            (["sensitivity", "slices"], [2, 2.0000002])]
@@ -229,8 +231,6 @@ BEYOND_SCHEMA = {
     "a load no tooth carries": ({"simulation": {"load_torque_N_m": 1e12}},
                                 "simulation.load_torque_N_m = 1000000000000.0: the gear's peak "
                                 "torque 1e+12 N m is beyond what the teeth can carry"),
-    "a load sweep torque no tooth carries": ({"load_sweep": {"torques_N_m": [1000, 5e5]}},
-                                             "load_sweep.torques_N_m[1] = 500000.0"),
     "a speed whose ramp no tooth carries": (
         {"simulation": {"pinion_speed_deg_s": 700000, "ramp_time_s": 0.0005}},
         "simulation.pinion_speed_deg_s = 700000 (with simulation.ramp_time_s = 0.0005"),
@@ -469,7 +469,7 @@ def test_snakemake_stops_before_any_job_with_one_clean_message(tmp_path, name):
 
 
 def test_a_configuration_file_with_a_key_twice_is_refused(tmp_path):
-    from lsbg.config_check import duplicate_key_problems
+    from lsbg.files import duplicate_key_problems
 
     good, bad = tmp_path / "good.yaml", tmp_path / "bad.yaml"
     good.write_text("contact:\n  slices: 10\n")
@@ -478,3 +478,18 @@ def test_a_configuration_file_with_a_key_twice_is_refused(tmp_path):
     (problem,) = duplicate_key_problems([good, bad])
     assert problem.endswith("bad.yaml: line 4: key 'contact.slices' again (first at line 2): "
                             "YAML would keep only the last")
+
+
+def test_the_load_sweep_section_names_the_sweeps_entry_that_replaces_it():
+    """The former extension is an instance of the sweeps: its section is refused with the
+    entry to write instead, and that entry is valid as written."""
+    config = {**load("config.yaml"), "load_sweep": {"torques_N_m": [1000, 3000],
+                                                   "engine": "pybullet"}}
+    (problem,) = config_check.check_config(copy.deepcopy(config), SCHEMA)
+    assert problem.startswith("load_sweep: replaced by the sweeps section")
+    suggested = problem.split("write instead", 1)[1].split("(results in")[0].strip()
+    del config["load_sweep"]
+    config.update(yaml.safe_load(suggested))
+    assert config["sweeps"] == {"load": {"simulation.load_torque_N_m": [1000, 3000],
+                                         "contact_model": "point", "engine": "pybullet"}}
+    assert config_check.check_config(config, SCHEMA) == []

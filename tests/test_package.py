@@ -17,7 +17,7 @@ PLOTTING = ("figures", "reports", "cli")
 #: modules of its own layer or of layers before it.
 LAYERS = (
     ("numba_cache",),
-    ("design", "sections"),
+    ("design", "sections", "sweeps"),
     ("vectors",),
     ("geometry", "polyhedra", "theory"),
     ("solids", "render", "files", "mass", "urdf", "step"),
@@ -30,10 +30,10 @@ LAYERS = (
     ("rating",),
     ("runs",),
     ("combine",),
-    ("summary",),
+    ("summary", "sweep_dataset"),
     ("tables",),
     ("figures",),
-    ("reports", "workflow", "config_check", "resources", "stages"),
+    ("reports", "workflow", "config_check", "resources", "stages", "sweep_checks"),
     ("cli",),
 )
 MAX_LINES = 620

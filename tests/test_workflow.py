@@ -214,6 +214,39 @@ def dry_run(study, *configfiles):
 
 
 @pytest.mark.slow
+def test_sweeps_written_in_config_only_give_one_dataset_each(study):
+    """workflow/config-sweep-example.yaml on top of the test study: a friction sweep (one
+    key, 5 values) and a two-key product sweep, one dataset each with its coordinates,
+    only the sweeps' jobs run (the study is done), a batch job per batch_size points."""
+    root, env = study
+    example = root / "workflow" / "config-sweep-example.yaml"
+    jobs, _ = dry_run(study, example)
+    batches = [rule for rule in rules_of(jobs) if rule.startswith("sweep_")]
+    assert batches == sorted(["sweep_damping_and_stiffness_batch0"] * 2
+                             + ["sweep_damping_and_stiffness_batch1"] * 2
+                             + ["sweep_damping_and_stiffness_combine",
+                                "sweep_friction_batch0", "sweep_friction_batch0",
+                                "sweep_friction_combine"])
+    assert set(rules_of(jobs)) - set(batches) == {"all"}
+    snakemake("-j2", "--configfile", TEST_CONFIG, example, cwd=root, env=env, check=True)
+    with xr.open_dataset(root / "results" / "sweeps" / "friction.nc") as ds:
+        assert ds["contact.dynamic_friction"].values.tolist() == [0, 0.05, 0.1, 0.15, 0.2]
+        assert ds["gear_speed_full_rate_std"].dims == ("trace", "spiral_angle",
+                                                       "contact.dynamic_friction")
+        assert np.isfinite(ds["gear_speed_full_rate_std"]).all()
+    with xr.open_dataset(root / "results" / "sweeps" / "damping_and_stiffness.nc") as ds:
+        assert ds["gear_speed_full_rate_std"].sizes == {
+            "trace": 2, "spiral_angle": 1, "contact.mesh_damping_ratio": 3,
+            "contact.line_stiffness_N_per_mm_um": 3}
+        assert ds["contact.line_stiffness_N_per_mm_um"].attrs["units"] == "N/(mm um)"
+        # a stiffer bed, a stiffer mesh: the gear speed's fluctuation falls with it
+        speed = ds["gear_speed_full_rate_std"].sel(trace="logarithmic", spiral_angle=35.0)
+        assert (speed.diff("contact.line_stiffness_N_per_mm_um") < 0).all()
+    table = pd.read_csv(root / "results" / "sweeps" / "friction.csv")
+    assert {"contact.dynamic_friction", "quantity", "full_rate_std"} <= set(table.columns)
+
+
+@pytest.mark.slow
 def test_study_writes_the_sweep_dataset_with_units(study):
     root, _ = study
     with xr.open_dataset(root / "results" / "sweep.nc") as ds:
@@ -453,26 +486,43 @@ def test_report_of_the_provenance(study):
 
 # -------------------------------------------------------------- extension
 @pytest.mark.slow
-def test_load_sweep_extension_adds_only_its_jobs_and_runs(study, tmp_path):
+def test_the_load_sweep_is_a_sweep_and_mesh_mode_a_new_stage(study, tmp_path):
+    """Both ways of extending the study, each run: the former load-sweep extension as a
+    sweep written in config only (Eq. 13 at each swept torque), and a new stage written
+    as a rule file (workflow/extensions/mesh_mode.smk), each adding only its own jobs."""
     root, env = study
-    extra = write_yaml(tmp_path / "load.yaml", {"load_sweep": {"torques_N_m": [1000, 1500]}})
+    extra = write_yaml(tmp_path / "load.yaml", {"sweeps": {"load": {
+        "simulation.load_torque_N_m": [1000, 1500], "contact_model": "point"}},
+        "extensions": ["mesh_mode"]})
     jobs, output = dry_run(study, extra)
-    assert rules_of(jobs) == sorted(["load_sweep_simulate"] * 4 + ["load_sweep_summary"] * 2
-                                    + ["all"]), output
-    assert {out for rule, out in jobs if rule == "load_sweep_summary"} == {
-        "results/extensions/load_sweep/summary_T1000.csv",
-        "results/extensions/load_sweep/summary_T1500.csv"}
+    assert rules_of(jobs) == sorted(["sweep_load_batch0"] * 2 + ["sweep_load_combine",
+                                                                 "mesh_mode", "all"]), output
     snakemake("-j2", "--configfile", TEST_CONFIG, extra, cwd=root, env=env, check=True)
-    table = pd.read_csv(root / "results" / "extensions" / "load_sweep" / "summary_T1000.csv")
-    force = table[(table.quantity == "tangential_force_outer")]
+    table = pd.read_csv(root / "results" / "sweeps" / "load.csv")
+    force = table[table.quantity == "tangential_force_outer"]
     # Eq. 13 with the swept torque: F = 2 T / d2, d2 = 37 * 4.5 mm.
-    assert force["theory"].tolist() == pytest.approx([2 * 1000 / 0.1665] * 2)
-    with xr.open_dataset(root / "results" / "extensions" / "load_sweep" / "runs"
-                         / "circular_beta35_point_compiled_T1500.nc") as ds:
+    for torque in (1000, 1500):
+        rows = force[force["simulation.load_torque_N_m"] == torque]
+        assert len(rows) == 2 and rows["theory"].tolist() == pytest.approx([2 * torque / 0.1665] * 2)
+        assert (rows["error_rate_percent"] < 5).all()
+    with xr.open_dataset(root / "results" / "sweeps" / "load"
+                         / "circular_beta35_load_torque_N_m~1500.nc") as ds:
         assert float(ds.attrs["solver_load_torque_N_m"]) == pytest.approx(1500)
+        assert ds.attrs["contact_model"] == "point"
+    modes = pd.read_csv(root / "results" / "extensions" / "mesh_mode.csv")
+    assert sorted(modes.trace) == ["circular", "logarithmic"]
+    # the mesh frequency z1 n meets f_n at the first resonance speed
+    assert (modes["resonance_speed_order_1_deg_s"] / 360 * 9).tolist() == pytest.approx(
+        modes["natural_frequency_hz"].tolist(), rel=1e-12)
     assert not dry_run(study, extra)[0]
-    # Without the extension's config the study is unchanged.
+    # Without them the study is unchanged; the former section names its replacement.
     assert not dry_run(study)[0]
+    old = write_yaml(tmp_path / "old.yaml", {"load_sweep": {"torques_N_m": [1000, 1500]}})
+    proc = snakemake("-n", "--configfile", TEST_CONFIG, old, cwd=root, env=env)
+    assert proc.returncode != 0
+    assert "load_sweep: replaced by the sweeps section" in proc.output
+    assert "sweeps: {load: {simulation.load_torque_N_m: [1000, 1500], contact_model: point}}" \
+        in proc.output
 
 
 def test_conda_environment_pins_match_environment_pip():

@@ -70,6 +70,8 @@ PARSERS = [
     "lsbg.cli.speed:add_mesh_mode_parser",
     "lsbg.cli.speed:add_speed_run_parser",
     "lsbg.cli.speed:add_speed_curve_parser",
+    "lsbg.cli.sweep:add_sweep_run_parser",
+    "lsbg.cli.sweep:add_sweep_combine_parser",
     "lsbg.cli.analysis:add_combine_parser",
     "lsbg.cli.analysis:add_summary_parser",
     "lsbg.cli.analysis:add_report_parser",

@@ -29,29 +29,54 @@ def add_mesh_mode_parser(subparsers):
                     "the gear's inertia, the natural frequency f_n of the mesh mode (the gear "
                     "on the mesh spring, the pinion on its prescribed speed) and the pinion "
                     "speeds at which the mesh frequency meets f_n, f_n/2 and f_n/3: where a "
-                    "pinion-speed sweep must reach.")
-    parser.add_argument("--geometry", required=True, metavar="DIR",
-                        help="geometry directory written by 'lsbg geometry'")
+                    "pinion-speed sweep must reach. Several --geometry directories: one after "
+                    "the other; --out writes them as a table (one row each).")
+    parser.add_argument("--geometry", required=True, nargs="+", metavar="DIR",
+                        help="geometry directory written by 'lsbg geometry' (or several)")
     add_contact_options(parser, model=False)
+    parser.add_argument("--out", metavar="TABLE.csv",
+                        help="also write the figures as a CSV table, one row per geometry: "
+                             "mesh stiffness [N/um], gear inertia [kg m^2], f_n [Hz], the "
+                             "resonance pinion speeds [deg/s]")
     parser.set_defaults(handler=run_mesh_mode, contact_model="line")
 
 
 def run_mesh_mode(args):
     """Handler of ``lsbg mesh-mode`` [exit code]."""
+    import pandas as pd
+
     from lsbg.dynamics import load_model
     from lsbg.speed import resonance_speeds
 
-    model = load_model(args.geometry, contact_from_args(args), flanks_from_args(args))
-    contact, design = model.contact, model.pair.design
-    natural = contact.natural_frequency(model.gear_inertia)
-    print(f"lsbg mesh-mode: {design.trace}, spiral angle {math.degrees(design.spiral_angle):g} deg")
-    print(f"  mean mesh stiffness      {contact.mean_mesh_stiffness() / 1e6:10.4g} N/um "
-          f"(torsional {contact.mean_torsional_stiffness():.4g} N m/rad)")
-    print(f"  gear inertia             {model.gear_inertia:10.4g} kg m^2")
-    print(f"  natural frequency f_n    {natural:10.4g} Hz")
-    for order, speed in zip((1, 2, 3), resonance_speeds(natural, design.pinion_teeth)):
-        print(f"  f_mesh = f_n/{order} at pinion {math.degrees(speed):10.6g} deg/s "
-              f"({speed * 30 / math.pi:.6g} rpm)")
+    if args.out:
+        check_output(args.out, "--out")
+    params, flanks = contact_from_args(args), flanks_from_args(args)
+    rows = []
+    for geometry in args.geometry:
+        model = load_model(geometry, params, flanks)
+        contact, design = model.contact, model.pair.design
+        natural = contact.natural_frequency(model.gear_inertia)
+        speeds = resonance_speeds(natural, design.pinion_teeth)
+        print(f"lsbg mesh-mode: {design.trace}, spiral angle "
+              f"{math.degrees(design.spiral_angle):g} deg")
+        print(f"  mean mesh stiffness      {contact.mean_mesh_stiffness() / 1e6:10.4g} N/um "
+              f"(torsional {contact.mean_torsional_stiffness():.4g} N m/rad)")
+        print(f"  gear inertia             {model.gear_inertia:10.4g} kg m^2")
+        print(f"  natural frequency f_n    {natural:10.4g} Hz")
+        for order, speed in zip((1, 2, 3), speeds):
+            print(f"  f_mesh = f_n/{order} at pinion {math.degrees(speed):10.6g} deg/s "
+                  f"({speed * 30 / math.pi:.6g} rpm)")
+        rows.append({"trace": design.trace,
+                     "spiral_angle_deg": round(math.degrees(design.spiral_angle), 9),
+                     "mesh_stiffness_N_per_um": contact.mean_mesh_stiffness() / 1e6,
+                     "gear_inertia_kg_m2": model.gear_inertia,
+                     "natural_frequency_hz": natural,
+                     **{f"resonance_speed_order_{order}_deg_s": math.degrees(speed)
+                        for order, speed in zip((1, 2, 3), speeds)}})
+    if args.out:
+        from lsbg.results import write_atomically
+
+        write_atomically(args.out, lambda tmp: pd.DataFrame(rows).to_csv(tmp, index=False))
     return 0
 
 

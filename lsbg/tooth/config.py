@@ -188,12 +188,6 @@ def tooth_problems(config, pairs, memory_limit, memory_source):
         if value == base:
             problems.append(f"sensitivity.compliance[{k}] = {value!r}: the same as "
                             f"contact.compliance = {base!r} (a case switches it)")
-    load_sweep = config.get("load_sweep") or {}
-    if base == "fe" and load_sweep.get("contact_model") == "line":
-        problems.append("load_sweep.contact_model = 'line': under contact.compliance = 'fe' the "
-                        "line model's slice stiffness is the secant at "
-                        "simulation.load_torque_N_m, not at the sweep's torques (sweep the "
-                        "load with compliance uniform, or the point model)")
     minutes = config["limits"].get("tooth_minutes", 10)
     size = config.get("tooth", {}).get("element_size_module", settings.tooth_size)
     for (trace, spiral), pair in fe_design_points(config, pairs).items():

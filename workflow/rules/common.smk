@@ -19,6 +19,7 @@ from snakemake.logging import logger
 
 from lsbg import config_check
 from lsbg import workflow as plan
+from lsbg.files import duplicate_key_problems
 
 #: The repository: the directory of the top-level Snakefile.
 REPO = Path(workflow.basedir).resolve()
@@ -40,11 +41,15 @@ def check_config(config):
     if workflow.remote_exec or workflow.subprocess_exec:
         config_check.fill_defaults(config, schema)
         return
-    duplicated = config_check.duplicate_key_problems(workflow.configfiles)
+    duplicated = duplicate_key_problems(workflow.configfiles)
     if duplicated:
         logger.error("invalid configuration file:\n" + "\n".join(f"  {p}" for p in duplicated))
         sys.exit(1)
     problems = config_check.check_config(config, schema)
+    known = sorted(p.stem for p in (REPO / "workflow" / "extensions").glob("*.smk"))
+    problems += [f"extensions[{k}] = {name!r}: no workflow/extensions/{name}.smk (known: "
+                 f"{', '.join(known)})" for k, name in enumerate(config.get("extensions", []))
+                 if name not in known]
     if problems:
         logger.error("invalid configuration (keys as in workflow/schemas/config.schema.yaml):\n"
                      + "\n".join(f"  config key {p}" for p in problems))

@@ -1,0 +1,150 @@
+"""A parameter sweep's runs as one dataset, and as summary rows.
+
+The runs of one sweep (``lsbg sweep-run``, :mod:`lsbg.sweeps`) record their
+swept values as attributes ``sweep_<section>_<key>``. :func:`sweep_dataset`
+stacks their statistics over the trace, the spiral angle and the points: a
+sweep of one key gets that key as a dimension, a product sweep its grid (one
+dimension per key), a list of combinations a ``point`` dimension with a
+coordinate per key. Statistics per run and quantity (:func:`lsbg.summary.
+quantity_summary`): the mean, the std of the output samples, the full-rate std
+and, of the contact torque, the dynamic factor. Units in the attributes (the
+runs' own, paper units); the swept keys' units are their configuration units.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+__all__ = ["SWEEP_STATISTICS", "sweep_rows", "sweep_dataset", "sweep_summary"]
+
+#: Statistics of each quantity stacked into the dataset: summary column -> name suffix.
+SWEEP_STATISTICS = {"mean": "mean", "std": "std", "full_rate_std": "full_rate_std"}
+
+
+def _swept(ds):
+    """(sweep name, kind, {key: value}) of a run of ``lsbg sweep-run``."""
+    from lsbg.sweeps import swept_attribute
+
+    if "sweep_name" not in ds.attrs:
+        raise ValueError(f"{ds.encoding.get('source', '<run>')}: not a run of a sweep "
+                         f"(lsbg sweep-run): no sweep_name attribute")
+    keys = str(ds.attrs["sweep_keys"]).split()
+    return (str(ds.attrs["sweep_name"]), str(ds.attrs.get("sweep_kind", "values")),
+            {k: ds.attrs[swept_attribute(k)] for k in keys})
+
+
+def sweep_rows(runs, steady_state_after=0.2, window=(0.8, 1.0), subgroup_size=4):
+    """The summary rows of a sweep's runs with a column per swept key.
+
+    Parameters
+    ----------
+    runs : sequence of xarray.Dataset
+        Runs of one sweep.
+    steady_state_after, window, subgroup_size
+        As :func:`lsbg.summary.quantity_summary` [s, s, -].
+
+    Returns
+    -------
+    pandas.DataFrame
+        :data:`lsbg.summary.SUMMARY_COLUMNS`'s run columns, ``sweep`` and one
+        column per swept key (``contact.dynamic_friction``).
+    """
+    from lsbg.summary import SUMMARY_QUANTITIES, quantity_summary
+
+    swept = [_swept(ds) for ds in runs]
+    names = {name for name, _, _ in swept}
+    if len(names) > 1:
+        raise ValueError(f"runs of several sweeps: {', '.join(sorted(names))}")
+    rows = []
+    for ds, (name, _, values) in zip(runs, swept):
+        for quantity in SUMMARY_QUANTITIES:
+            if quantity in ds:
+                rows.append({"sweep": name, **values,
+                             **quantity_summary(ds, quantity, steady_state_after, window,
+                                                subgroup_size)})
+    return pd.DataFrame(rows)
+
+
+def sweep_summary(runs, **options):
+    """:func:`sweep_rows` (the CSV of ``lsbg sweep-combine --csv``)."""
+    return sweep_rows(runs, **options)
+
+
+def sweep_dataset(runs, steady_state_after=0.2, window=(0.8, 1.0), subgroup_size=4):
+    """One sweep's runs as a dataset with a coordinate per swept key.
+
+    Parameters
+    ----------
+    runs : sequence of xarray.Dataset
+        Runs of one sweep (all its points at its design points).
+    steady_state_after, window, subgroup_size
+        As :func:`lsbg.summary.quantity_summary` [s, s, -].
+
+    Returns
+    -------
+    xarray.Dataset
+        Dimensions ``trace``, ``spiral_angle`` [deg] and the swept keys (a
+        product or one key) or ``point`` (combinations); variables
+        ``{quantity}_{statistic}`` and ``dynamic_factor``; attributes
+        ``sweep_name``, ``sweep_kind``, ``sweep_keys``.
+
+    Raises
+    ------
+    ValueError
+        Runs of several sweeps, or two runs of the same point.
+    """
+    import xarray as xr
+
+    rows = sweep_rows(runs, steady_state_after, window, subgroup_size)
+    first = runs[0]
+    name, kind, values = _swept(first)
+    keys = list(values)
+    units = {q: first[q].attrs.get("units", "") for q in rows["quantity"].unique()}
+    index = ["trace", "spiral_angle_deg", *keys]
+    if kind == "combinations":
+        points = rows[keys].drop_duplicates().reset_index(drop=True)
+        rows = rows.merge(points.reset_index().rename(columns={"index": "point"}), on=keys)
+        index = ["trace", "spiral_angle_deg", "point"]
+    wide = {}
+    for quantity, part in rows.groupby("quantity", sort=False):
+        part = part.set_index(index)
+        if part.index.duplicated().any():
+            raise ValueError(f"two runs of the same point: {part.index[part.index.duplicated()][0]}")
+        for column, suffix in SWEEP_STATISTICS.items():
+            wide[f"{quantity}_{suffix}"] = part[column]
+        if quantity == "contact_torque":
+            wide["dynamic_factor"] = part["dynamic_factor"]
+    ds = xr.Dataset.from_dataframe(pd.DataFrame(wide))
+    ds = ds.rename({"spiral_angle_deg": "spiral_angle"})
+    for variable in ds.data_vars:
+        quantity = max((q for q in units if variable.startswith(q + "_")), key=len, default="")
+        ds[variable].attrs["units"] = "1" if variable == "dynamic_factor" else units.get(quantity, "")
+    if kind == "combinations":
+        for key in keys:
+            ds[key] = ("point", points[key].to_numpy())
+        ds = ds.set_coords(keys)
+    for key in keys:
+        section, field = key.split(".", 1)
+        ds[key].attrs.update({"long_name": f"swept {key}", "units": _config_unit(field)})
+    ds["spiral_angle"].attrs.update(units="degree", long_name="mean spiral angle")
+    ds.attrs.update({"title": f"parameter sweep {name!r} of lsbg", "sweep_name": name,
+                     "sweep_kind": kind, "sweep_keys": " ".join(keys),
+                     "steady_state_after_s": float(steady_state_after),
+                     "runs": len(runs), "Conventions": "CF-1.11"})
+    return ds
+
+
+#: A configuration key's unit from its suffix (the configuration's units).
+_SUFFIX_UNITS = {"_mm": "mm", "_deg": "degree", "_deg_s": "degree/s", "_N_m": "N m",
+                 "_um": "um", "_s": "s", "_hz": "Hz", "_mm_s": "mm/s",
+                 "_N_per_mm_um": "N/(mm um)", "_N_s_per_mm": "N s/mm",
+                 "_N_per_mm1_5": "N/mm^1.5", "_kg_m3": "kg/m^3", "_GPa": "GPa"}
+
+
+def _config_unit(field):
+    """A configuration key's unit from its suffix ("1" for a plain number)."""
+    for suffix in sorted(_SUFFIX_UNITS, key=len, reverse=True):
+        if field.endswith(suffix):
+            return _SUFFIX_UNITS[suffix]
+    return "1"

@@ -1,0 +1,71 @@
+"""Every ``lsbg`` command and option the README and docs/ name exists."""
+
+import re
+from pathlib import Path
+
+import pytest
+
+from lsbg.cli import build_parser
+
+REPO = Path(__file__).resolve().parents[1]
+DOCS = [REPO / "README.md", *sorted((REPO / "docs").glob("*.md")),
+        *sorted((REPO / "workflow" / "extensions").glob("*.smk"))]
+
+
+def commands():
+    """{subcommand: its option strings}."""
+    parser = build_parser()
+    sub = next(a for a in parser._actions if a.__class__.__name__ == "_SubParsersAction")
+    return {name: {o for action in p._actions for o in action.option_strings}
+            for name, p in sub.choices.items()}
+
+
+def named_commands(text):
+    """(command, [options]) of each lsbg command line in ``text``: inline code spans that
+    start with ``lsbg COMMAND``, and code-block lines (with their continuation lines)."""
+    found = []
+    for span in re.findall(r"`(lsbg [^`]+)`", text):
+        found.append(span)
+    lines = text.splitlines()
+    in_block = False
+    for k, line in enumerate(lines):
+        if line.strip().startswith("```"):
+            in_block = not in_block
+            continue
+        stripped = line.strip().lstrip("#").strip() if not in_block else line.strip()
+        if in_block and re.match(r"^(?:lsbg|\"lsbg)\s+(?:-v\s+)?[a-z]", stripped.strip('"')):
+            command = stripped.strip('"')
+            j = k
+            while lines[j].rstrip().endswith("\\") and j + 1 < len(lines):
+                j += 1
+                command += " " + lines[j].strip()
+            found.append(command)
+    out = []
+    for command in found:
+        words = command.replace("\\", " ").split()
+        words = [w for w in words[1:] if w not in ("-v", "--verbose")]
+        if not words or not re.match(r"^[a-z][a-z-]*$", words[0]):
+            continue
+        out.append((words[0], [w.split("=")[0] for w in words[1:]
+                               if re.match(r"^--[a-z][a-z-]*", w)]))
+    return out
+
+
+@pytest.mark.parametrize("path", DOCS, ids=[p.name for p in DOCS])
+def test_every_named_command_and_option_exists(path):
+    known = commands()
+    named = named_commands(path.read_text(encoding="utf-8"))
+    missing = [(cmd, opt) for cmd, options in named for opt in [None, *options]
+               if cmd not in known or (opt is not None and opt not in known[cmd])]
+    assert not missing, f"{path.name}: no such lsbg command or option: {missing}"
+
+
+def test_the_docs_name_the_options_a_sweep_and_an_extension_need():
+    """The README names what a user writing a sweep or a stage has to know."""
+    named = {(cmd, opt) for path in DOCS
+             for cmd, options in named_commands(path.read_text(encoding="utf-8"))
+             for opt in options}
+    for needed in [("simulate", "--set-contact"), ("simulate", "--modification"),
+                   ("sweep-run", "--point"), ("sweep-combine", "--csv"),
+                   ("sensitivity", "--case"), ("mesh-mode", "--out")]:
+        assert needed in named, needed
