@@ -60,7 +60,7 @@ STAGE_MODULES = {
     "report": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "results",
                "theory", "stats", "spectra", "runs", "combine", "summary", "ltca", "reports",
                "verification", "tables", "figures", "sensitivity", "speed", "tca", "rating",
-               "sections"),
+               "sections", "sweeps", "sweep_dataset"),
 }
 
 #: Stage -> where its command starts: ``"module:function"`` of the lsbg.cli

@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-__all__ = ["SWEEP_STATISTICS", "sweep_rows", "sweep_dataset", "sweep_summary"]
+__all__ = ["SWEEP_STATISTICS", "sweep_rows", "sweep_dataset", "sweep_summary", "sweep_long"]
 
 #: Statistics of each quantity stacked into the dataset: summary column -> name suffix.
 SWEEP_STATISTICS = {"mean": "mean", "std": "std", "full_rate_std": "full_rate_std"}
@@ -148,3 +148,29 @@ def _config_unit(field):
         if field.endswith(suffix):
             return _SUFFIX_UNITS[suffix]
     return "1"
+
+
+def sweep_long(ds, variables):
+    """A sweep dataset in long form, for tables and figures against the swept keys.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        :func:`sweep_dataset`.
+    variables : sequence of str
+        Its variables to keep.
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``gear_type``, ``spiral_angle_deg``, a column per swept key and per
+        variable; rows of points not run (a product's holes) left out.
+    """
+    from lsbg.design import TRACE_LABELS
+
+    keys = str(ds.attrs["sweep_keys"]).split()
+    table = ds[list(variables)].to_dataframe().reset_index()
+    table = table.dropna(subset=list(variables), how="all")
+    table.insert(0, "gear_type", table.pop("trace").map(lambda t: TRACE_LABELS.get(t, t)))
+    table = table.rename(columns={"spiral_angle": "spiral_angle_deg"})
+    return table[["gear_type", "spiral_angle_deg", *keys, *variables]]

@@ -221,7 +221,8 @@ def test_sweep_report(study_files, tmp_path):
                             "2. Fluctuations against", "3. Which type",
                             "4. The dynamic-factor curve", "5. The design points",
                             "6. The contact state against spiral angle",
-                            "7. The paper's three claims against spiral angle", "8. Conclusion",
+                            "7. The paper's three claims against spiral angle",
+                            "8. Parameter sweeps", "9. Conclusion",
                             "Appendix A. The loaded TCA", "Appendix B. Inputs"],
                       # loaded TCA, fluctuations, ratios, speed curve, Campbell map, the
                       # contact state against spiral angle, ISO 10300 against spiral angle
@@ -230,6 +231,7 @@ def test_sweep_report(study_files, tmp_path):
     assert "ISO 10300 contact stress LSBG/SBG" in html
     assert "ISO 10300 pinion root stress: lives longer" in html
     assert "the standard rates the two types alike at every angle" in html
+    assert "This study has no parameter sweeps" in html
     assert "std(SBG)/std(LSBG)" in html and "static TE peak to peak [µrad]" in html
     assert "natural frequency [Hz]" in html and "3 speeds" in html
     # the point model's dynamic factors get their sentence; the full table is attached
@@ -317,7 +319,7 @@ def test_notebooks_declare_the_interface_parameters():
                   "chart_window_stop_s", "subgroup_size", "sweep_file", "tca_files", "vh_files",
                   "fe_ltca_files", "rating_files", "vh_case_files", "fe_case_files"},
         "sweep": {"sweep_file", "summary_file", "speed_curve_file", "steady_state_after_s",
-                  "vh_files", "config_file"},
+                  "vh_files", "config_file", "parameter_sweep_files"},
         "verification": {"convergence_files", "geometry_dirs", "runs", "mesh_files",
                          "steady_state_after_s"},
     }

@@ -227,8 +227,12 @@ def test_sweeps_written_in_config_only_give_one_dataset_each(study):
                              + ["sweep_damping_and_stiffness_combine",
                                 "sweep_friction_batch0", "sweep_friction_batch0",
                                 "sweep_friction_combine"])
-    assert set(rules_of(jobs)) - set(batches) == {"all"}
+    # (and the sweep report, which plots each sweep)
+    assert set(rules_of(jobs)) - set(batches) == {"report_sweep", "all"}
     snakemake("-j2", "--configfile", TEST_CONFIG, example, cwd=root, env=env, check=True)
+    html = (root / "reports" / "sweep.html").read_text(encoding="utf-8")
+    assert "8. Parameter sweeps" in html and "Sweep 'friction' at 35°" in html
+    assert "one line per contact.mesh_damping_ratio" in html
     with xr.open_dataset(root / "results" / "sweeps" / "friction.nc") as ds:
         assert ds["contact.dynamic_friction"].values.tolist() == [0, 0.05, 0.1, 0.15, 0.2]
         assert ds["gear_speed_full_rate_std"].dims == ("trace", "spiral_angle",
@@ -244,6 +248,9 @@ def test_sweeps_written_in_config_only_give_one_dataset_each(study):
         assert (speed.diff("contact.line_stiffness_N_per_mm_um") < 0).all()
     table = pd.read_csv(root / "results" / "sweeps" / "friction.csv")
     assert {"contact.dynamic_friction", "quantity", "full_rate_std"} <= set(table.columns)
+    # back to the study without sweeps (the sweep report again), for the other tests
+    snakemake("-j2", "--configfile", TEST_CONFIG, cwd=root, env=env, check=True)
+    assert not dry_run(study)[0]
 
 
 @pytest.mark.slow
@@ -496,7 +503,8 @@ def test_the_load_sweep_is_a_sweep_and_mesh_mode_a_new_stage(study, tmp_path):
         "extensions": ["mesh_mode"]})
     jobs, output = dry_run(study, extra)
     assert rules_of(jobs) == sorted(["sweep_load_batch0"] * 2 + ["sweep_load_combine",
-                                                                 "mesh_mode", "all"]), output
+                                                                 "mesh_mode", "report_sweep",
+                                                                 "all"]), output
     snakemake("-j2", "--configfile", TEST_CONFIG, extra, cwd=root, env=env, check=True)
     table = pd.read_csv(root / "results" / "sweeps" / "load.csv")
     force = table[table.quantity == "tangential_force_outer"]
@@ -515,8 +523,11 @@ def test_the_load_sweep_is_a_sweep_and_mesh_mode_a_new_stage(study, tmp_path):
     assert (modes["resonance_speed_order_1_deg_s"] / 360 * 9).tolist() == pytest.approx(
         modes["natural_frequency_hz"].tolist(), rel=1e-12)
     assert not dry_run(study, extra)[0]
-    # Without them the study is unchanged; the former section names its replacement.
-    assert not dry_run(study)[0]
+    # Without them only the sweep report changes back; the former section names its
+    # replacement.
+    jobs, output = dry_run(study)
+    assert rules_of(jobs) == ["all", "report_sweep"], output
+    snakemake("-j2", "--configfile", TEST_CONFIG, cwd=root, env=env, check=True)
     old = write_yaml(tmp_path / "old.yaml", {"load_sweep": {"torques_N_m": [1000, 1500]}})
     proc = snakemake("-n", "--configfile", TEST_CONFIG, old, cwd=root, env=env)
     assert proc.returncode != 0

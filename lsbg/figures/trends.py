@@ -237,3 +237,42 @@ def plot_rating_against_angle(table):
         _angles(ax, table["spiral_angle"])
     figure_legend(fig)
     return fig
+
+
+def plot_parameter_sweep(table, along, variables, units, by=None):
+    """The key figures of a parameter sweep against its first swept key.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        :func:`lsbg.sweep_dataset.sweep_long` (one spiral angle).
+    along : str
+        The swept key on the x axis (``contact.dynamic_friction``).
+    variables : sequence of str
+        One panel each.
+    units : dict
+        ``{column: unit}`` of ``along`` and the variables.
+    by : str, optional
+        A second swept key: one line per value (a product sweep).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        One colour per gear type; the line style tells the values of ``by``.
+    """
+    fig, axes = new_figure(1, len(variables), width=5 * len(variables))
+    styles = ("o-", "s--", "^:", "d-.", "v-")
+    groups = [(None, table)] if by is None else list(table.groupby(by, sort=True))
+    for k, (value, part) in enumerate(groups):
+        for gear_type, rows in _by_type(part):
+            rows = rows.sort_values(along)
+            label = gear_type if by is None else f"{gear_type}, {by} = {value:g}"
+            for ax, variable in zip(axes[0], variables):
+                ax.plot(rows[along], rows[variable], styles[k % len(styles)], ms=4,
+                        color=type_color(gear_type), label=label)
+    for ax, variable in zip(axes[0], variables):
+        ax.set_xlabel(f"{along} [{units.get(along, '-')}]")
+        ax.set_ylabel(f"{variable.replace('_', ' ')} [{units.get(variable, '-')}]")
+        ax.grid(True, alpha=0.3)
+    figure_legend(fig)
+    return fig

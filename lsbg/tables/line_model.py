@@ -433,33 +433,40 @@ def calmer_by_angle(ratios, grid=None) -> pd.DataFrame:
     return pd.DataFrame(rows, columns=["quantity", "LSBG", "SBG", "neither", "angles"])
 
 
-def trend_table(table, columns) -> pd.DataFrame:
-    """Does a series follow the spiral angle or zig-zag from one angle to the next?
+def trend_table(table, columns, along="spiral_angle_deg", by=()) -> pd.DataFrame:
+    """Does a series follow the spiral angle (or another swept value), or zig-zag from one
+    value to the next?
 
     Parameters
     ----------
     table : pandas.DataFrame
-        With ``spiral_angle_deg``, ``gear_type`` and optionally
-        ``contact_model`` columns, e.g. from :func:`sweep_fluctuation_table`.
+        With ``along``, ``gear_type`` and optionally ``contact_model`` columns,
+        e.g. from :func:`sweep_fluctuation_table`.
     columns : sequence of str
         Columns to judge.
+    along : str
+        The column the series runs along: the spiral angle [deg], or a swept
+        key of a parameter sweep.
+    by : sequence of str
+        Further columns that tell series apart (the other keys of a product
+        sweep).
 
     Returns
     -------
     pandas.DataFrame
-        Per (contact model, gear type, column): the number of angles,
-        Spearman's rank correlation with the angle and its p-value, and
-        ``reversals``: how often the change from one angle to the next flips
-        sign, out of ``possible`` (n − 2). A monotone trend has none; a
-        neighbour-to-neighbour zig-zag has about all of them. Groups with
-        fewer than 3 angles are left out.
+        Per (contact model, gear type, ``by``, column): the number of values
+        (``angles``), Spearman's rank correlation with ``along`` and its
+        p-value, and ``reversals``: how often the change from one value to
+        the next flips sign, out of ``possible`` (n − 2). A monotone trend has
+        none; a neighbour-to-neighbour zig-zag has about all of them. Groups
+        with fewer than 3 values are left out.
     """
-    keys = [k for k in ("contact_model", "gear_type") if k in table.columns]
+    keys = [k for k in ("contact_model", "gear_type", *by) if k in table.columns]
     rows = []
     for group, part in table.groupby(keys, sort=False):
-        part = part.sort_values("spiral_angle_deg")
+        part = part.sort_values(along)
         group = group if isinstance(group, tuple) else (group,)
-        if len(part) < 3:  # too few angles to tell a trend from a zig-zag
+        if len(part) < 3:  # too few values to tell a trend from a zig-zag
             continue
         for column in columns:
             if column not in part or part[column].isna().all():
@@ -467,7 +474,7 @@ def trend_table(table, columns) -> pd.DataFrame:
             values = part[column].to_numpy()
             change = np.sign(np.diff(values))
             reversals = int(np.sum(change[1:] * change[:-1] < 0))
-            rho, p = sps.spearmanr(part["spiral_angle_deg"], values)
+            rho, p = sps.spearmanr(part[along], values)
             rows.append({**dict(zip(keys, group)), "column": column, "angles": len(values),
                          "spearman_rho": float(rho), "spearman_p": float(p),
                          "reversals": reversals, "possible": max(len(values) - 2, 0)})

@@ -72,6 +72,7 @@ rule report_sweep:
         speed_curve=[FILES["speed_curve"]] if STUDY.speed_sweep else [],
         vh=STUDY.vh_maps,
         config=ancient(FILES["study_config"]),
+        parameter_sweeps=[FILES["sweep_dataset"].format(name=s.name) for s in STUDY.sweeps],
         sources=sources("report"),
     output:
         report(STUDY.reports["sweep"], caption="../report/reports.rst", category="Reports",
@@ -79,6 +80,7 @@ rule report_sweep:
     params:
         notebook_dir=lambda wildcards, input: os.path.dirname(input.notebook),
         vh=lambda wildcards, input: yaml_list(input.vh),
+        parameter_sweeps=lambda wildcards, input: yaml_list(input.parameter_sweeps),
         steady_state_after=config["statistics"]["steady_state_after_s"],
         # Rerun trigger: the ISO 10300 rating's settings (the config file is ancient)
         rating=plan.canonical({k: config[k] for k in ("rating", "tooth")}),
@@ -96,6 +98,7 @@ rule report_sweep:
         " --param sweep_file={input.sweep} --param summary_file={input.summary}"
         " --param 'speed_curve_file={input.speed_curve}' --param 'vh_files={params.vh}'"
         " --param config_file={input.config}"
+        " --param 'parameter_sweep_files={params.parameter_sweeps}'"
         " --param steady_state_after_s={params.steady_state_after} > {log} 2>&1"
 
 
