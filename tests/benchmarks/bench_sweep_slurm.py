@@ -5,7 +5,8 @@ Run as a script on a machine with SLURM up (``.ci/slurm-up``)::
     python tests/benchmarks/bench_sweep_slurm.py [--values 100] [--batch 25]
 
 In two copies of the repository (``git ls-files``, as bench_study.py), with the
-test configuration (50 ms simulated per run) and one sweep of
+test configuration (50 ms simulated per run; ``--configfile workflow/config.yaml``
+for the paper's 1 s) and one sweep of
 ``contact.dynamic_friction`` over ``--values`` values at the paper's point, both
 traces (2 x values runs, ``--batch`` points per job):
 
@@ -48,6 +49,9 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--values", type=int, default=100, help="swept values (runs: 2x)")
     parser.add_argument("--batch", type=int, default=25, help="points per job")
+    parser.add_argument("--configfile", default="workflow/config-test.yaml",
+                        help="the study's configuration (the test config: 50 ms per run; "
+                             "workflow/config.yaml: the paper's 1 s)")
     args = parser.parse_args()
     import xarray as xr
     import yaml
@@ -63,7 +67,7 @@ def main():
             root.mkdir()
             copy_repository(root)
             (root / "sweep.yaml").write_text(yaml.safe_dump(sweep))
-            config = ("--configfile", "workflow/config-test.yaml", "sweep.yaml")
+            config = ("--configfile", args.configfile, "sweep.yaml")
             snakemake(root, "-j2", "results/geometry/logarithmic_beta35",
                       "results/geometry/circular_beta35", *config)
             roots[mode] = (root, config)

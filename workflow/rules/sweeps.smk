@@ -4,7 +4,9 @@
 # batches of `batch_size` points per job and design point (`lsbg sweep-run`: one
 # start-up per batch, which is what a cluster pays per job), then one job stacks
 # them into results/sweeps/{name}.nc and .csv (`lsbg sweep-combine`). Resources
-# are derived here from the runs a job carries: no profile entry is needed.
+# are derived here from the runs a job carries: no profile entry is needed. The
+# combine is a local rule: a few seconds of reading, which as a SLURM job would
+# cost two Snakemake start-ups and a polling latency more (docs/scaling.md).
 
 import re
 import shlex
@@ -64,6 +66,7 @@ for _sweep in STUDY.sweeps:
     rule:
         name:
             f"sweep_{_sweep.name}_combine"
+        localrule: True
         input:
             runs=STUDY.parameter_sweep_runs(_sweep),
             config=ancient(FILES["study_config"]),
