@@ -32,7 +32,8 @@ import pandas as pd
 from lsbg.runs import QUANTITY_LABELS, TYPE_ORDER
 from lsbg.sensitivity import case_label, parse_case
 
-__all__ = ["BASELINE", "CONTACT_STATE_RESOLUTION", "stability_table", "stability_cells",
+__all__ = ["BASELINE", "CONTACT_STATE_RESOLUTION", "better_type", "stability_table",
+           "stability_cells",
            "contact_state_table", "contact_state_by_angle", "life_table", "claim_verdict",
            "claim_scope", "claim_answer", "claims_by_angle"]
 
@@ -46,8 +47,16 @@ BASELINE = "baseline (the study's settings)"
 CONTACT_STATE_RESOLUTION = 0.05
 
 
-def _better(sbg, lsbg, resolution):
-    """The type with the lower value, or "tie" within ``resolution`` (relative)."""
+def better_type(sbg, lsbg, resolution):
+    """The type with the lower value, or ``"tie"`` within ``resolution``.
+
+    Parameters
+    ----------
+    sbg, lsbg : float
+        The two types' values of one figure (lower is better).
+    resolution : float
+        Relative difference below which they tie [-].
+    """
     if not (np.isfinite(sbg) and np.isfinite(lsbg)):
         return "—"
     scale = max(abs(sbg), abs(lsbg))
@@ -208,7 +217,7 @@ def contact_state_table(vh_maps, vh_cases=()):
             sbg, lsbg = figures["SBG"][name], figures["LSBG"][name]
             rows.append({"cell": cell, "quantity": words, "unit": unit, "SBG": sbg,
                          "LSBG": lsbg,
-                         "better": _better(sbg, lsbg, CONTACT_STATE_RESOLUTION)})
+                         "better": better_type(sbg, lsbg, CONTACT_STATE_RESOLUTION)})
     return pd.DataFrame(rows)
 
 
@@ -241,7 +250,7 @@ def contact_state_by_angle(sweep):
         row = {"spiral_angle": float(angle)}
         for trace in total["trace"].values:
             row[TRACE_LABELS[str(trace)]] = float(total.sel(trace=trace, spiral_angle=angle))
-        row["better"] = _better(row.get("SBG", np.nan), row.get("LSBG", np.nan),
+        row["better"] = better_type(row.get("SBG", np.nan), row.get("LSBG", np.nan),
                                 CONTACT_STATE_RESOLUTION)
         rows.append(row)
     table = pd.DataFrame(rows)
@@ -329,7 +338,7 @@ def life_table(ratings, fe_ltcas=None, fe_cases=()):
             rows.append({"cell": cell, "quantity": words, "unit": "MPa", "SBG": sbg,
                          "LSBG": lsbg, "life ratio LSBG/SBG": life["ratio"],
                          "least": life["low"], "most": life["high"],
-                         "better": _better(sbg, lsbg, RESOLVED_STRESS_DIFFERENCE)})
+                         "better": better_type(sbg, lsbg, RESOLVED_STRESS_DIFFERENCE)})
     return pd.DataFrame(rows)
 
 
@@ -458,6 +467,6 @@ def claims_by_angle(ratios, contact, rating):
                                 ("root_stress_pinion", "pinion root stress")):
                 sbg, lsbg = wide.loc[angle, (name, "SBG")], wide.loc[angle, (name, "LSBG")]
                 row(angle)[f"ISO 10300 {words} LSBG/SBG"] = lsbg / sbg
-                row(angle)[f"ISO 10300 {words}: lives longer"] = _better(
+                row(angle)[f"ISO 10300 {words}: lives longer"] = better_type(
                     sbg, lsbg, RESOLVED_STRESS_DIFFERENCE)
     return pd.DataFrame([rows[k] for k in sorted(rows)])
