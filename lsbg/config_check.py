@@ -143,8 +143,8 @@ def _sweeps_problems(config, schema, pairs):
     def check(changed, sweep):
         problems = (schema_problems(changed, schema) or _settings_problems(changed)
                     + run_cost_problems(changed))
-        points = {k: v for k, v in pairs.items() if k[0] in sweep.traces
-                  and k[1] in {number_label(a) for a in sweep.spiral_angles}}
+        labels = {number_label(a) for a in sweep.spiral_angles}
+        points = {k: v for k, v in pairs.items() if k[0] in sweep.traces and k[1] in labels}
         if any(k.split(".", 1)[0] in ("design", "flank_modification", "misalignment")
                for k in sweep.keys):  # the point's own design and flanks at its points
             points = {}

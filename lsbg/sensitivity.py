@@ -248,7 +248,7 @@ def case_sections(key, value, contact, modification, misalignment):
     tuple of dict
         New dictionaries; the given ones are left alone.
     """
-    from lsbg.tca.misalignment import DISPLACEMENTS
+    from lsbg.tca.misalignment import DISPLACEMENTS, corner_displacements
 
     contact = {**contact, **scaled_contact(contact, key, value)}
     modification, misalignment = dict(modification), dict(misalignment)
@@ -257,12 +257,7 @@ def case_sections(key, value, contact, modification, misalignment):
         for name in FLANK_KEYS[key]:
             modification[name] = modification.get(name, 0.0) * value
     elif key == "displacement":
-        for part in str(value).split():
-            letter = next((a for a in DISPLACEMENTS if part.startswith(a)
-                           and part[len(a):len(a) + 1] in "+-"), None)
-            if letter is None:
-                raise ValueError(f"displacement corner {value!r}: {part!r} is not LETTER+VALUE "
-                                 f"with LETTER one of {', '.join(DISPLACEMENTS)}")
+        for letter, shift in corner_displacements(value).items():
             config_key = DISPLACEMENTS[letter][1]
-            misalignment[config_key] = misalignment.get(config_key, 0.0) + float(part[len(letter):])
+            misalignment[config_key] = misalignment.get(config_key, 0.0) + shift
     return contact, modification, misalignment

@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-__all__ = ["SWEEP_STATISTICS", "sweep_rows", "sweep_dataset", "sweep_summary", "sweep_long"]
+__all__ = ["SWEEP_STATISTICS", "sweep_rows", "sweep_dataset", "sweep_long"]
 
 #: Statistics of each quantity stacked into the dataset: summary column -> name suffix.
 SWEEP_STATISTICS = {"mean": "mean", "std": "std", "full_rate_std": "full_rate_std"}
@@ -66,12 +66,7 @@ def sweep_rows(runs, steady_state_after=0.2, window=(0.8, 1.0), subgroup_size=4)
     return pd.DataFrame(rows)
 
 
-def sweep_summary(runs, **options):
-    """:func:`sweep_rows` (the CSV of ``lsbg sweep-combine --csv``)."""
-    return sweep_rows(runs, **options)
-
-
-def sweep_dataset(runs, steady_state_after=0.2, window=(0.8, 1.0), subgroup_size=4):
+def sweep_dataset(runs, steady_state_after=0.2, window=(0.8, 1.0), subgroup_size=4, rows=None):
     """One sweep's runs as a dataset with a coordinate per swept key.
 
     Parameters
@@ -80,6 +75,8 @@ def sweep_dataset(runs, steady_state_after=0.2, window=(0.8, 1.0), subgroup_size
         Runs of one sweep (all its points at its design points).
     steady_state_after, window, subgroup_size
         As :func:`lsbg.summary.quantity_summary` [s, s, -].
+    rows : pandas.DataFrame, optional
+        :func:`sweep_rows` of these runs with these options, if already computed.
 
     Returns
     -------
@@ -96,7 +93,8 @@ def sweep_dataset(runs, steady_state_after=0.2, window=(0.8, 1.0), subgroup_size
     """
     import xarray as xr
 
-    rows = sweep_rows(runs, steady_state_after, window, subgroup_size)
+    if rows is None:
+        rows = sweep_rows(runs, steady_state_after, window, subgroup_size)
     first = runs[0]
     name, kind, values = _swept(first)
     keys = list(values)

@@ -68,3 +68,11 @@ def test_bad_cases_are_named():
     with pytest.raises(ValueError, match="case 'crowning_y2'"):
         parse_case("crowning_y2")
     assert scaled_contact({"slices": 20}, "crowning", 2) == {}
+
+
+def test_a_corners_label_gives_back_its_displacements():
+    from lsbg.tca.misalignment import corner_displacements, envelope_corners
+
+    for axes in (["E", "P"], ["G", "Sigma"], ["E", "P", "Sigma"]):
+        for label, values in envelope_corners(axes, 0.05).items():
+            assert corner_displacements(label) == values

@@ -392,9 +392,9 @@ def slice_stiffness_from_args(args, params, geometry_dir, load_torque):
 
 
 # ------------------------------------------------------------ sensitivity cases
-def add_case_options(parser, stage, out=True):
-    """Add ``--case KEY=VALUE`` (repeatable) and, with ``out``, ``--case-out TEMPLATE``:
-    the sensitivity cases (:mod:`lsbg.sensitivity`) of ``stage`` that a command
+def add_case_options(parser, stage):
+    """Add ``--case KEY=VALUE`` (repeatable) and ``--case-out TEMPLATE``: the sensitivity
+    cases (:mod:`lsbg.sensitivity`) of ``stage`` that a command
     computes beside its own output, in the same process."""
     # (lsbg.sensitivity is imported when the cases are read, not here: building the
     # parser must not make every stage depend on it, lsbg.stages)
@@ -402,7 +402,6 @@ def add_case_options(parser, stage, out=True):
                         help=f"a sensitivity case as in the sensitivity section whose key "
                              f"reaches the {stage.replace('_', ' ')} (lsbg.sensitivity."
                              f"CASE_STAGES), e.g. crowning=0.5; repeatable")
-    if out:
-        parser.add_argument("--case-out", metavar="FILE.nc",
-                            help="output file template of the cases, with the field {case} "
-                                 "(the case's name, e.g. crowning_x0.5)")
+    parser.add_argument("--case-out", metavar="FILE.nc",
+                        help="output file template of the cases, with the field {case} "
+                             "(the case's name, e.g. crowning_x0.5)")

@@ -159,7 +159,7 @@ def run_sweep_combine(args):
     """Handler of ``lsbg sweep-combine`` [exit code]."""
     from lsbg.results import open_run, write_dataset
     from lsbg.summary import statistics_options
-    from lsbg.sweep_dataset import sweep_dataset, sweep_summary
+    from lsbg.sweep_dataset import sweep_dataset, sweep_rows
 
     check_output(args.out, "--out")
     if args.csv:
@@ -171,12 +171,12 @@ def run_sweep_combine(args):
         raise CommandError(str(err)) from None
     runs = [open_run(path) for path in args.runs]
     try:
-        ds = sweep_dataset(runs, **options)
-        table = sweep_summary(runs, **options) if args.csv else None
+        table = sweep_rows(runs, **options)  # once: the dataset is built from these rows
+        ds = sweep_dataset(runs, rows=table, **options)
     except ValueError as err:
         raise CommandError(str(err)) from None
     write_dataset(ds, args.out)
-    if table is not None:
+    if args.csv:
         from lsbg.results import write_atomically
 
         write_atomically(args.csv, lambda tmp: table.to_csv(tmp, index=False))

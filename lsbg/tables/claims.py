@@ -73,29 +73,21 @@ def _centre(ds):
 
 def _corner(ds, corner):
     """The cell of a V-H map at an envelope corner's displacements (from the centre)."""
-    axes = ds.attrs["axes"].split()
+    from lsbg.tca.misalignment import corner_displacements
+
     centre = _centre(ds)
-    values = {}
-    for part in corner.split():
-        letter = next(a for a in axes if part.startswith(a) and part[len(a):len(a) + 1] in "+-")
-        values[letter] = float(centre[letter]) + float(part[len(letter):])
-    return ds.sel(values, method="nearest")
+    return ds.sel({letter: float(centre[letter]) + shift
+                   for letter, shift in corner_displacements(corner).items()}, method="nearest")
 
 
 def _by_case(files):
-    """{case name: {gear type: dataset}} of case files (their ``sensitivity_case``
-    attribute, else the file name's tail after ``_beta<angle>_``)."""
-    from pathlib import Path
-
+    """{case name: {gear type: dataset}} of case files, by their ``sensitivity_case``
+    attribute (``lsbg misalignment-map --case``, ``lsbg ltca --case``)."""
     from lsbg.runs import gear_type
 
     out = {}
     for ds in files:
-        name = ds.attrs.get("sensitivity_case")
-        if not name:
-            stem = Path(ds.encoding.get("source", "")).stem
-            name = stem.split("_beta", 1)[1].split("_", 1)[1].removesuffix("_ltca")
-        out.setdefault(name, {})[gear_type(ds)] = ds
+        out.setdefault(ds.attrs["sensitivity_case"], {})[gear_type(ds)] = ds
     return out
 
 

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 __all__ = ["Misalignment", "MISALIGNMENT_CONFIG_KEYS", "DISPLACEMENTS", "member_frames",
-           "envelope_corners"]
+           "envelope_corners", "corner_displacements"]
 
 _MM = 1e-3
 
@@ -185,4 +185,33 @@ def envelope_corners(axes, half_range):
     for signs in itertools.product((1, -1), repeat=len(axes)):
         values = {a: s * half_range for a, s in zip(axes, signs)}
         out[" ".join(f"{a}{v:+g}" for a, v in values.items())] = values
+    return out
+
+
+def corner_displacements(label):
+    """The displacements of a corner's label, the inverse of :func:`envelope_corners`.
+
+    Parameters
+    ----------
+    label : str
+        E.g. ``"E+0.1 P-0.1"``.
+
+    Returns
+    -------
+    dict
+        ``{letter: value}`` [mm; deg for Sigma].
+
+    Raises
+    ------
+    ValueError
+        A part that is not LETTER+VALUE with a letter of :data:`DISPLACEMENTS`.
+    """
+    out = {}
+    for part in str(label).split():
+        letter = next((a for a in DISPLACEMENTS if part.startswith(a)
+                       and part[len(a):len(a) + 1] in "+-"), None)
+        if letter is None:
+            raise ValueError(f"displacement corner {label!r}: {part!r} is not LETTER+VALUE "
+                             f"with LETTER one of {', '.join(DISPLACEMENTS)}")
+        out[letter] = float(part[len(letter):])
     return out
