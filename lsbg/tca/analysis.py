@@ -130,6 +130,9 @@ class SurfacePair:
         g[surface.G_Q:surface.G_Q + 3] = plane.cross_dir
         g[surface.G_PSI_G2], g[surface.G_ROLL2] = plane.tangency_angle[2], plane.roll_sign[2]
         g[surface.G_DELTA_B2] = design.base_cone_angle(2)
+        g[surface.G_COS_DELTA_B2] = math.cos(g[surface.G_DELTA_B2])
+        g[surface.G_COS_PSI_G2] = math.cos(g[surface.G_PSI_G2])
+        g[surface.G_SIN_PSI_G2] = math.sin(g[surface.G_PSI_G2])
         g[surface.G_S2] = pair.axis_normal_component(2, side)
         g[surface.G_OFFSET2] = pair.flank_offset[(2, side)]
         g[surface.G_OFFSET1] = pair.flank_offset[(1, side)]

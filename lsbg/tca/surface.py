@@ -35,10 +35,13 @@ from numba import njit
 # runs on -phi2, so that first contact is always a maximum); OFFSET1: the
 # pinion flank's tooth-thickness offset on that side
 # ROOT2: the gear's root angle, for the flank chart's height R (theta - root)
+# COS_DELTA_B2, COS_PSI_G2, SIN_PSI_G2: cosines and sine of DELTA_B2 and PSI_G2, so that
+# the contact search turns the plane-of-action point without trigonometric calls
 (G_PSI_G2, G_ROLL2, G_DELTA_B2, G_SIDE, G_S2, G_OFFSET2, G_KIND, G_TAN_BETA, G_RM, G_RHO0,
  G_THETA0, G_BRANCH, G_RC, G_THETA_LO2, G_THETA_HI2, G_R_IN, G_R_OUT, G_GEAR_PITCH, G_RATIO,
- G_S1, G_PINION_PITCH, G_OFFSET1, G_ROOT2) = range(36, 59)
-N_GEOMETRY = 59
+ G_S1, G_PINION_PITCH, G_OFFSET1, G_ROOT2, G_COS_DELTA_B2, G_COS_PSI_G2,
+ G_SIN_PSI_G2) = range(36, 62)
+N_GEOMETRY = 62
 
 # --- per mesh position: outputs of contact_search (columns O_*)
 # S*: moments of the region's points in the gear frame (true size); C*: in the
@@ -93,27 +96,41 @@ def gear_rotation(x, y, z, g):
     py = g[t + 1] * dx + g[t + 4] * dy + g[t + 7] * dz
     pz = g[t + 2] * dx + g[t + 5] * dy + g[t + 8] * dz
     rho = math.sqrt(px * px + py * py + pz * pz)
-    c = (px * g[G_A2] + py * g[G_A2 + 1] + pz * g[G_A2 + 2]) / rho
-    theta = math.acos(min(1.0, max(-1.0, c)))
+    c = min(1.0, max(-1.0, (px * g[G_A2] + py * g[G_A2 + 1] + pz * g[G_A2 + 2]) / rho))
+    theta = math.acos(c)
     u0, u1, u2 = g[G_U2], g[G_U2 + 1], g[G_U2 + 2]
     nx, ny, nz = u1 * pz - u2 * py, u2 * px - u0 * pz, u0 * py - u1 * px
     if not (g[G_THETA_LO2] <= theta <= g[G_THETA_HI2] and g[G_R_IN] <= rho <= g[G_R_OUT]):
         return math.nan, rho, theta, nx, ny, nz, px, py, pz
-    # roll angle chi: cos(theta) = cos(delta_b) cos(chi), in the atan2 form
-    delta_b = g[G_DELTA_B2]
-    product = math.sin(theta - delta_b) * math.sin(theta + delta_b)
-    chi = math.atan2(math.sqrt(max(product, 0.0)), math.cos(theta))
-    psi = g[G_PSI_G2] + g[G_ROLL2] * chi
+    # roll angle chi: cos(theta) = cos(delta_b) cos(chi), so cos(delta_b) sin(chi) =
+    # sqrt(cos^2 delta_b - cos^2 theta), exact near the base cone (Sterbenz) and
+    # free of trigonometric calls, which bound this kernel's cost
+    cos_b = g[G_COS_DELTA_B2]
+    product = (cos_b - c) * (cos_b + c)
+    if product > 0.0:
+        sin_b_chi = math.sqrt(product)
+        chi = math.atan(sin_b_chi / c) if c > 0.0 else math.atan2(sin_b_chi, c)
+        cos_chi, sin_chi = c / cos_b, sin_b_chi / cos_b
+    else:  # inside the base cone: the flank's root end, chi = 0
+        chi, cos_chi, sin_chi = 0.0, 1.0, 0.0
+    roll = g[G_ROLL2]
+    psi = g[G_PSI_G2] + roll * chi
     turn = -(psi - _curve_angle(rho, g)) / g[G_S2] + g[G_OFFSET2]
-    cp, sp = math.cos(psi), math.sin(psi)
+    # cos and sin of psi = psi_g + roll chi by the addition theorem
+    cpg, spg = g[G_COS_PSI_G2], g[G_SIN_PSI_G2]
+    cp = cpg * cos_chi - roll * spg * sin_chi
+    sp = spg * cos_chi + roll * cpg * sin_chi
     fx = cp * g[G_P] + sp * g[G_Q]
     fy = cp * g[G_P + 1] + sp * g[G_Q + 1]
     fz = cp * g[G_P + 2] + sp * g[G_Q + 2]
-    azimuth_flank = math.atan2(fx * g[G_OTHER2] + fy * g[G_OTHER2 + 1] + fz * g[G_OTHER2 + 2],
-                               fx * g[G_REF2] + fy * g[G_REF2 + 1] + fz * g[G_REF2 + 2])
-    azimuth_point = math.atan2(px * g[G_OTHER2] + py * g[G_OTHER2 + 1] + pz * g[G_OTHER2 + 2],
-                               px * g[G_REF2] + py * g[G_REF2 + 1] + pz * g[G_REF2 + 2])
-    return azimuth_point - azimuth_flank - turn, rho, theta, nx, ny, nz, px, py, pz
+    # the point's azimuth less the flank point's, as one atan2 of the two directions
+    flank_ref = fx * g[G_REF2] + fy * g[G_REF2 + 1] + fz * g[G_REF2 + 2]
+    flank_other = fx * g[G_OTHER2] + fy * g[G_OTHER2 + 1] + fz * g[G_OTHER2 + 2]
+    point_ref = px * g[G_REF2] + py * g[G_REF2 + 1] + pz * g[G_REF2 + 2]
+    point_other = px * g[G_OTHER2] + py * g[G_OTHER2 + 1] + pz * g[G_OTHER2 + 2]
+    azimuth = math.atan2(point_other * flank_ref - point_ref * flank_other,
+                         point_ref * flank_ref + point_other * flank_other)
+    return azimuth - turn, rho, theta, nx, ny, nz, px, py, pz
 
 
 @njit(cache=True)
