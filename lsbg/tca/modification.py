@@ -35,6 +35,7 @@ in micrometres in the configuration (``flank_modification:``).
 from __future__ import annotations
 
 import math
+import weakref
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -292,9 +293,33 @@ def relieved_flank(pair, modification, cone_distance, psi, side="drive", polar_r
         In the pinion's body frame [m] and outward unit normals [-].
     relief : numpy.ndarray
         The material removed [m] (0 on the coast side).
+
+    Notes
+    -----
+    The flank does not depend on the assembly's displacements, so the cells
+    of a V-H map ask for the same grids again and again; the last
+    :data:`FLANK_MEMO_SIZE` results per pair are kept (keyed by the
+    modification, the side, the clip and the points' values) and copies
+    returned.
     """
-    plane = pair.planes[side]
     rho, psi = np.broadcast_arrays(np.asarray(cone_distance, float), np.asarray(psi, float))
+    clip = None if polar_range is None else tuple(float(x) for x in polar_range)
+    key = (modification, side, clip, rho.shape, rho.tobytes(), psi.tobytes())
+    memo = _FLANK_MEMO.setdefault(pair, {})
+    if key not in memo:
+        if len(memo) >= FLANK_MEMO_SIZE:
+            memo.pop(next(iter(memo)))
+        memo[key] = _relieved_flank(pair, modification, rho, psi, side, clip)
+    return tuple(a.copy() for a in memo[key])
+
+
+#: Flank grids kept per pair by :func:`relieved_flank`.
+FLANK_MEMO_SIZE = 8
+_FLANK_MEMO = weakref.WeakKeyDictionary()
+
+
+def _relieved_flank(pair, modification, rho, psi, side, polar_range):
+    plane = pair.planes[side]
     chi = np.maximum(plane.roll_sign[1] * (psi - plane.tangency_angle[1]), 0.0)
     theta = np.arccos(math.cos(pair.design.base_cone_angle(1)) * np.cos(chi))
     if polar_range is not None:
