@@ -21,6 +21,7 @@ from pathlib import Path
 import yaml
 
 from lsbg.files import number_label
+from lsbg.job_order import GATE_RULES, JOB_SECONDS, job_priority
 
 __all__ = ["PAPER_TRACES", "CONTACT_MODELS", "REPORT_NAMES", "STUDY_SECTIONS", "FILES",
            "design_points", "speed_labels", "speed_keywords", "canonical", "yaml_text",
@@ -229,25 +230,6 @@ def simulation_runtime(config, runs=1):
     return max(10, math.ceil(runs * config["simulation"]["duration_s"] * BUDGET_PER_SECOND / 60))
 
 
-#: Wall time [s] of one job of each rule in the default study, measured with
-#: ``snakemake -j2`` on the 2-core reference machine (tests/benchmarks/bench_study.py,
-#: 2026-11-24). Only their order matters: it is the order of :func:`job_priority`.
-#: contact_state (``lsbg misalignment-map`` at the paper's point, 9 x 9 cells, and the
-#: 5 x 5 maps of its sensitivity cases) about 13 s; sweep_contact_state (the other ten angles of a trace, 5 x 5 cells each) about
-#: 15 s; they fill the cores before the aggregates and the reports that read them.
-#: tooth_compliance (the FE compliance of the paper's point, both members) about 10 s:
-#: it starts first, as soon as its geometry is there. fe_sensitivity (the FE loaded TCAs
-#: of the paper's point at the envelope's four corners and of the crowning cases, about
-#: 7 s) is ranked with the batches so that it runs early,
-#: beside them, and not on the reports' critical path.
-JOB_SECONDS = {"tooth_compliance": 30, "sweep_points": 15, "sweep_contact_state": 15,
-               "convergence_point": 14, "report_paper": 12, "report_verification": 8,
-               "report_sweep": 8, "convergence_line": 6, "contact_state": 13, "sensitivity": 4,
-               "fe_ltca": 4, "summary": 3, "combine": 2, "rating": 2, "fe_sensitivity": 16}
-#: Short jobs that every report and aggregate waits for: before all others, in this order.
-GATE_RULES = ("paper_geometry", "paper_ltca")
-
-
 def envelope_positions(config):
     """Mesh positions of each FE loaded TCA of the displacement envelope (rule fe_sensitivity).
 
@@ -266,35 +248,6 @@ def envelope_positions(config):
     int
     """
     return max(8, int(config["tooth"].get("ltca_positions", 200)) // 2)
-
-
-def job_priority(rule):
-    """Snakemake priority of the jobs of ``rule``: the paper point's gates, then of the
-    jobs ready to run the longest first.
-
-    Snakemake knows the DAG but not what a job costs. Without priorities it
-    started a sweep batch last, and the combined dataset, the summary and the
-    sweep report then ran after it with a core idle (65 s with -j2, 1.72 times
-    faster than -j1). Longest-processing-time-first leaves short jobs for the
-    end, where they fill both cores; the paper point's geometry and loaded TCA
-    (1-2 s each) go first because every report and aggregate waits for them
-    (left to the end by their length, they held all of those back: 82 s).
-
-    Parameters
-    ----------
-    rule : str
-        A rule of the workflow.
-
-    Returns
-    -------
-    int
-        Above every measured rule for :data:`GATE_RULES` (the first highest), else
-        the rule's measured job seconds (:data:`JOB_SECONDS`; 0 for a rule not
-        measured there).
-    """
-    if rule in GATE_RULES:
-        return max(JOB_SECONDS.values()) + len(GATE_RULES) - GATE_RULES.index(rule)
-    return JOB_SECONDS.get(rule, 0)
 
 
 # ---------------------------------------------------------------- the study

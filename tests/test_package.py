@@ -33,7 +33,8 @@ LAYERS = (
     ("summary", "sweep_dataset"),
     ("tables",),
     ("figures",),
-    ("reports", "workflow", "config_check", "resources", "stages", "sweep_checks"),
+    ("reports", "job_order", "workflow", "config_check", "resources", "stages",
+     "sweep_checks"),
     ("cli",),
 )
 MAX_LINES = 620

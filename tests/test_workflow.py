@@ -24,6 +24,8 @@ import pytest
 import xarray as xr
 import yaml
 
+from lsbg import job_order
+
 REPO = Path(__file__).resolve().parents[1]
 SNAKEFILE = REPO / "Snakefile"
 TEST_CONFIG = "workflow/config-test.yaml"
@@ -129,6 +131,18 @@ def test_default_and_test_configs_are_valid_and_plan_the_study(tmp_path):
     assert written["simulation"]["duration_s"] == config["simulation"]["duration_s"]
     assert written["flank_modification"]["lengthwise_crowning_um"] == 25
     assert written["misalignment_map"]["sweep_steps"] == config["misalignment_map"]["sweep_steps"]
+
+
+def test_job_order_knows_the_studys_rule_graph(tmp_path):
+    """lsbg.job_order.WAITING is the default study's rule graph (without the gates and
+    'all'), so that the priorities follow the real chains of jobs."""
+    proc = snakemake("--rulegraph", "--snakefile", SNAKEFILE, cwd=tmp_path, check=True)
+    labels = dict(re.findall(r"^\s*(\d+)\[label = \"(\w+)\"", proc.stdout, re.M))
+    edges = {(labels[a], labels[b]) for a, b in re.findall(r"^\s*(\d+) -> (\d+)$",
+                                                            proc.stdout, re.M)}
+    graph = {(a, b) for a, b in edges if b != "all" and a not in job_order.GATE_RULES}
+    assert graph == {(a, b) for a, later in job_order.WAITING.items() for b in later}
+    assert set(labels.values()) - {"all"} == set(job_order.JOB_SECONDS)
 
 
 def test_rules_list_the_lsbg_files_they_run(tmp_path):

@@ -11,6 +11,7 @@ import pytest
 import yaml
 from snakemake.utils import validate
 
+from lsbg import job_order
 from lsbg import workflow as plan
 
 REPO = Path(__file__).resolve().parents[1]
@@ -236,15 +237,24 @@ def _rule_priorities():
     return found
 
 
-def test_jobs_run_longest_first_after_the_paper_points_gates():
+def test_jobs_run_highest_level_first_after_the_paper_points_gates():
     priorities = _rule_priorities()
     assert priorities == {rule: rule for rule in priorities}     # each rule names itself
     assert set(priorities) == set(plan.JOB_SECONDS) | set(plan.GATE_RULES)
+    assert set(priorities) == set(job_order.WAITING) | set(plan.GATE_RULES)
     gates = [plan.job_priority(rule) for rule in plan.GATE_RULES]
     assert gates == sorted(gates, reverse=True) and len(set(gates)) == len(gates)
-    assert all(min(gates) > plan.job_priority(rule) for rule in plan.JOB_SECONDS)
-    for a in plan.JOB_SECONDS:
-        for b in plan.JOB_SECONDS:
-            assert (plan.JOB_SECONDS[a] > plan.JOB_SECONDS[b]) == \
-                (plan.job_priority(a) > plan.job_priority(b)), (a, b)
+    others = [rule for rule in priorities if rule not in plan.GATE_RULES]
+    assert all(min(gates) > plan.job_priority(rule) for rule in others)
+    # a job starts before every job that waits for it
+    for rule, waiting in job_order.WAITING.items():
+        for later in waiting:
+            assert plan.job_priority(rule) > plan.job_priority(later), (rule, later)
+    # the FE compliance's chain to the paper report, summed by hand
+    seconds = plan.JOB_SECONDS
+    chain = ("tooth_compliance", "fe_ltca", "sensitivity", "rating", "report_paper")
+    assert job_order.level("tooth_compliance") == pytest.approx(sum(seconds[r] for r in chain))
+    assert plan.job_priority("tooth_compliance") == round(10 * sum(seconds[r] for r in chain))
+    # ... which now starts before the convergence runs that used to hold it back
+    assert plan.job_priority("fe_ltca") > plan.job_priority("convergence_point")
     assert plan.job_priority("speed_run") == 0        # not measured: after the study's jobs
