@@ -25,7 +25,8 @@ import pytest
 
 from lsbg.design import GearPairDesign
 from lsbg.geometry import GearPair
-from lsbg.tca.analysis import MARKING_COMPOUND, designed_transmission_error, tooth_contact_analysis
+from lsbg.tca.analysis import (MARKING_COMPOUND, designed_transmission_error, tooth_contact_analysis,
+                               tooth_contact_summary)
 from lsbg.tca.misalignment import Misalignment
 from lsbg.tca.modification import FlankModification
 
@@ -199,6 +200,16 @@ def test_two_runs_are_identical(pairs):
         other = second.attrs[key]
         assert (value == other) or (isinstance(value, float) and math.isnan(value)
                                     and math.isnan(other)), key
+
+
+def test_summary_is_the_analysis_attributes(pairs):
+    # what a V-H map's cells read: the same values without the arrays
+    pair = pairs["circular"]
+    shift = Misalignment(pinion_axial=5e-5, offset=-2e-5)
+    summary = tooth_contact_summary(pair, CROWNED, shift, positions=24)
+    assert summary == tooth_contact_analysis(pair, CROWNED, shift, positions=24).attrs
+    with pytest.raises(ValueError, match="lose contact"):
+        tooth_contact_summary(pair, CROWNED, Misalignment(gear_axial=20e-3), positions=8)
 
 
 def test_bad_input_is_rejected_by_name(pairs):

@@ -325,70 +325,18 @@ def tooth_contact_analysis(pair, modification=None, misalignment=None, positions
     """
     import xarray as xr
 
-    import lsbg
-
-    if isinstance(positions, bool) or int(positions) != positions or positions < 8:
-        raise ValueError(f"positions = {positions!r}: must be a whole number >= 8")
-    if not (math.isfinite(marking) and marking > 0):
-        raise ValueError(f"marking = {marking!r}: must be a number > 0 [m]")
-    surface_pair = SurfacePair.build(pair, modification, misalignment, *(grid or (None, None)))
-    modification, misalignment = surface_pair.modification, surface_pair.misalignment
-    design = pair.design
-    z1, z2 = design.teeth
-    angles = mesh_cycle_pinion_angles(pair, positions)
-    out, raster, limits = search(surface_pair, angles, marking)
-    lost = ~np.isfinite(out[:, surface.O_PHI2])
-    if lost.any():
-        raise ValueError(f"misalignment {_shown(misalignment)}: the flanks lose contact at "
-                         f"{int(lost.sum())} of {positions} mesh positions")
-    te = angles * z1 / z2 - out[:, surface.O_PHI2]
-    play = backlash(surface_pair, angles, out)
-    design_play = design.backlash / design.mean_pitch_radius(2)   # j_t / r_m2
-    if play.min() <= 0.0:
-        raise ValueError(f"misalignment {_shown(misalignment)}: the members interfere (the coast "
-                         f"flanks close the backlash: {play.min() * 1e6:.4g} urad of free play "
-                         f"left of {design_play * 1e6:.4g})")
+    found = _search_mesh_cycle(pair, modification, misalignment, positions, marking, grid)
+    out, raster, limits, angles = found["out"], found["raster"], found["limits"], found["angles"]
+    te, play = found["transmission_error"], found["backlash"]
     centre, semi_major, semi_minor, major = contact_ellipses(out)
     generator = centre / np.maximum(np.linalg.norm(centre, axis=1), 1e-300)[:, None]
     angle = np.degrees(np.arccos(np.clip(np.abs(np.sum(major * generator, 1)), 0, 1)))
     chart_centre, chart_major, chart_minor, chart_angle = chart_ellipses(out)
-    edges = out[:, surface.O_TOE:surface.O_ROOT + 1].astype(np.int8)
+    edges = found["edges"]
     rho, theta = raster_centres(raster.shape, limits)
     height = profile_height(pair, *np.meshgrid(rho, theta, indexing="ij"))
-    pattern = bearing_pattern(raster, limits, pair, marking)
     contact_rho, contact_theta = out[:, surface.O_R2], out[:, surface.O_THETA2]
-    attrs = {
-        "Conventions": "CF-1.11",
-        "title": f"Tooth contact analysis of a {design.trace} spiral bevel gear pair "
-                 f"({z1}:{z2}, spiral angle {math.degrees(design.spiral_angle):g} deg)",
-        "source": f"lsbg {lsbg.__version__} (lsbg.tca.analysis.tooth_contact_analysis), "
-                  f"exact flank surfaces",
-        "lsbg_version": lsbg.__version__,
-        "positions": int(positions),
-        "grid_points": f"{surface_pair.grid_shape[0]} x {surface_pair.grid_shape[1]}",
-        "marking_compound_um": marking * 1e6,
-        "transmission_error_peak_to_peak_urad": float(np.ptp(te) * 1e6),
-        "transmission_error_peak_to_peak_arcsec": float(np.ptp(te) * 180 / math.pi * 3600),
-        "transmission_error_mean_urad": float(te.mean() * 1e6),
-        "backlash_min_urad": float(play.min() * 1e6),
-        "backlash_design_urad": design_play * 1e6,
-        "designed_transmission_error_peak_to_peak_urad":
-            designed_transmission_error(pair, modification) * 1e6,
-        "pattern_centre_cone_distance_mm": pattern["centre_cone_distance"] * 1e3,
-        "pattern_centre_height_mm": pattern["centre_height"] * 1e3,
-        "pattern_toe_mm": pattern["toe"] * 1e3,
-        "pattern_heel_mm": pattern["heel"] * 1e3,
-        "pattern_length_mm": pattern["length"] * 1e3,
-        "pattern_length_per_face_width": pattern["length"] / design.face_width,
-        "pattern_height_mm": pattern["height"] * 1e3,
-        **{f"edge_contact_share_{name}": float(edges[:, i].mean())
-           for i, name in enumerate(surface.EDGES)},
-        "edge_contact_share": float(edges.any(axis=1).mean()),
-        "mean_cone_distance_mm": design.mean_cone_distance * 1e3,
-        "face_width_mm": design.face_width * 1e3,
-        **flank_attributes(modification, misalignment),
-        **{f"design_{k}": v for k, v in design.to_config().items()},
-    }
+    attrs = found["attrs"]
     phase = ("mesh_phase",)
     return xr.Dataset(
         {
@@ -454,6 +402,97 @@ def tooth_contact_analysis(pair, modification=None, misalignment=None, positions
             "profile_height": (("cone_distance", "polar_angle"), height * 1e3, {
                 "units": "mm", "long_name": "gear flank: height above the root cone"}),
         },
-        attrs={k: (float(v) if isinstance(v, (np.floating, np.integer)) else v)
-               for k, v in attrs.items()},
+        attrs=attrs,
     )
+
+
+def tooth_contact_summary(pair, modification=None, misalignment=None, positions=POSITIONS,
+                          marking=MARKING_COMPOUND, grid=None):
+    """The attributes of :func:`tooth_contact_analysis` without its arrays.
+
+    A V-H map needs only the transmission error's peak to peak, the pattern
+    and the edge-contact share of each cell; this skips the contact
+    ellipses and the dataset.
+
+    Parameters
+    ----------
+    pair, modification, misalignment, positions, marking, grid
+        As :func:`tooth_contact_analysis`.
+
+    Returns
+    -------
+    dict
+        The dataset's attributes, the same values.
+
+    Raises
+    ------
+    ValueError
+        As :func:`tooth_contact_analysis`.
+    """
+    return _search_mesh_cycle(pair, modification, misalignment, positions, marking,
+                              grid)["attrs"]
+
+
+def _search_mesh_cycle(pair, modification, misalignment, positions, marking, grid):
+    """The contact search over one mesh cycle, its checks and the summary attributes."""
+    import lsbg
+
+    if isinstance(positions, bool) or int(positions) != positions or positions < 8:
+        raise ValueError(f"positions = {positions!r}: must be a whole number >= 8")
+    if not (math.isfinite(marking) and marking > 0):
+        raise ValueError(f"marking = {marking!r}: must be a number > 0 [m]")
+    surface_pair = SurfacePair.build(pair, modification, misalignment, *(grid or (None, None)))
+    modification, misalignment = surface_pair.modification, surface_pair.misalignment
+    design = pair.design
+    z1, z2 = design.teeth
+    angles = mesh_cycle_pinion_angles(pair, positions)
+    out, raster, limits = search(surface_pair, angles, marking)
+    lost = ~np.isfinite(out[:, surface.O_PHI2])
+    if lost.any():
+        raise ValueError(f"misalignment {_shown(misalignment)}: the flanks lose contact at "
+                         f"{int(lost.sum())} of {positions} mesh positions")
+    te = angles * z1 / z2 - out[:, surface.O_PHI2]
+    play = backlash(surface_pair, angles, out)
+    design_play = design.backlash / design.mean_pitch_radius(2)   # j_t / r_m2
+    if play.min() <= 0.0:
+        raise ValueError(f"misalignment {_shown(misalignment)}: the members interfere (the coast "
+                         f"flanks close the backlash: {play.min() * 1e6:.4g} urad of free play "
+                         f"left of {design_play * 1e6:.4g})")
+    edges = out[:, surface.O_TOE:surface.O_ROOT + 1].astype(np.int8)
+    pattern = bearing_pattern(raster, limits, pair, marking)
+    attrs = {
+        "Conventions": "CF-1.11",
+        "title": f"Tooth contact analysis of a {design.trace} spiral bevel gear pair "
+                 f"({z1}:{z2}, spiral angle {math.degrees(design.spiral_angle):g} deg)",
+        "source": f"lsbg {lsbg.__version__} (lsbg.tca.analysis.tooth_contact_analysis), "
+                  f"exact flank surfaces",
+        "lsbg_version": lsbg.__version__,
+        "positions": int(positions),
+        "grid_points": f"{surface_pair.grid_shape[0]} x {surface_pair.grid_shape[1]}",
+        "marking_compound_um": marking * 1e6,
+        "transmission_error_peak_to_peak_urad": float(np.ptp(te) * 1e6),
+        "transmission_error_peak_to_peak_arcsec": float(np.ptp(te) * 180 / math.pi * 3600),
+        "transmission_error_mean_urad": float(te.mean() * 1e6),
+        "backlash_min_urad": float(play.min() * 1e6),
+        "backlash_design_urad": design_play * 1e6,
+        "designed_transmission_error_peak_to_peak_urad":
+            designed_transmission_error(pair, modification) * 1e6,
+        "pattern_centre_cone_distance_mm": pattern["centre_cone_distance"] * 1e3,
+        "pattern_centre_height_mm": pattern["centre_height"] * 1e3,
+        "pattern_toe_mm": pattern["toe"] * 1e3,
+        "pattern_heel_mm": pattern["heel"] * 1e3,
+        "pattern_length_mm": pattern["length"] * 1e3,
+        "pattern_length_per_face_width": pattern["length"] / design.face_width,
+        "pattern_height_mm": pattern["height"] * 1e3,
+        **{f"edge_contact_share_{name}": float(edges[:, i].mean())
+           for i, name in enumerate(surface.EDGES)},
+        "edge_contact_share": float(edges.any(axis=1).mean()),
+        "mean_cone_distance_mm": design.mean_cone_distance * 1e3,
+        "face_width_mm": design.face_width * 1e3,
+        **flank_attributes(modification, misalignment),
+        **{f"design_{k}": v for k, v in design.to_config().items()},
+    }
+    attrs = {k: (float(v) if isinstance(v, (np.floating, np.integer)) else v)
+             for k, v in attrs.items()}
+    return {"out": out, "raster": raster, "limits": limits, "angles": angles,
+            "transmission_error": te, "backlash": play, "edges": edges, "attrs": attrs}

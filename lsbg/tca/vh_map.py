@@ -5,7 +5,7 @@ displacements of the pinion on the test machine) shifts the members and
 watches the bearing pattern and the transmission error. :func:`misalignment_map`
 does it on a grid of two of the displacements E, P, G, Sigma
 (:mod:`lsbg.tca.misalignment`): at each cell the unloaded TCA from the
-surfaces (:func:`lsbg.tca.analysis.tooth_contact_analysis`) and the loaded TCA
+surfaces (:func:`lsbg.tca.analysis.tooth_contact_summary`) and the loaded TCA
 of the line model on the same separation field (:func:`lsbg.ltca.loaded_tca`).
 The pattern's movement per 0.1 mm (or 0.1 degree) of each displacement is the
 sensitivity a designer reads off it: the less the pattern and the
@@ -20,7 +20,7 @@ import numpy as np
 
 from lsbg.contact import ContactParameters, MeshContact
 from lsbg.ltca import loaded_tca
-from lsbg.tca.analysis import MARKING_COMPOUND, tooth_contact_analysis
+from lsbg.tca.analysis import MARKING_COMPOUND, tooth_contact_summary
 from lsbg.tca.misalignment import DISPLACEMENTS, Misalignment
 from lsbg.tca.modification import FlankModification, flank_attributes
 from lsbg.tca.separation import separation_field
@@ -144,8 +144,8 @@ def misalignment_map(pair, modification=None, axes=DEFAULT_AXES, values=None, lo
             try:
                 tca = unloaded.get(key) if unloaded is not None else None
                 if tca is None:
-                    tca = tooth_contact_analysis(pair, modification, shifted, positions, marking,
-                                                 grid)
+                    tca = tooth_contact_summary(pair, modification, shifted, positions, marking,
+                                                grid)
                 if unloaded is not None:
                     unloaded[key] = tca
             except ValueError as err:
@@ -155,13 +155,13 @@ def misalignment_map(pair, modification=None, axes=DEFAULT_AXES, values=None, lo
                                   separation=separation_field(pair, modification, shifted))
             loaded = loaded_tca(contact, load_torque, phases)
             result["transmission_error_unloaded_pp"][i, j] = \
-                tca.attrs["transmission_error_peak_to_peak_urad"]
+                tca["transmission_error_peak_to_peak_urad"]
             result["transmission_error_loaded_pp"][i, j] = \
                 loaded.attrs["transmission_error_peak_to_peak_urad"]
-            result["pattern_cone_distance"][i, j] = tca.attrs["pattern_centre_cone_distance_mm"]
-            result["pattern_height"][i, j] = tca.attrs["pattern_centre_height_mm"]
-            result["pattern_length"][i, j] = tca.attrs["pattern_length_mm"]
-            result["edge_contact_share"][i, j] = tca.attrs["edge_contact_share"]
+            result["pattern_cone_distance"][i, j] = tca["pattern_centre_cone_distance_mm"]
+            result["pattern_height"][i, j] = tca["pattern_centre_height_mm"]
+            result["pattern_length"][i, j] = tca["pattern_length_mm"]
+            result["edge_contact_share"][i, j] = tca["edge_contact_share"]
             result["edge_load_share"][i, j] = loaded.attrs["edge_load_share"]
     centre = tuple(int(np.flatnonzero(v == 0.0)[0]) for v in values)
     result["pattern_shift_lengthwise"] = (result["pattern_cone_distance"]
