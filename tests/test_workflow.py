@@ -351,6 +351,12 @@ def test_study_renders_the_reports(study, name):
     assert [level for level, _ in headings].count("2") >= 3, headings
     assert html.count("data:image/png;base64,") >= 1
     assert "Traceback" not in html
+    # numbers read as in a paper (lsbg.stats.format_number): no e-notation in the text
+    text = re.sub(r"<[^>]+>", " ", re.sub(r"<(style|script)\b.*?</\1>|data:[^\"']+", " ",
+                                          html, flags=re.DOTALL))
+    e_notation = [text[max(m.start() - 60, 0):m.end()]
+                  for m in re.finditer(r"\b\d+(?:\.\d+)?e[+-]\d+\b", text)]
+    assert not e_notation, e_notation
 
 
 @pytest.mark.slow
