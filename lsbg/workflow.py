@@ -477,10 +477,13 @@ class Study:
                         point=patterns[i])
                 for t in sweep.traces for a in sweep.spiral_angles for i in chosen]
 
+    def sensitivity_run(self, trace, case):
+        """The run of one sensitivity case at the paper's point of ``trace``."""
+        return _format(FILES["sensitivity_run"], trace=trace, spiral=self.paper_spiral, case=case)
+
     def sensitivity_runs(self, trace=None):
         traces = PAPER_TRACES if trace is None else (trace,)
-        return [_format(FILES["sensitivity_run"], trace=t, spiral=self.paper_spiral, case=case)
-                for case in self.sensitivity for t in traces]
+        return [self.sensitivity_run(t, case) for case in self.sensitivity for t in traces]
 
     # --------------------------------------------------------- verification
     def convergence_engines(self, model):

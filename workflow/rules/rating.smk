@@ -32,8 +32,8 @@ rule rating:
         tooth=plan.canonical(config["tooth"]),
         run=lambda wildcards, input: f"--run {input.run}" if input.run else "",
         case_runs=lambda wildcards, input: " ".join(
-            f"--case-run '{case}={path}'" for case, path in zip(STUDY.sensitivity,
-                                                               input.case_runs)),
+            f"--case-run '{case}={STUDY.sensitivity_run(wildcards.trace, case)}'"
+            for case in STUDY.sensitivity) if input.case_runs else "",
     wildcard_constraints:
         spiral=re.escape(PAPER_SPIRAL),
     priority: plan.job_priority("rating")
