@@ -102,28 +102,31 @@ def sweep_problems(config, check):
     Returns
     -------
     list of str
-        Starting with ``sweeps.<name>``.
+        Starting with ``sweeps.<name>``. Sweeps of more than
+        :data:`MAX_SWEEP_RUNS` runs together get that one line (beside the
+        sweeps that cannot be read), their points unchecked.
     """
-    problems = []
-    runs = 0
+    problems, parsed = [], []
     for name, spec in (config.get("sweeps") or {}).items():
         try:
             (sweep,) = sweeps_from_config({**config, "sweeps": {name: spec}})
         except ValueError as error:
             problems.append(str(error))
             continue
+        parsed.append((name, spec, sweep))
+    runs = sum(len(s.points) * len(s.traces) * len(s.spiral_angles) for _, _, s in parsed)
+    if runs > MAX_SWEEP_RUNS:
+        # first: checking each of thousands of points would take minutes
+        return problems + [f"sweeps: {runs} runs in all, more than the resource guard's "
+                           f"{MAX_SWEEP_RUNS} (split the study, or run it on a cluster with "
+                           f"a larger limit)"]
+    for name, spec, sweep in parsed:
         found = _key_problems(name, sweep, config) + _point_problems(name, sweep, spec, config)
         if not found:
             found = _name_problems(name, sweep) or _value_problems(name, sweep, config, check)
-        for option, value in (("batch_size", sweep.batch_size),):
-            if value < 1:
-                found.append(f"sweeps.{name}.{option} = {value!r}: must be at least 1")
+        if sweep.batch_size < 1:
+            found.append(f"sweeps.{name}.batch_size = {sweep.batch_size!r}: must be at least 1")
         problems += found
-        runs += len(sweep.points) * len(sweep.traces) * len(sweep.spiral_angles)
-    if runs > MAX_SWEEP_RUNS:
-        problems.append(f"sweeps: {runs} runs in all, more than the resource guard's "
-                        f"{MAX_SWEEP_RUNS} (split the study, or run it on a cluster with a "
-                        f"larger limit)")
     return problems
 
 
