@@ -221,14 +221,16 @@ def write_step(pair, member, path, relief=None):
         # the solid alone: not the loft's section points and curves (build_solid)
         gmsh.model.setVisibility(gmsh.model.getEntities(), 0)
         gmsh.model.setVisibility([(3, solid)], 1, recursive=True)
-        only_visible = gmsh.option.getNumber("Geometry.OCCExportOnlyVisible")
-        gmsh.option.setNumber("Geometry.OCCExportOnlyVisible", 1)
         # the model is in metres; OCC's writer converts to the file's millimetres
         gmsh.option.setString("Geometry.OCCTargetUnit", "M")
         part = path.with_name(path.name + ".part.step")
-        with _quiet():
-            gmsh.write(str(part))
-        gmsh.option.setNumber("Geometry.OCCExportOnlyVisible", only_visible)
+        only_visible = gmsh.option.getNumber("Geometry.OCCExportOnlyVisible")
+        gmsh.option.setNumber("Geometry.OCCExportOnlyVisible", 1)
+        try:
+            with _quiet():
+                gmsh.write(str(part))
+        finally:  # a gmsh session shared with the caller gets its option back
+            gmsh.option.setNumber("Geometry.OCCExportOnlyVisible", only_visible)
         gmsh.model.remove()
     finally:
         if started:
