@@ -9,7 +9,7 @@
 # workflow/schemas/config.schema.yaml before any job runs) holds the design, the
 # sweep, the engines, the simulation, contact, contact-state and statistics
 # settings. Rules live in workflow/rules/*.smk and call the lsbg command line
-# only; the plan (config checks, design points, file names) is lsbg.workflow,
+# only; the plan (config checks, design points, file names) is lsbg.study.plan,
 # glued in by workflow/rules/common.smk. The speed sweep
 # (workflow/rules/speed.smk, e.g. --configfile workflow/config-speed.yaml) and
 # extensions (workflow/extensions/*.smk) are included when `extensions:` names them.
@@ -53,7 +53,7 @@ for extension in config["extensions"]:
 
 
 # results/config.yaml (the settings lsbg reads) follows the configuration of
-# every run that executes jobs (see lsbg.workflow.write_study_config).
+# every run that executes jobs (see lsbg.study.plan.write_study_config).
 onstart:
     plan.write_study_config(FILES["study_config"], config)
 

@@ -24,7 +24,7 @@ from pathlib import Path
 
 import lsbg
 from lsbg.files import remove_stale_temporaries, temporary_beside
-from lsbg.results import write_atomically
+from lsbg.files import write_atomically
 from lsbg.tables.style import format_table
 
 __all__ = ["NOTEBOOK_DIR", "PATH_PARAMETER_SUFFIXES", "ReportError", "notebook_path",

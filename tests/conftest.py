@@ -2,13 +2,13 @@
 
 import pytest
 
-from lsbg.combine import combine_runs
+from lsbg.aggregate.combine import combine_runs
 from lsbg.contact import ContactParameters
-from lsbg.design import GearPairDesign
+from lsbg.gear.design import GearPairDesign
 from lsbg.dynamics import SimulationSettings, simulate
-from lsbg.export import write_geometry
-from lsbg.ltca import ltca_for_geometry
-from lsbg.results import write_dataset
+from lsbg.solid.export import write_geometry
+from lsbg.tca.loaded import ltca_for_geometry
+from lsbg.files import write_dataset
 
 SHORT = SimulationSettings(duration=0.05, samples=25, ramp_time=0.01)
 # 26 instants 0, 0.002, ..., 0.05 s: 20 samples after 0.01 s, 4 subgroups of 5.

@@ -14,11 +14,11 @@ import yaml
 
 from lsbg import cli
 from lsbg.contact import ContactParameters
-from lsbg.design import GearPairDesign
+from lsbg.gear.design import GearPairDesign
 from lsbg.dynamics import SimulationSettings, load_model, simulate
-from lsbg.export import write_geometry
-from lsbg.geometry import GearPair
-from lsbg.ltca import ltca_for_geometry
+from lsbg.solid.export import write_geometry
+from lsbg.gear.geometry import GearPair
+from lsbg.tca.loaded import ltca_for_geometry
 from lsbg.tca.analysis import tooth_contact_analysis
 from lsbg.tca.modification import FlankModification
 from lsbg.tca.misalignment import Misalignment

@@ -12,9 +12,9 @@ import pytest
 import xarray as xr
 
 from lsbg import cli
-from lsbg.design import GearPairDesign
-from lsbg.export import write_geometry
-from lsbg.results import write_dataset
+from lsbg.gear.design import GearPairDesign
+from lsbg.solid.export import write_geometry
+from lsbg.files import write_dataset
 
 
 @pytest.fixture(scope="module")
@@ -118,8 +118,8 @@ def no_work(monkeypatch):
     # is imported before the patch, or it would keep the stand-in after this test
     import lsbg.tca.vh_map  # noqa: F401
 
-    for target in ("lsbg.dynamics.model.MeshingModel.run", "lsbg.export.write_geometry",
-                   "lsbg.ltca.loaded_tca", "lsbg.verification.convergence_study"):
+    for target in ("lsbg.dynamics.model.MeshingModel.run", "lsbg.solid.export.write_geometry",
+                   "lsbg.tca.loaded.loaded_tca", "lsbg.experiments.verification.convergence_study"):
         monkeypatch.setattr(target, started)
 
 

@@ -7,9 +7,9 @@ import xarray as xr
 import yaml
 
 from lsbg import cli
-from lsbg.design import GearPairDesign
-from lsbg.export import write_geometry
-from lsbg.runs import steady
+from lsbg.gear.design import GearPairDesign
+from lsbg.solid.export import write_geometry
+from lsbg.aggregate.runs import steady
 
 SHORT = {"simulation": {"duration_s": 0.05, "samples": 25, "ramp_time_s": 0.01,
                         "full_rate_after_s": 0.01},

@@ -12,8 +12,8 @@ import xarray as xr
 import yaml
 
 from lsbg import cli
-from lsbg.design import GearPairDesign
-from lsbg.export import write_geometry
+from lsbg.gear.design import GearPairDesign
+from lsbg.solid.export import write_geometry
 from lsbg.tooth.config import tooth_from_config
 
 REPO = Path(__file__).resolve().parents[1]
@@ -146,7 +146,7 @@ def deep_update(base, over):
 
 
 def test_the_configuration_check_names_the_tooth_keys():
-    from lsbg.config_check import check_config
+    from lsbg.study.checks import check_config
 
     schema = yaml.safe_load((REPO / "workflow/schemas/config.schema.yaml").read_text())
     base = yaml.safe_load((REPO / "workflow/config.yaml").read_text())
@@ -271,7 +271,7 @@ def test_a_case_run_rates_the_pair_with_its_own_dynamic_factor(point, tmp_path):
     """`lsbg rate --case-run`: the pair rated again with each case run's K_v is the
     rating with that K_v given as a number (rating.dynamic_factor), and the cases
     differ from the base only where K_v does."""
-    from lsbg.summary import run_dynamic_factor
+    from lsbg.aggregate.summary import run_dynamic_factor
 
     runs = {}
     for name, damping in (("base", 0.05), ("mesh_damping_ratio_x0.2", 0.01)):

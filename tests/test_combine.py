@@ -1,12 +1,13 @@
-"""The sweep dataset of short real runs (lsbg.combine), through the API and the CLI."""
+"""The sweep dataset of short real runs (lsbg.aggregate.combine), through the API and the CLI."""
 
 import numpy as np
 import pytest
 import xarray as xr
 
 from lsbg import cli
-from lsbg.combine import combine_runs
-from lsbg.results import FULL_RATE_VARIABLES, VARIABLES, write_dataset
+from lsbg.aggregate.combine import combine_runs
+from lsbg.dynamics.dataset import FULL_RATE_VARIABLES, VARIABLES
+from lsbg.files import write_dataset
 
 
 def test_combine_runs_dims_coordinates_and_units(sweep, runs):
@@ -170,7 +171,7 @@ def _points(traces=("logarithmic", "circular"), angles=(30.0, 35.0)):
 
 
 def test_add_contact_state_stacks_tcas_and_maps_on_the_union_grid():
-    from lsbg.combine import TCA_VARIABLES, add_contact_state
+    from lsbg.aggregate.combine import TCA_VARIABLES, add_contact_state
 
     sweep = _points()
     tcas = [synthetic_tca("logarithmic", 35.0, te_pp=48.0),
@@ -216,7 +217,7 @@ def test_add_contact_state_stacks_tcas_and_maps_on_the_union_grid():
 
 
 def test_add_contact_state_adds_design_points_the_runs_lack():
-    from lsbg.combine import add_contact_state
+    from lsbg.aggregate.combine import add_contact_state
 
     out = add_contact_state(_points(traces=("logarithmic",), angles=(30.0,)),
                             vh_maps=[synthetic_vh_map("circular", 35.0, axes=("G", "Sigma"))])
@@ -233,7 +234,7 @@ def test_add_contact_state_adds_design_points_the_runs_lack():
 
 
 def test_add_contact_state_rejects_duplicates_and_other_axes():
-    from lsbg.combine import add_contact_state
+    from lsbg.aggregate.combine import add_contact_state
 
     twice = synthetic_tca()
     twice.encoding["source"] = "results/tca/logarithmic_beta35.nc"

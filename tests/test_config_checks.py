@@ -1,7 +1,7 @@
-"""The complete configuration check (lsbg.config_check): every invalid value is rejected
+"""The complete configuration check (lsbg.study.checks): every invalid value is rejected
 before any job, naming the user's key path and value.
 
-Most cases run through :func:`lsbg.config_check.check_config`, the function
+Most cases run through :func:`lsbg.study.checks.check_config`, the function
 workflow/rules/common.smk calls: a fuzz suite generated from the schema
 (every key with a wrong type, out of its range, NaN/inf, empty, duplicated,
 rounded to an existing file name, and unknown keys) and the checks beyond the
@@ -20,9 +20,9 @@ from pathlib import Path
 import pytest
 import yaml
 
-from lsbg import config_check, resources, stages, workflow as plan
-from lsbg.design import GearPairDesign
-from lsbg.geometry import GearPair
+from lsbg.study import checks as config_check, resources, stages, plan
+from lsbg.gear.design import GearPairDesign
+from lsbg.gear.geometry import GearPair
 
 REPO = Path(__file__).resolve().parents[1]
 SCHEMA = yaml.safe_load((REPO / "workflow" / "schemas" / "config.schema.yaml")

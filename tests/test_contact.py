@@ -427,9 +427,9 @@ import pytest  # noqa: E402
 from scipy.optimize import least_squares  # noqa: E402
 
 from lsbg.contact import MeshContact  # noqa: E402
-from lsbg.design import GearPairDesign  # noqa: E402
-from lsbg.geometry import GearPair  # noqa: E402
-from lsbg.vectors import rotate  # noqa: E402
+from lsbg.gear.design import GearPairDesign  # noqa: E402
+from lsbg.gear.geometry import GearPair  # noqa: E402
+from lsbg.gear.vectors import rotate  # noqa: E402
 
 LOAD = 1964.99
 

@@ -7,12 +7,12 @@ import math
 import numpy as np
 import pytest
 
-from lsbg import ltca
+from lsbg.tca import loaded as ltca
 from lsbg.contact import ContactParameters, MeshContact
 from lsbg.contact import kernels as k
 from lsbg.contact.slices import SliceStiffness
-from lsbg.design import GearPairDesign
-from lsbg.geometry import GearPair
+from lsbg.gear.design import GearPairDesign
+from lsbg.gear.geometry import GearPair
 
 LOAD = 1964.99
 LINE = ContactParameters(model="line")

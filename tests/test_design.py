@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from lsbg.design import DesignError, GearPairDesign
+from lsbg.gear.design import DesignError, GearPairDesign
 
 
 @pytest.fixture(scope="module")

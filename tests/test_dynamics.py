@@ -5,12 +5,12 @@ import math
 import numpy as np
 import pytest
 
-from lsbg import theory
+from lsbg.gear import theory
 from lsbg.contact import ContactParameters
-from lsbg.design import GearPairDesign
+from lsbg.gear.design import GearPairDesign
 from lsbg.dynamics import (MeshingModel, SimulationError, SimulationSettings, load_model,
                            pinion_motion, simulate)
-from lsbg.export import read_design, write_geometry
+from lsbg.solid.export import read_design, write_geometry
 
 PAPER = SimulationSettings()
 THEORY_SPEED = theory.gear_speed(7703.0, 9, 37)  # 1873.703 deg/s

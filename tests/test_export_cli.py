@@ -6,10 +6,11 @@ import math
 import numpy as np
 import pytest
 
-from lsbg import cli, export, render
-from lsbg.design import CONFIG_KEYS, GearPairDesign
-from lsbg.geometry import GearPair
-from lsbg.polyhedra import read_stl
+from lsbg import cli
+from lsbg.solid import export, render
+from lsbg.gear.design import CONFIG_KEYS, GearPairDesign
+from lsbg.gear.geometry import GearPair
+from lsbg.solid.polyhedra import read_stl
 
 FILES = ("design.json", "flanks.nc", "pinion.stl", "gear.stl",
          "pair.urdf", "pair.png", "manifest.json", "pinion.step", "gear.step")

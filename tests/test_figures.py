@@ -36,10 +36,10 @@ from lsbg.figures import (geometry as geometry_figures, mesh as mesh_figures,
                           statistics as statistics_figures, timeseries as timeseries_figures,
                           trends as trend_figures, verification as verification_figures)
 from lsbg.figures.base import axis_label, display_unit, wrap_label
-from lsbg.files import read_design
+from lsbg.solid.directory import read_design
 from lsbg.reports import figure_png
-from lsbg.results import open_run
-from lsbg.runs import open_mesh
+from lsbg.dynamics.dataset import open_run
+from lsbg.aggregate.runs import open_mesh
 from lsbg.tables import line_model as line_tables, paper as paper_tables
 from lsbg.tables import verification as verification_tables
 

@@ -17,10 +17,10 @@ from matplotlib.contour import QuadContourSet
 from matplotlib.figure import Figure
 from matplotlib.patches import Ellipse
 
-from lsbg.design import GearPairDesign
+from lsbg.gear.design import GearPairDesign
 from lsbg.figures import contact_state
 from lsbg.figures.base import MAX_WIDTH, type_color
-from lsbg.geometry import GearPair
+from lsbg.gear.geometry import GearPair
 from lsbg.tca.analysis import tooth_contact_analysis
 from lsbg.tca.modification import FlankModification
 from test_figures import assert_readable

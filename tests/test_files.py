@@ -15,10 +15,11 @@ from pathlib import Path
 import xarray as xr
 
 from lsbg import files
-from lsbg.design import GearPairDesign
-from lsbg.export import write_geometry
+from lsbg.solid import directory as geometry_files
+from lsbg.gear.design import GearPairDesign
+from lsbg.solid.export import write_geometry
 from lsbg.files import InputError, InputFileNotFoundError
-from lsbg.results import open_dataset, write_atomically, write_dataset
+from lsbg.files import open_dataset, write_atomically, write_dataset
 
 
 @pytest.fixture(scope="module")
@@ -40,7 +41,7 @@ def copy(geometry, tmp_path):
 def rehash(directory, name):
     """Update the manifest's entry of ``name`` as if lsbg had written the file (a forged
     manifest: only the checks after the hashes can catch what was edited)."""
-    path = directory / files.MANIFEST
+    path = directory / geometry_files.MANIFEST
     manifest = json.loads(path.read_text(encoding="utf-8"))
     manifest["files"][name] = {"bytes": (directory / name).stat().st_size,
                                "sha256": files.file_digest(directory / name)}
@@ -60,24 +61,24 @@ def edit_record(directory, **changes):
 
 # ----------------------------------------------------------------- manifest
 def test_manifest_lists_every_file_and_the_design_point(geometry):
-    manifest = json.loads((geometry / files.MANIFEST).read_text(encoding="utf-8"))
-    assert manifest["format"] == files.MANIFEST_FORMAT
+    manifest = json.loads((geometry / geometry_files.MANIFEST).read_text(encoding="utf-8"))
+    assert manifest["format"] == geometry_files.MANIFEST_FORMAT
     assert manifest["design_point"] == {"trace": "logarithmic", "spiral_angle_deg": 35.0}
-    assert manifest["design_sha256"] == files.design_digest(GearPairDesign().to_config())
-    assert sorted(manifest["files"]) == sorted(files.FILE_NAMES.values())
+    assert manifest["design_sha256"] == geometry_files.design_digest(GearPairDesign().to_config())
+    assert sorted(manifest["files"]) == sorted(geometry_files.FILE_NAMES.values())
     for name, entry in manifest["files"].items():
         assert entry == {"bytes": (geometry / name).stat().st_size,
                          "sha256": files.file_digest(geometry / name)}
-    assert files.read_design(geometry) == GearPairDesign()
+    assert geometry_files.read_design(geometry) == GearPairDesign()
 
 
 def test_manifest_is_deterministic(copy):
     """No time stamp: the same files give the same manifest, byte for byte."""
     directory = copy()
-    before = (directory / files.MANIFEST).read_bytes()
-    (directory / files.MANIFEST).unlink()
-    files.write_manifest(directory)
-    assert (directory / files.MANIFEST).read_bytes() == before
+    before = (directory / geometry_files.MANIFEST).read_bytes()
+    (directory / geometry_files.MANIFEST).unlink()
+    geometry_files.write_manifest(directory)
+    assert (directory / geometry_files.MANIFEST).read_bytes() == before
 
 
 def test_rerun_writes_the_same_bytes(geometry, tmp_path):
@@ -92,8 +93,8 @@ def test_rerun_writes_the_same_bytes(geometry, tmp_path):
 
 def test_design_digest_tells_design_points_apart():
     paper = GearPairDesign().to_config()
-    assert files.design_digest(paper) == files.design_digest(dict(reversed(paper.items())))
-    assert files.design_digest(paper) != files.design_digest({**paper, "spiral_angle_deg": 40.0})
+    assert geometry_files.design_digest(paper) == geometry_files.design_digest(dict(reversed(paper.items())))
+    assert geometry_files.design_digest(paper) != geometry_files.design_digest({**paper, "spiral_angle_deg": 40.0})
 
 
 def _spiral_40(d):
@@ -131,9 +132,9 @@ def _forged_spiral_40(d):
 
 
 def _manifest_without_urdf(d):
-    manifest = json.loads((d / files.MANIFEST).read_text(encoding="utf-8"))
+    manifest = json.loads((d / geometry_files.MANIFEST).read_text(encoding="utf-8"))
     del manifest["files"]["pair.urdf"]
-    (d / files.MANIFEST).write_text(json.dumps(manifest), encoding="utf-8")
+    (d / geometry_files.MANIFEST).write_text(json.dumps(manifest), encoding="utf-8")
 
 
 TAMPERED = {
@@ -143,9 +144,9 @@ TAMPERED = {
     "truncated STL": (_truncate_stl, "gear.stl", "changed since"),
     "one bit of an STL": (_flip_stl_byte, "pinion.stl", "changed since"),
     "URDF deleted": (lambda d: (d / "pair.urdf").unlink(), "pair.urdf", "missing"),
-    "manifest deleted": (lambda d: (d / files.MANIFEST).unlink(), "logarithmic_beta35",
+    "manifest deleted": (lambda d: (d / geometry_files.MANIFEST).unlink(), "logarithmic_beta35",
                          "no manifest.json"),
-    "garbage manifest": (lambda d: (d / files.MANIFEST).write_bytes(b"\xff\xfe"),
+    "garbage manifest": (lambda d: (d / geometry_files.MANIFEST).write_bytes(b"\xff\xfe"),
                          "manifest.json", "not valid JSON"),
     "manifest lacks a file": (_manifest_without_urdf, "manifest.json", "not a manifest"),
     # the manifest forged to match: the checks after the hashes
@@ -162,7 +163,7 @@ def test_tampered_directory_is_named_with_how_to_regenerate(copy, case):
     change, named, says = TAMPERED[case]
     directory = copy()
     change(directory)
-    for read in (files.read_record, files.read_design, files.geometry_directory):
+    for read in (geometry_files.read_record, geometry_files.read_design, geometry_files.geometry_directory):
         with pytest.raises(InputError) as error:
             read(directory)
         message = str(error.value)
@@ -176,11 +177,11 @@ def test_directory_named_for_another_design_point(copy, name):
     directory = copy(name)
     with pytest.raises(InputError, match=rf"{name}: holds the logarithmic design point at "
                                          r"spiral angle 35 deg, not the one its name says"):
-        files.read_design(directory)
+        geometry_files.read_design(directory)
 
 
 def test_directory_of_another_name_is_not_compared(copy):
-    assert files.read_design(copy("paper_point")) == GearPairDesign()
+    assert geometry_files.read_design(copy("paper_point")) == GearPairDesign()
 
 
 def test_simulation_refuses_an_edited_directory(copy):
@@ -195,21 +196,21 @@ def test_simulation_refuses_an_edited_directory(copy):
 
 def test_not_a_geometry_directory(tmp_path):
     with pytest.raises(InputFileNotFoundError, match="nope: no such geometry directory"):
-        files.read_record(tmp_path / "nope")
+        geometry_files.read_record(tmp_path / "nope")
     with pytest.raises(FileNotFoundError):              # still a FileNotFoundError
-        files.read_record(tmp_path / "nope")
+        geometry_files.read_record(tmp_path / "nope")
     (tmp_path / "a.txt").write_text("x")
     with pytest.raises(InputError, match="a.txt: a file, not a geometry directory"):
-        files.read_record(tmp_path / "a.txt")
+        geometry_files.read_record(tmp_path / "a.txt")
     (tmp_path / "empty").mkdir()
     with pytest.raises(InputError, match="empty: an empty directory"):
-        files.read_record(tmp_path / "empty")
+        geometry_files.read_record(tmp_path / "empty")
 
 
 # ------------------------------------------------------------------ NetCDF
 @pytest.fixture
 def netcdf(tmp_path):
-    """A small dataset written by lsbg.results.write_dataset, and its values."""
+    """A small dataset written by lsbg.files.write_dataset, and its values."""
     values = np.linspace(1.0, 2.0, 4000)
     ds = xr.Dataset({"force": ("time", values, {"units": "N"})},
                     coords={"time": ("time", np.arange(values.size) * 1e-3, {"units": "s"})},
@@ -255,8 +256,8 @@ def test_netcdf_missing_directory_or_wrong_kind(netcdf, tmp_path):
         read(tmp_path / "nope.nc")
     with pytest.raises(InputError, match=f"{tmp_path}: a directory, not a test file"):
         read(tmp_path)
-    with pytest.raises(InputError, match=r"not a run dataset of lsbg.results \(missing \["):
-        from lsbg.results import open_run
+    with pytest.raises(InputError, match=r"not a run dataset of lsbg.dynamics.dataset \(missing \["):
+        from lsbg.dynamics.dataset import open_run
         open_run(path)
     (tmp_path / "text.nc").write_text("hello")
     with pytest.raises(InputError, match="text.nc: not a readable NetCDF file"):
@@ -296,7 +297,7 @@ def test_kill_during_write_then_rerun_leaves_no_part(tmp_path):
     """A writer really killed with SIGKILL in the middle of a write, then the next writer."""
     target = tmp_path / "run.nc"
     code = ("import sys, time\n"
-            "from lsbg.results import write_atomically\n"
+            "from lsbg.files import write_atomically\n"
             "def slow(tmp):\n"
             "    open(tmp, 'w').write('half')\n"
             "    time.sleep(60)\n"
@@ -327,7 +328,7 @@ def test_write_geometry_removes_stale_temporary_directories(geometry, tmp_path):
     write_geometry(GearPairDesign(), target)
     assert not any(path.exists() for path in stale)
     assert other.exists()
-    assert files.read_design(target) == GearPairDesign()
+    assert geometry_files.read_design(target) == GearPairDesign()
 
 
 def test_yaml_with_a_key_twice_is_refused_naming_both_lines(tmp_path):

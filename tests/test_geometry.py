@@ -5,9 +5,9 @@ import math
 import numpy as np
 import pytest
 
-from lsbg.design import DesignError, GearPairDesign, circular_arc_sin_angle
-from lsbg.geometry import GearPair
-from lsbg.vectors import rotate
+from lsbg.gear.design import DesignError, GearPairDesign, circular_arc_sin_angle
+from lsbg.gear.geometry import GearPair
+from lsbg.gear.vectors import rotate
 
 
 @pytest.fixture(scope="module", params=["logarithmic", "circular"])

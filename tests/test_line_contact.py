@@ -9,9 +9,9 @@ from scipy.integrate import quad
 
 from lsbg.contact import ContactParameters, MeshContact, calibrated_line_stiffness
 from lsbg.contact import kernels
-from lsbg.design import GearPairDesign
+from lsbg.gear.design import GearPairDesign
 from lsbg.dynamics.compiled_engine import integrate, tableau
-from lsbg.geometry import GearPair
+from lsbg.gear.geometry import GearPair
 
 LOAD = 1964.99
 GEAR_INERTIA = 0.0159  # about the paper's gear [kg m^2]

@@ -7,13 +7,14 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from lsbg import cli, ltca
+from lsbg import cli
+from lsbg.tca import loaded as ltca
 from lsbg.contact import ContactParameters, MeshContact
-from lsbg.design import GearPairDesign
+from lsbg.gear.design import GearPairDesign
 from lsbg.dynamics import SimulationSettings, load_model
-from lsbg.export import write_geometry
-from lsbg.geometry import GearPair
-from lsbg.vectors import rotate
+from lsbg.solid.export import write_geometry
+from lsbg.gear.geometry import GearPair
+from lsbg.gear.vectors import rotate
 
 LOAD = 1964.99
 LINE = ContactParameters(model="line")

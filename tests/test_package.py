@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from lsbg import stages
+from lsbg.study import stages
 
 PACKAGE = stages.PACKAGE
 #: Modules that draw (matplotlib) or render reports: everything else computes.
@@ -16,25 +16,21 @@ PLOTTING = ("figures", "reports", "cli")
 #: Top-level modules in the order the data flows: a module may import only
 #: modules of its own layer or of layers before it.
 LAYERS = (
-    ("numba_cache",),
-    ("design", "sections", "sweeps"),
-    ("vectors",),
-    ("geometry", "polyhedra", "theory"),
-    ("solids", "render", "files", "mass", "urdf", "step"),
-    ("export",),
+    ("numba_cache", "files", "sections"),
+    ("gear",),
+    ("solid",),
     ("contact",),
-    ("results", "dynamics"),
-    ("ltca", "verification", "spectra", "speed", "stats"),
-    ("tca", "sensitivity"),
+    ("dynamics",),
+    ("tca",),
     ("tooth",),
     ("rating",),
-    ("runs",),
-    ("combine",),
-    ("summary", "sweep_dataset"),
+    ("stats",),
+    ("experiments",),
+    ("aggregate",),
     ("tables",),
     ("figures",),
-    ("reports", "job_order", "workflow", "config_check", "resources", "stages",
-     "sweep_checks"),
+    ("reports",),
+    ("study",),
     ("cli",),
 )
 MAX_LINES = 620

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from lsbg.polyhedra import TriangleMesh, mesh_mass_properties, read_stl
+from lsbg.solid.polyhedra import TriangleMesh, mesh_mass_properties, read_stl
 
 
 def box(lx, ly, lz, origin=(0.0, 0.0, 0.0)):

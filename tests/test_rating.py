@@ -128,7 +128,7 @@ def test_stresses_and_safety_factors_of_sample_1(rating):
 # ------------------------------------------------------------------ lsbg's pair
 @pytest.fixture(scope="module")
 def paper_pairs():
-    from lsbg.design import GearPairDesign
+    from lsbg.gear.design import GearPairDesign
     from lsbg.rating.virtual import rating_geometry
 
     return {trace: rating_geometry(GearPairDesign.from_config({"trace": trace}))
@@ -189,7 +189,7 @@ def test_bad_rating_inputs_are_named():
 
 
 def test_below_a_face_contact_ratio_of_one_the_line_positions_are_flagged():
-    from lsbg.design import GearPairDesign
+    from lsbg.gear.design import GearPairDesign
     from lsbg.rating.virtual import rating_geometry
 
     low = virtual_cylindrical_gears(rating_geometry(GearPairDesign.from_config(

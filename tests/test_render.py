@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
-from lsbg import render, solids
-from lsbg.design import GearPairDesign
-from lsbg.geometry import GearPair
+from lsbg.solid import render, solids
+from lsbg.gear.design import GearPairDesign
+from lsbg.gear.geometry import GearPair
 
 
 def _blank(height=40, width=60):

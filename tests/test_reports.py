@@ -11,17 +11,18 @@ import pytest
 import xarray as xr
 import yaml
 
-from lsbg import cli, reports, speed
-from lsbg.combine import combine_runs
-from lsbg.runs import open_pair, steady
-from lsbg.summary import summary_table
+from lsbg import cli, reports
+from lsbg.experiments import speed
+from lsbg.aggregate.combine import combine_runs
+from lsbg.aggregate.runs import open_pair, steady
+from lsbg.aggregate.summary import summary_table
 from lsbg.contact import ContactParameters
-from lsbg.design import GearPairDesign
+from lsbg.gear.design import GearPairDesign
 from lsbg.dynamics import SimulationSettings, load_model, simulate
-from lsbg.export import write_geometry
-from lsbg.ltca import ltca_for_geometry
-from lsbg.results import write_dataset
-from lsbg.verification import convergence_study
+from lsbg.solid.export import write_geometry
+from lsbg.tca.loaded import ltca_for_geometry
+from lsbg.files import write_dataset
+from lsbg.experiments.verification import convergence_study
 
 SHORT = SimulationSettings(duration=0.05, samples=25, ramp_time=0.01)
 # windows that fit 0.05 s: 20 samples after 0.01 s, 4 subgroups of 5
@@ -157,7 +158,7 @@ def test_paper_report(study_files, tmp_path):
     assert html.count("<b>Figure ") + html.count("<strong>Figure ") == 26
     # the contact state: its statement names the type whose pattern moves less, in the
     # finding and in Section 16, from the maps' own figures
-    from lsbg.runs import gear_type
+    from lsbg.aggregate.runs import gear_type
     from lsbg.tables import contact_state
 
     maps = {}

@@ -1,11 +1,11 @@
-"""Run datasets read back (lsbg.runs): the full-rate record, the pair of gear types."""
+"""Run datasets read back (lsbg.aggregate.runs): the full-rate record, the pair of gear types."""
 
 import numpy as np
 import pytest
 
-from lsbg import spectra
-from lsbg.results import open_run
-from lsbg.runs import FULL_RATE_OF, full_rate_series, open_pair, steady
+from lsbg.stats import spectra
+from lsbg.dynamics.dataset import open_run
+from lsbg.aggregate.runs import FULL_RATE_OF, full_rate_series, open_pair, steady
 
 
 def test_full_rate_record_holds_the_output_samples(runs):

@@ -2,8 +2,8 @@
 
 import pytest
 
-from lsbg.sensitivity import (CASE_STAGES, case_label, case_name, case_sections, parse_case,
-                              scaled_contact, stage_cases, study_cases)
+from lsbg.experiments.sensitivity import (CASE_STAGES, case_label, case_name, case_sections,
+                                          parse_case, scaled_contact, stage_cases, study_cases)
 
 SECTION = {"mesh_damping_ratio": [0.5, 2], "crowning": [0, 0.5, 2],
            "displacement": ["envelope"], "compliance": ["fe"]}

@@ -7,11 +7,11 @@ import numpy as np
 import pytest
 from scipy import integrate
 
-from lsbg import mass, solids
-from lsbg.urdf import write_urdf
-from lsbg.design import GearPairDesign
-from lsbg.geometry import GearPair
-from lsbg.vectors import rotate
+from lsbg.solid import mass, solids
+from lsbg.solid.urdf import write_urdf
+from lsbg.gear.design import GearPairDesign
+from lsbg.gear.geometry import GearPair
+from lsbg.gear.vectors import rotate
 
 MEMBERS = (1, 2)
 

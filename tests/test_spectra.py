@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from lsbg import spectra
+from lsbg.stats import spectra
 
 
 def test_mesh_frequency_of_the_paper():

@@ -7,12 +7,14 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from lsbg import cli, ltca, speed
+from lsbg import cli
+from lsbg.tca import loaded as ltca
+from lsbg.experiments import speed
 from lsbg.tables import line_model
 from lsbg.contact import ContactParameters
-from lsbg.design import GearPairDesign
+from lsbg.gear.design import GearPairDesign
 from lsbg.dynamics import SimulationSettings, load_model, simulate
-from lsbg.export import write_geometry
+from lsbg.solid.export import write_geometry
 
 LINE = ContactParameters(model="line")
 BASE = SimulationSettings(engine="compiled", full_rate=20000.0, rtol=1e-8)
@@ -184,7 +186,7 @@ def test_figures_mark_the_resonances(curve_file):
 
 
 def test_spectrum_map_has_no_holes_where_the_bins_are_finer_than_the_spectrum():
-    from lsbg.speed import _binned_peak
+    from lsbg.experiments.speed import _binned_peak
 
     frequency = np.arange(0.0, 1000.0, 20.0)          # 20 Hz resolution
     amplitude = np.exp(-((frequency - 400.0) / 100.0) ** 2)

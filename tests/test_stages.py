@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from lsbg import stages
+from lsbg.study import stages
 
 REPO = Path(__file__).resolve().parents[1]
 

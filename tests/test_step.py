@@ -1,8 +1,8 @@
-"""The exact solids as STEP (lsbg.step), read back with OpenCASCADE.
+"""The exact solids as STEP (lsbg.solid.step), read back with OpenCASCADE.
 
 Each member is one closed solid (every edge of its boundary shared by two
 faces); its volume agrees with the quadrature of the exact solid
-(lsbg.mass.quadrature_mass_properties) within 0.5 %; the exact flanks lie
+(lsbg.solid.mass.quadrature_mass_properties) within 0.5 %; the exact flanks lie
 within 1 µm of its surface at 200 random points per side; a rerun writes the
 same bytes; and `lsbg geometry` lists the files in its manifest, which then
 guards them like the others. With a flank modification the pinion's solid is
@@ -15,12 +15,13 @@ import pytest
 
 from lsbg import cli
 
-from lsbg.design import GearPairDesign
-from lsbg.export import write_geometry
-from lsbg.files import InputError, read_design
-from lsbg.geometry import GearPair
-from lsbg.mass import quadrature_mass_properties
-from lsbg.step import flank_deviation, read_step, write_step
+from lsbg.gear.design import GearPairDesign
+from lsbg.solid.export import write_geometry
+from lsbg.files import InputError
+from lsbg.solid.directory import read_design
+from lsbg.gear.geometry import GearPair
+from lsbg.solid.mass import quadrature_mass_properties
+from lsbg.solid.step import flank_deviation, read_step, write_step
 
 
 @pytest.fixture(scope="module")

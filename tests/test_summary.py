@@ -1,4 +1,4 @@
-"""The summary table of short real runs (lsbg.summary), through the API and the CLI."""
+"""The summary table of short real runs (lsbg.aggregate.summary), through the API and the CLI."""
 
 import math
 
@@ -8,9 +8,10 @@ import pytest
 import xarray as xr
 import yaml
 
-from lsbg import cli, stats, theory
-from lsbg.summary import (SUMMARY_COLUMNS, SUMMARY_QUANTITIES, SUMMARY_UNITS, statistics_options,
-                          summary_table)
+from lsbg import cli, stats
+from lsbg.gear import theory
+from lsbg.aggregate.summary import (SUMMARY_COLUMNS, SUMMARY_QUANTITIES, SUMMARY_UNITS,
+                                    statistics_options, summary_table)
 
 
 def test_summary_table_columns_and_values(runs, pybullet_runs, windows):
@@ -146,8 +147,8 @@ def test_spiral_angle_is_rounded_in_tables(runs, windows):
 
 # ----------------------------------------------------------- contact state
 def test_contact_state_rows_of_tcas_and_maps(runs, tmp_path, windows):
-    from lsbg.results import write_dataset
-    from lsbg.summary import CONTACT_STATE_QUANTITIES, tca_summary, vh_summary
+    from lsbg.files import write_dataset
+    from lsbg.aggregate.summary import CONTACT_STATE_QUANTITIES, tca_summary, vh_summary
     from test_combine import synthetic_tca, synthetic_vh_map
 
     tca = synthetic_tca("circular", 35.0, te_pp=50.0)
@@ -166,8 +167,8 @@ def test_contact_state_rows_of_tcas_and_maps(runs, tmp_path, windows):
     for r in rows:
         assert r["mean"] == vh.attrs[r["quantity"]] and r["engine"] == "tca"
         assert np.isnan(r["std"]) and np.isnan(r["peak_to_peak"])
-    # the units the combined dataset writes (lsbg.combine.add_contact_state)
-    from lsbg.combine import add_contact_state
+    # the units the combined dataset writes (lsbg.aggregate.combine.add_contact_state)
+    from lsbg.aggregate.combine import add_contact_state
     from test_combine import _points
 
     combined = add_contact_state(_points(), [tca], [vh])

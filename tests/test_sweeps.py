@@ -1,4 +1,4 @@
-"""Parameter sweeps from the configuration (lsbg.sweeps): points, names, batches, checks."""
+"""Parameter sweeps from the configuration (lsbg.experiments.sweeps): points, names, batches, checks."""
 
 import copy
 from pathlib import Path
@@ -6,9 +6,9 @@ from pathlib import Path
 import pytest
 import yaml
 
-from lsbg import config_check
-from lsbg.sweep_checks import MAX_SWEEP_RUNS
-from lsbg.sweeps import sweeps_from_config
+from lsbg.study import checks as config_check
+from lsbg.study.sweep_checks import MAX_SWEEP_RUNS
+from lsbg.experiments.sweeps import sweeps_from_config
 
 REPO = Path(__file__).resolve().parents[1]
 SCHEMA = yaml.safe_load((REPO / "workflow" / "schemas" / "config.schema.yaml").read_text())

@@ -9,9 +9,9 @@ import math
 
 import pytest
 
-from lsbg.design import GearPairDesign
+from lsbg.gear.design import GearPairDesign
 from lsbg.figures import contact_state as contact_figures
-from lsbg.geometry import GearPair
+from lsbg.gear.geometry import GearPair
 from lsbg.tables import contact_state as tables
 from lsbg.tca.analysis import tooth_contact_analysis
 from lsbg.tca.modification import FlankModification

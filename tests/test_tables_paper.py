@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from lsbg import stats
-from lsbg.results import open_run
-from lsbg.runs import steady
+from lsbg.dynamics.dataset import open_run
+from lsbg.aggregate.runs import steady
 from lsbg.tables.paper import fluctuation_conclusion, theory_table
 from lsbg.tables.verification import engine_agreement
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from lsbg.design import GearPairDesign
+from lsbg.gear.design import GearPairDesign
 from lsbg.rating.dataset import rating_dataset
 from lsbg.rating.iso10300 import RatingConditions, RatingMaterial, rate
 from lsbg.rating.virtual import rating_geometry

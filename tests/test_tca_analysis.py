@@ -23,8 +23,8 @@ import math
 import numpy as np
 import pytest
 
-from lsbg.design import GearPairDesign
-from lsbg.geometry import GearPair
+from lsbg.gear.design import GearPairDesign
+from lsbg.gear.geometry import GearPair
 from lsbg.tca.analysis import (MARKING_COMPOUND, designed_transmission_error, tooth_contact_analysis,
                                tooth_contact_summary)
 from lsbg.tca.misalignment import Misalignment

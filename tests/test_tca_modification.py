@@ -18,8 +18,8 @@ import pandas as pd
 import pytest
 import xarray as xr
 
-from lsbg.design import GearPairDesign
-from lsbg.geometry import GearPair
+from lsbg.gear.design import GearPairDesign
+from lsbg.gear.geometry import GearPair
 from lsbg.tca.misalignment import Misalignment, member_frames
 from lsbg.tca.modification import FlankModification, TopographyError, read_topography
 

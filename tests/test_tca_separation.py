@@ -1,6 +1,6 @@
 """The line model on real flanks: the separation field on the conjugate contact lines.
 
-The loaded TCA of the line model (:func:`lsbg.ltca.loaded_tca`) subtracts the
+The loaded TCA of the line model (:func:`lsbg.tca.loaded.loaded_tca`) subtracts the
 initial separation of the flanks from each slice's approach. Checked here:
 
 * conjugate, aligned flanks give no field, and the line model is then exactly
@@ -18,10 +18,10 @@ initial separation of the flanks from each slice's approach. Checked here:
 import numpy as np
 import pytest
 
-from lsbg import ltca
+from lsbg.tca import loaded as ltca
 from lsbg.contact import ContactParameters, MeshContact
-from lsbg.design import GearPairDesign
-from lsbg.geometry import GearPair
+from lsbg.gear.design import GearPairDesign
+from lsbg.gear.geometry import GearPair
 from lsbg.tca.analysis import tooth_contact_analysis
 from lsbg.tca.misalignment import Misalignment
 from lsbg.tca.modification import FlankModification, field_profile_coordinate, lengthwise_coordinate

@@ -14,10 +14,10 @@ naming ``misalignment_map``.
 import numpy as np
 import pytest
 
-from lsbg import ltca
+from lsbg.tca import loaded as ltca
 from lsbg.contact import ContactParameters, MeshContact
-from lsbg.design import GearPairDesign
-from lsbg.geometry import GearPair
+from lsbg.gear.design import GearPairDesign
+from lsbg.gear.geometry import GearPair
 from lsbg.tca.analysis import tooth_contact_analysis
 from lsbg.tca.misalignment import Misalignment
 from lsbg.tca.modification import FlankModification

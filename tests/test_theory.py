@@ -3,12 +3,7 @@
 import numpy as np
 import pytest
 
-from lsbg.theory import (
-    deg_per_s_from_rpm,
-    gear_speed,
-    rpm_from_deg_per_s,
-    tangential_force,
-)
+from lsbg.gear.theory import deg_per_s_from_rpm, gear_speed, rpm_from_deg_per_s, tangential_force
 
 
 def test_gear_speed_paper_value():

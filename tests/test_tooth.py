@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from lsbg.contact import ContactParameters, MeshContact
-from lsbg.design import GearPairDesign
-from lsbg.geometry import GearPair
+from lsbg.gear.design import GearPairDesign
+from lsbg.gear.geometry import GearPair
 from lsbg.tooth.compliance import FEMeshSettings, ToothMaterial, tooth_compliance
 from lsbg.tooth.local import HertzLines, local_approach, normal_curvature_across
 from lsbg.tooth.field import active_field, undercut_roll
@@ -39,7 +39,7 @@ def tetrahedra_volume(nodes, tets):
 
 
 def test_segment_holds_three_teeth_of_the_blank(pair):
-    from lsbg.mass import quadrature_mass_properties
+    from lsbg.solid.mass import quadrature_mass_properties
     from lsbg.tooth.segment import segment_mesh
 
     mesh = segment_mesh(pair, 1, 2e-3)
@@ -54,7 +54,7 @@ def test_segment_holds_three_teeth_of_the_blank(pair):
 def test_segments_mesh_at_the_ends_of_the_sweep(spiral, member):
     """Where OCC's own root fillet failed (the pinion at 20-32.5 deg, the gear at
     42.5-45 deg), the sections' fillets give a 7-tooth segment of the blank."""
-    from lsbg.mass import quadrature_mass_properties
+    from lsbg.solid.mass import quadrature_mass_properties
     from lsbg.tooth.segment import segment_mesh
 
     pair = GearPair(GearPairDesign.from_config({"spiral_angle_deg": spiral}))

@@ -40,8 +40,8 @@ import numpy as np
 import pytest
 
 from lsbg.contact import ContactParameters, MeshContact
-from lsbg.design import GearPairDesign
-from lsbg.geometry import GearPair
+from lsbg.gear.design import GearPairDesign
+from lsbg.gear.geometry import GearPair
 from lsbg.tooth import reference as ref
 from lsbg.tooth.compliance import FEMeshSettings, ToothMaterial, grid_axes, tooth_compliance
 from lsbg.tooth.local import local_approach, peak_pressure, relative_curvature

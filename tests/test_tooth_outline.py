@@ -5,8 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from lsbg.design import GearPairDesign
-from lsbg.geometry import GearPair
+from lsbg.gear.design import GearPairDesign
+from lsbg.gear.geometry import GearPair
 from lsbg.tooth.outline import ARC_POINTS, round_corners, segment_sections
 
 

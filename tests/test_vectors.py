@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from lsbg.vectors import cross, rotate, unit
+from lsbg.gear.vectors import cross, rotate, unit
 
 
 @pytest.mark.parametrize("a_shape, b_shape", [((3,), (3,)), ((3,), (40, 3)), ((40, 3), (3,)),

@@ -4,10 +4,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from lsbg.design import GearPairDesign
+from lsbg.gear.design import GearPairDesign
 from lsbg.dynamics import SimulationSettings, load_model
-from lsbg.export import write_geometry
-from lsbg.verification import COLUMNS, convergence_study, pybullet_step_costs
+from lsbg.solid.export import write_geometry
+from lsbg.experiments.verification import COLUMNS, convergence_study, pybullet_step_costs
 
 
 @pytest.fixture(scope="module")

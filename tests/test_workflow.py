@@ -24,13 +24,13 @@ import pytest
 import xarray as xr
 import yaml
 
-from lsbg import job_order
+from lsbg.study import job_order
 
 REPO = Path(__file__).resolve().parents[1]
 SNAKEFILE = REPO / "Snakefile"
 TEST_CONFIG = "workflow/config-test.yaml"
 
-# Rule -> the stage of lsbg.stages whose source files it lists as inputs.
+# Rule -> the stage of lsbg.study.stages whose source files it lists as inputs.
 RULE_STAGES = {"paper_geometry": "geometry", "paper_ltca": "ltca", "sweep_points": "points", "simulate": "simulate",
                "sensitivity": "simulate", "convergence_point": "convergence",
                "convergence_line": "convergence", "combine": "aggregate",
@@ -134,7 +134,7 @@ def test_default_and_test_configs_are_valid_and_plan_the_study(tmp_path):
 
 
 def test_job_order_knows_the_studys_rule_graph(tmp_path):
-    """lsbg.job_order.WAITING is the default study's rule graph (without the gates and
+    """lsbg.study.job_order.WAITING is the default study's rule graph (without the gates and
     'all'), so that the priorities follow the real chains of jobs."""
     proc = snakemake("--rulegraph", "--snakefile", SNAKEFILE, cwd=tmp_path, check=True)
     labels = dict(re.findall(r"^\s*(\d+)\[label = \"(\w+)\"", proc.stdout, re.M))
@@ -152,7 +152,7 @@ def test_rules_list_the_lsbg_files_they_run(tmp_path):
     single = snakemake("-n", "--snakefile", SNAKEFILE, "results/runs/circular_beta30_point_pybullet.nc",
                        cwd=tmp_path, check=True)
     inputs["simulate"] = job_inputs(single.output)["simulate"]
-    from lsbg.stages import PACKAGE, stage_sources
+    from lsbg.study.stages import PACKAGE, stage_sources
 
     def in_package(name):
         # by location, not by name: the checkout itself may sit in a folder called lsbg
@@ -164,7 +164,7 @@ def test_rules_list_the_lsbg_files_they_run(tmp_path):
         assert listed == expected, f"{rule}: {sorted(listed ^ expected)}"
     assert not any(f.endswith("verification.py") for f in inputs["paper_geometry"])
     assert not any(f.endswith("summary.py") for f in inputs["paper_geometry"])
-    # (lsbg.cli.options reads the flanks: every stage lists lsbg/tca and lsbg/ltca.py)
+    # (lsbg.cli.options reads the flanks: every stage lists lsbg/tca and lsbg/tca/loaded.py)
     assert any(f.endswith("tca/vh_map.py") for f in inputs["contact_state"])
     for name in ("paper", "sweep", "verification"):
         assert any(f.endswith(f"workflow/notebooks/{name}.ipynb")
@@ -320,7 +320,7 @@ def test_outputs_do_not_name_the_study_directory(study):
 def test_study_writes_the_summary_table(study):
     root, _ = study
     table = pd.read_csv(root / "results" / "summary.csv")
-    from lsbg.summary import SUMMARY_COLUMNS
+    from lsbg.aggregate.summary import SUMMARY_COLUMNS
 
     assert list(table.columns) == list(SUMMARY_COLUMNS)
     runs = table[~table.engine.isin(["ltca", "tca"])].groupby("run").size()
@@ -362,7 +362,7 @@ def test_study_renders_the_reports(study, name):
 @pytest.mark.slow
 def test_study_keeps_the_logs_and_the_validated_settings(study):
     root, _ = study
-    assert "lsbg.export" in (root / "logs" / "paper_geometry"
+    assert "lsbg.solid.export" in (root / "logs" / "paper_geometry"
                              / "logarithmic_beta35.log").read_text()
     assert "tangential_force_std_N" in (root / "logs" / "convergence"
                                         / "circular_line.log").read_text()
@@ -458,22 +458,22 @@ _EVERYTHING = (["paper_geometry"] * 2 + ["paper_ltca"] * 2 + ["sensitivity"] * 2
                + ["fe_ltca"] * 2 + ["fe_sensitivity"] * 2 + ["rating"] * 2 + _AGGREGATES)
 CODE_CHANGES = {
     # (the rating reads the line run that the convergence table writes, and its K_v
-    # comes through lsbg.summary, which reads lsbg.stats)
-    "lsbg/verification.py": _CONVERGENCE + ["rating"] * 2 + _AGGREGATES,
+    # comes through lsbg.aggregate.summary, which reads lsbg.stats)
+    "lsbg/experiments/verification.py": _CONVERGENCE + ["rating"] * 2 + _AGGREGATES,
     "lsbg/stats/samples.py": ["rating"] * 2 + _AGGREGATES,
-    # lsbg.cli.options reads the flanks (lsbg.tca, which imports lsbg.ltca): every
-    # stage lists both (lsbg.stages), so a change reruns the study
-    "lsbg/ltca.py": _EVERYTHING,
+    # lsbg.cli.options reads the flanks (lsbg.tca, which imports lsbg.tca.loaded): every
+    # stage lists both (lsbg.study.stages), so a change reruns the study
+    "lsbg/tca/loaded.py": _EVERYTHING,
     "lsbg/tca/vh_map.py": _EVERYTHING,
     # (the cases reach the contact state's and the loaded TCA's commands, lsbg ltca
     # --case, and the rating reads the cases' runs)
-    "lsbg/sensitivity.py": (["sensitivity"] * 2 + ["contact_state"] * 2 + ["fe_sensitivity"] * 2
+    "lsbg/experiments/sensitivity.py": (["sensitivity"] * 2 + ["contact_state"] * 2 + ["fe_sensitivity"] * 2
                             + ["paper_ltca"] * 2 + ["fe_ltca"] * 2 + ["rating"] * 2
                             + _AGGREGATES),
     # every run at the paper's point reads its geometry; the convergence tables write
     # every engine's run there; the FE segment is lofted through the STEP solid's
-    # sections (lsbg.step, lsbg.solids)
-    "lsbg/solids.py": _EVERYTHING,
+    # sections (lsbg.solid.step, lsbg.solid.solids)
+    "lsbg/solid/solids.py": _EVERYTHING,
     "workflow/notebooks/sweep.ipynb": ["report_sweep", "all"],
 }
 

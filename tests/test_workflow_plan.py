@@ -1,4 +1,4 @@
-"""lsbg.workflow, the workflow's plan without Snakemake: the design points, runs and
+"""lsbg.study.plan, the workflow's plan without Snakemake: the design points, runs and
 files of a study, the rerun triggers and the study config (the configuration checks:
 tests/test_config_checks.py)."""
 
@@ -11,8 +11,8 @@ import pytest
 import yaml
 from snakemake.utils import validate
 
-from lsbg import job_order
-from lsbg import workflow as plan
+from lsbg.study import job_order
+from lsbg.study import plan
 
 REPO = Path(__file__).resolve().parents[1]
 SCHEMA = REPO / "workflow" / "schemas" / "config.schema.yaml"

@@ -25,9 +25,9 @@ and add ``"lsbg.<module>:add_wear_parser"`` to :data:`PARSERS`. Keep heavy
 imports inside the handler, so that ``lsbg --help`` stays fast. Handlers
 check their outputs before the work starts
 (:func:`lsbg.cli.options.check_output`). A user's mistake is one of
-:data:`USER_ERRORS`: a bad design value (:class:`lsbg.design.DesignError`), a
+:data:`USER_ERRORS`: a bad design value (:class:`lsbg.gear.design.DesignError`), a
 bad option (:class:`CommandError`), a missing, wrong, corrupt or changed input
-file (:class:`lsbg.files.InputError`, raised by lsbg.files and lsbg.results);
+file (:class:`lsbg.files.InputError`, raised by lsbg.files and lsbg.dynamics.dataset);
 :func:`main` prints its one-line message on stderr, without a traceback, and
 returns exit code 2. Any other exception is a bug and keeps its traceback.
 
@@ -45,7 +45,7 @@ import sys
 
 from lsbg import __version__
 from lsbg.cli.options import CommandError, add_design_options, design_from_args
-from lsbg.design import DesignError
+from lsbg.gear.design import DesignError
 from lsbg.files import InputError
 
 __all__ = ["main", "build_parser", "add_design_options", "design_from_args", "CommandError",

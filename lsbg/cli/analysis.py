@@ -69,8 +69,8 @@ def run_ltca(args):
     compliance = positions = None
     if params.compliance == "fe":
         from lsbg.cli.tooth import compliance_from_args
-        from lsbg.files import read_design
-        from lsbg.geometry import GearPair
+        from lsbg.solid.directory import read_design
+        from lsbg.gear.geometry import GearPair
 
         pair = GearPair(read_design(args.geometry))
         compliance, positions = compliance_from_args(args, pair, args.compliance_file)
@@ -88,8 +88,8 @@ def run_ltca(args):
 def _write_ltca(args, params, load, flanks, compliance, positions, path, case=None):
     """One loaded TCA of ``lsbg ltca`` (uniform bed, or the FE ``compliance``) -> ``path``
     (``case``: the sensitivity case's name, recorded)."""
-    from lsbg.ltca import ltca_for_geometry
-    from lsbg.results import write_dataset
+    from lsbg.tca.loaded import ltca_for_geometry
+    from lsbg.files import write_dataset
 
     try:
         if compliance is not None:
@@ -120,9 +120,9 @@ def _write_ltca(args, params, load, flanks, compliance, positions, path, case=No
 def _run_envelope(args, params, load, compliance, positions):
     """``lsbg ltca --envelope``: the FE loaded TCA at the envelope's corners -> ``--out``."""
     from lsbg.cli.options import flank_sections_from_args
-    from lsbg.files import read_design
-    from lsbg.geometry import GearPair
-    from lsbg.results import write_dataset
+    from lsbg.solid.directory import read_design
+    from lsbg.gear.geometry import GearPair
+    from lsbg.files import write_dataset
     from lsbg.tooth.analysis import fe_envelope
 
     if compliance is None:
@@ -174,8 +174,8 @@ def add_combine_parser(subparsers):
 
 def run_combine(args):
     """Handler of ``lsbg combine`` [exit code]."""
-    from lsbg.results import write_dataset
-    from lsbg.combine import combine_runs
+    from lsbg.files import write_dataset
+    from lsbg.aggregate.combine import combine_runs
 
     check_output(args.out, "--out")
     try:
@@ -231,8 +231,8 @@ def add_summary_parser(subparsers):
 
 def run_summary(args):
     """Handler of ``lsbg summary`` [exit code]."""
-    from lsbg.results import write_atomically
-    from lsbg.summary import statistics_options, summary_table
+    from lsbg.files import write_atomically
+    from lsbg.aggregate.summary import statistics_options, summary_table
 
     check_output(args.out, "--out")
     (section,) = read_study_sections(args.config, "statistics")

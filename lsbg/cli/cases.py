@@ -2,7 +2,7 @@
 
 Apart from :mod:`lsbg.cli.options` (which every command imports to build its
 parser) so that only the commands that compute cases depend on
-:mod:`lsbg.sensitivity` (:mod:`lsbg.stages`); their handlers import it.
+:mod:`lsbg.experiments.sensitivity` (:mod:`lsbg.study.stages`); their handlers import it.
 """
 
 from __future__ import annotations
@@ -43,7 +43,7 @@ def cases_from_args(args, stage, template, option="--case-out"):
 
     from lsbg.contact import ContactParameters
     from lsbg.files import fill_template
-    from lsbg.sensitivity import CASE_STAGES, case_sections, study_cases
+    from lsbg.experiments.sensitivity import CASE_STAGES, case_sections, study_cases
     from lsbg.tca.separation import RealFlanks
 
     if not args.case:

@@ -5,7 +5,7 @@ on a YAML syntax error, says only "Config file is not valid JSON or YAML",
 naming neither the file nor the line. This command reads the same files the
 same way (``workflow/config.yaml``, then each given file merged over it, as
 ``snakemake --configfile`` does), names the file, line and column of a syntax
-error, and runs :func:`lsbg.config_check.check_config`, the check the
+error, and runs :func:`lsbg.study.checks.check_config`, the check the
 workflow runs before any job.
 """
 
@@ -58,8 +58,8 @@ def add_check_config_parser(subparsers):
 
 def run_check_config(args):
     """Handler of ``lsbg check-config`` [exit code]."""
-    from lsbg.config_check import check_config
-    from lsbg.workflow import design_points
+    from lsbg.study.checks import check_config
+    from lsbg.study.plan import design_points
 
     base = args.workflow_dir / "config.yaml"
     schema = args.workflow_dir / "schemas" / "config.schema.yaml"

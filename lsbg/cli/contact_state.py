@@ -18,8 +18,8 @@ MAP_DEFAULTS = {"axes": ["E", "P"], "range": 0.1, "steps": 9, "sweep_steps": 5, 
 
 
 def _design_pair(geometry):
-    from lsbg.files import read_design
-    from lsbg.geometry import GearPair
+    from lsbg.solid.directory import read_design
+    from lsbg.gear.geometry import GearPair
 
     return GearPair(read_design(geometry))
 
@@ -64,7 +64,7 @@ def add_tca_parser(subparsers):
 
 def run_tca(args):
     """Handler of ``lsbg tca`` [exit code]."""
-    from lsbg.results import write_dataset
+    from lsbg.files import write_dataset
 
     flanks = flanks_from_args(args)
     pair = _design_pair(args.geometry)
@@ -151,7 +151,7 @@ def run_misalignment_map(args):
     from lsbg.cli.cases import cases_from_args
     from lsbg.dynamics import SimulationSettings
     from lsbg.files import fill_template, number_label
-    from lsbg.results import write_dataset
+    from lsbg.files import write_dataset
     from lsbg.tca.vh_map import axis_values, misalignment_map
 
     section = _section(args, "misalignment_map", MAP_DEFAULTS)

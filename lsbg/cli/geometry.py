@@ -31,7 +31,7 @@ def add_geometry_parser(subparsers):
 
 def run_geometry(args):
     """Handler of ``lsbg geometry`` [exit code]."""
-    from lsbg.export import STAGES, write_geometry
+    from lsbg.solid.export import STAGES, write_geometry
 
     design = design_from_args(args)
     relief = _step_relief(args, design)
@@ -49,7 +49,7 @@ def run_geometry(args):
 def _step_relief(args, design):
     """The pinion's flank modification as the STEP solid takes it, or None."""
     from lsbg.cli.options import flanks_from_args
-    from lsbg.geometry import GearPair
+    from lsbg.gear.geometry import GearPair
     from lsbg.tca.modification import pinion_relief
 
     modification = flanks_from_args(args).modification
@@ -107,14 +107,14 @@ def run_points(args):
 
     from lsbg.cli.options import CommandError, flanks_from_args, read_study_sections
     from lsbg.contact import ContactParameters
-    from lsbg.design import GearPairDesign
+    from lsbg.gear.design import GearPairDesign
     from lsbg.dynamics import SimulationError, SimulationSettings, simulate
-    from lsbg.export import write_geometry
+    from lsbg.solid.export import write_geometry
     from lsbg.files import fill_template, number_label
-    from lsbg.geometry import GearPair
+    from lsbg.gear.geometry import GearPair
     from lsbg.contact.slices import SliceStiffness
-    from lsbg.ltca import ltca_for_geometry
-    from lsbg.results import write_dataset
+    from lsbg.tca.loaded import ltca_for_geometry
+    from lsbg.files import write_dataset
     from lsbg.tooth.analysis import fe_ltca_for_geometry
     from lsbg.tooth.config import compliance_for_design
 

@@ -3,7 +3,7 @@ sections, the contact and simulation settings; :class:`CommandError`.
 
 Every option is in the paper's units (mm, deg, deg/s, N m) as in the
 workflow's configuration; the handlers convert to SI through
-:class:`lsbg.design.GearPairDesign`, :class:`lsbg.contact.ContactParameters`
+:class:`lsbg.gear.design.GearPairDesign`, :class:`lsbg.contact.ContactParameters`
 and :class:`lsbg.dynamics.SimulationSettings`.
 """
 
@@ -13,7 +13,7 @@ import math
 import os
 from pathlib import Path
 
-from lsbg.design import BASE_CONE_RULES, CONFIG_KEYS, HANDS, TRACES, GearPairDesign
+from lsbg.gear.design import BASE_CONE_RULES, CONFIG_KEYS, HANDS, TRACES, GearPairDesign
 
 __all__ = ["CommandError", "check_output", "add_design_options", "design_from_args",
            "read_study_sections", "add_contact_options", "contact_from_args",
@@ -28,8 +28,8 @@ class CommandError(ValueError):
 def check_output(path, option, directory=False):
     """Fail before the work starts if lsbg could not write ``path`` at its end.
 
-    The writers (:func:`lsbg.results.write_atomically`,
-    :func:`lsbg.export.write_geometry`) create missing folders, so the nearest
+    The writers (:func:`lsbg.files.write_atomically`,
+    :func:`lsbg.solid.export.write_geometry`) create missing folders, so the nearest
     existing folder above ``path`` must be a writable directory.
 
     Parameters
@@ -109,7 +109,7 @@ def _unit(key):
 def add_design_options(parser):
     """Add ``--design FILE.yaml`` and one option per design parameter.
 
-    Options are generated from :data:`lsbg.design.CONFIG_KEYS` (``module_mm``
+    Options are generated from :data:`lsbg.gear.design.CONFIG_KEYS` (``module_mm``
     -> ``--module-mm``), in the paper's units; each defaults to ``None`` so
     that :func:`design_from_args` can tell what was given.
 
@@ -120,9 +120,9 @@ def add_design_options(parser):
     paper = GearPairDesign().to_config()
     group = parser.add_argument_group(
         "design parameters (paper units; they override --design; defaults: the paper's "
-        "Table 1 and lsbg.design.GearPairDesign)")
+        "Table 1 and lsbg.gear.design.GearPairDesign)")
     group.add_argument("--design", metavar="FILE.yaml",
-                       help="YAML file with design keys as in lsbg.design.CONFIG_KEYS, or a study "
+                       help="YAML file with design keys as in lsbg.gear.design.CONFIG_KEYS, or a study "
                        "configuration with them under 'design:'")
     for key in CONFIG_KEYS:
         unit = _unit(key)
@@ -363,7 +363,7 @@ def slice_stiffness_from_args(args, params, geometry_dir, load_torque):
     import xarray as xr
 
     from lsbg.contact.slices import SliceStiffness
-    from lsbg.files import read_design
+    from lsbg.solid.directory import read_design
 
     path = getattr(args, "fe_ltca", None)
     wanted = params.model == "line" and params.compliance == "fe"
@@ -394,13 +394,13 @@ def slice_stiffness_from_args(args, params, geometry_dir, load_torque):
 # ------------------------------------------------------------ sensitivity cases
 def add_case_options(parser, stage):
     """Add ``--case KEY=VALUE`` (repeatable) and ``--case-out TEMPLATE``: the sensitivity
-    cases (:mod:`lsbg.sensitivity`) of ``stage`` that a command
+    cases (:mod:`lsbg.experiments.sensitivity`) of ``stage`` that a command
     computes beside its own output, in the same process."""
-    # (lsbg.sensitivity is imported when the cases are read, not here: building the
-    # parser must not make every stage depend on it, lsbg.stages)
+    # (lsbg.experiments.sensitivity is imported when the cases are read, not here: building the
+    # parser must not make every stage depend on it, lsbg.study.stages)
     parser.add_argument("--case", action="append", default=[], metavar="KEY=VALUE",
                         help=f"a sensitivity case as in the sensitivity section whose key "
-                             f"reaches the {stage.replace('_', ' ')} (lsbg.sensitivity."
+                             f"reaches the {stage.replace('_', ' ')} (lsbg.experiments.sensitivity."
                              f"CASE_STAGES), e.g. crowning=0.5; repeatable")
     parser.add_argument("--case-out", metavar="FILE.nc",
                         help="output file template of the cases, with the field {case} "

@@ -47,11 +47,12 @@ def add_rate_parser(subparsers):
 
 def run_rate(args):
     """Handler of ``lsbg rate`` [exit code]."""
-    from lsbg.files import read_design
+    from lsbg.solid.directory import read_design
     from lsbg.rating.config import rate_design
     from lsbg.rating.dataset import rating_dataset
-    from lsbg.results import open_dataset, open_run, write_dataset
-    from lsbg.summary import statistics_options
+    from lsbg.files import open_dataset, write_dataset
+    from lsbg.dynamics.dataset import open_run
+    from lsbg.aggregate.summary import statistics_options
 
     rating, tooth, simulation, statistics = read_study_sections(
         args.config, "rating", "tooth", "simulation", "statistics")
@@ -118,7 +119,7 @@ def run_rate(args):
 def _dynamic_factor(run, after, option):
     """A run's dynamic factor over its steady state from ``after`` [s], or a CommandError
     when the run's full-rate record holds none of it."""
-    from lsbg.summary import run_dynamic_factor
+    from lsbg.aggregate.summary import run_dynamic_factor
 
     if "time_full" not in run.coords or float(run["time_full"].max()) <= after:
         raise CommandError(f"{option} {run.encoding.get('source', '')}: its full-rate record "

@@ -28,7 +28,7 @@ def add_simulate_parser(subparsers):
 def run_simulate(args):
     """Handler of ``lsbg simulate`` [exit code]."""
     from lsbg.dynamics import SimulationError, simulate
-    from lsbg.results import write_dataset
+    from lsbg.files import write_dataset
 
     settings, params = simulation_from_args(args)
     flanks = flanks_from_args(args)
@@ -76,7 +76,7 @@ def run_sensitivity(args):
     """Handler of ``lsbg sensitivity`` [exit code]."""
     from lsbg.cli.cases import cases_from_args
     from lsbg.dynamics import SimulationError, simulate
-    from lsbg.results import write_dataset
+    from lsbg.files import write_dataset
 
     settings, _ = simulation_from_args(args)
     flanks_from_args(args)  # checks the flank sections before any work
@@ -125,8 +125,9 @@ def add_convergence_parser(subparsers):
 def run_convergence(args):
     """Handler of ``lsbg convergence`` [exit code]."""
     from lsbg.dynamics import SimulationError, load_model
-    from lsbg.results import open_runs, run_dataset, write_atomically, write_dataset
-    from lsbg.verification import convergence_study
+    from lsbg.dynamics.dataset import open_runs, run_dataset
+    from lsbg.files import write_atomically, write_dataset
+    from lsbg.experiments.verification import convergence_study
 
     settings, params = simulation_from_args(args)
     engines = args.engines or ("pybullet", "scipy", "compiled")

@@ -46,7 +46,7 @@ def run_mesh_mode(args):
     import pandas as pd
 
     from lsbg.dynamics import load_model
-    from lsbg.speed import resonance_speeds
+    from lsbg.experiments.speed import resonance_speeds
 
     if args.out:
         check_output(args.out, "--out")
@@ -74,14 +74,14 @@ def run_mesh_mode(args):
                      **{f"resonance_speed_order_{order}_deg_s": math.degrees(speed)
                         for order, speed in zip((1, 2, 3), speeds)}})
     if args.out:
-        from lsbg.results import write_atomically
+        from lsbg.files import write_atomically
 
         write_atomically(args.out, lambda tmp: pd.DataFrame(rows).to_csv(tmp, index=False))
     return 0
 
 
 # ------------------------------------------------------------ speed run
-#: Options of ``lsbg speed-run`` -> (keyword of lsbg.speed.speed_settings, type, help).
+#: Options of ``lsbg speed-run`` -> (keyword of lsbg.experiments.speed.speed_settings, type, help).
 SPEED_OPTIONS = {
     "mesh_cycles": ("mesh_cycles", int, "least mesh cycles in the steady window (default 100)"),
     "min_window": ("min_window", float, "least length of the steady window [s] (default 0.05)"),
@@ -97,7 +97,7 @@ def add_speed_run_parser(subparsers):
     parser = subparsers.add_parser(
         "speed-run", help="one run of the pinion-speed sweep (line model)",
         description="Run the line model of --geometry at --pinion-speed with the settings of "
-                    "a speed sweep (lsbg.speed.speed_settings: a short ramp, a settling time, "
+                    "a speed sweep (lsbg.experiments.speed.speed_settings: a short ramp, a settling time, "
                     "a steady window of whole mesh cycles, a full-rate record fast enough for "
                     "the mesh harmonics); the rest of the settings from --config. --ramp-time "
                     "(default 0.05 s here) is the sweep's ramp; --duration, --samples, "
@@ -114,9 +114,9 @@ def add_speed_run_parser(subparsers):
 def run_speed_run(args):
     """Handler of ``lsbg speed-run`` [exit code]."""
     from lsbg.dynamics import SimulationError, simulate
-    from lsbg.files import read_design
-    from lsbg.results import write_dataset
-    from lsbg.speed import speed_settings
+    from lsbg.solid.directory import read_design
+    from lsbg.files import write_dataset
+    from lsbg.experiments.speed import speed_settings
 
     if args.pinion_speed is None:
         raise CommandError("--pinion-speed: required (the speed of this run) [deg/s]")
@@ -172,8 +172,9 @@ def run_speed_curve(args):
     """Handler of ``lsbg speed-curve`` [exit code]."""
     import numpy as np
 
-    from lsbg.results import open_runs, write_dataset
-    from lsbg.speed import speed_curve
+    from lsbg.dynamics.dataset import open_runs
+    from lsbg.files import write_dataset
+    from lsbg.experiments.speed import speed_curve
 
     check_output(args.out, "--out")
     try:

@@ -1,9 +1,9 @@
 """Parameter sweeps on the command line: ``lsbg sweep-run`` and ``lsbg sweep-combine``.
 
-``sweep-run`` runs a batch of sweep points (:mod:`lsbg.sweeps`) at one design
+``sweep-run`` runs a batch of sweep points (:mod:`lsbg.experiments.sweeps`) at one design
 point in one process, so that a cluster pays its per-job start-up once per
 batch; ``sweep-combine`` stacks a sweep's runs into one dataset with a
-coordinate per swept key (:mod:`lsbg.sweep_dataset`).
+coordinate per swept key (:mod:`lsbg.aggregate.sweep_dataset`).
 """
 
 from __future__ import annotations
@@ -50,7 +50,7 @@ def _point(words):
     """(output path, {section.key: value}) of a --point's words."""
     import yaml
 
-    from lsbg.sweeps import SWEEPABLE_SECTIONS
+    from lsbg.experiments.sweeps import SWEEPABLE_SECTIONS
 
     out, *assignments = words
     if "=" in out:
@@ -71,14 +71,14 @@ def _point(words):
 def _point_objects(args, sections, values, design_dir):
     """(settings, contact parameters, flanks, design or None) of one point."""
     from lsbg.contact import ContactParameters
-    from lsbg.design import GearPairDesign
+    from lsbg.gear.design import GearPairDesign
     from lsbg.dynamics import SimulationSettings
-    from lsbg.files import read_design
+    from lsbg.solid.directory import read_design
     from lsbg.tca.separation import RealFlanks
 
     settings = SimulationSettings.from_config(sections["simulation"], engine=args.engine)
     # (a sweep's runs take the uniform bed: the FE slice stiffness is the study's own
-    # design points', at their load; lsbg.sweeps.FIXED_KEYS)
+    # design points', at their load; lsbg.experiments.sweeps.FIXED_KEYS)
     params = ContactParameters.from_config({**sections["contact"], "model": args.contact_model,
                                             "compliance": "uniform"})
     flanks = RealFlanks.from_config(sections["flank_modification"], sections["misalignment"])
@@ -94,9 +94,9 @@ def run_sweep_run(args):
     import tempfile
 
     from lsbg.dynamics import SimulationError, simulate
-    from lsbg.files import read_design
-    from lsbg.results import write_dataset
-    from lsbg.sweeps import point_sections, swept_attribute
+    from lsbg.solid.directory import read_design
+    from lsbg.files import write_dataset
+    from lsbg.experiments.sweeps import point_sections, swept_attribute
 
     study = dict(zip(("design", "contact", "simulation", "flank_modification", "misalignment"),
                      read_study_sections(args.config, "design", "contact", "simulation",
@@ -116,7 +116,7 @@ def run_sweep_run(args):
         with tempfile.TemporaryDirectory(prefix="lsbg-sweep-") as scratch:
             geometry = args.geometry
             if design is not None:
-                from lsbg.export import write_geometry
+                from lsbg.solid.export import write_geometry
 
                 # the design point of this trace and angle with the point's design keys
                 base = read_design(args.geometry)
@@ -157,9 +157,10 @@ def add_sweep_combine_parser(subparsers):
 
 def run_sweep_combine(args):
     """Handler of ``lsbg sweep-combine`` [exit code]."""
-    from lsbg.results import open_run, write_dataset
-    from lsbg.summary import statistics_options
-    from lsbg.sweep_dataset import sweep_dataset, sweep_rows
+    from lsbg.dynamics.dataset import open_run
+    from lsbg.files import write_dataset
+    from lsbg.aggregate.summary import statistics_options
+    from lsbg.aggregate.sweep_dataset import sweep_dataset, sweep_rows
 
     check_output(args.out, "--out")
     if args.csv:
@@ -177,7 +178,7 @@ def run_sweep_combine(args):
         raise CommandError(str(err)) from None
     write_dataset(ds, args.out)
     if args.csv:
-        from lsbg.results import write_atomically
+        from lsbg.files import write_atomically
 
         write_atomically(args.csv, lambda tmp: table.to_csv(tmp, index=False))
     print(f"lsbg sweep-combine: {len(runs)} runs of {ds.attrs['sweep_name']} over "

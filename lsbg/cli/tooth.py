@@ -76,8 +76,8 @@ def add_compliance_parser(subparsers):
 
 def run_compliance(args):
     """Handler of ``lsbg compliance`` [exit code]."""
-    from lsbg.files import read_design
-    from lsbg.geometry import GearPair
+    from lsbg.solid.directory import read_design
+    from lsbg.gear.geometry import GearPair
     from lsbg.tooth.config import compliance_for_design
 
     material, settings, _ = tooth_from_args(args)

@@ -1,6 +1,6 @@
 """Compiled contact kernels: tooth-pair forces of the point and the line model.
 
-Both flank sides of a pair are swept by a plane of action (:mod:`lsbg.geometry`),
+Both flank sides of a pair are swept by a plane of action (:mod:`lsbg.gear.geometry`),
 so a rotation mismatch only moves the contact lines within that plane. With
 e_i = sin(delta_b,i), the drive-side mismatch is ``eps = phi1 e1 - phi2 e2``
 (wrapped to one base pitch) and the normal approach at a point of a contact

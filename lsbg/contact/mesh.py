@@ -1,6 +1,6 @@
 """The contact of a gear pair: its kernel data built from the exact geometry.
 
-:class:`MeshContact` turns a :class:`lsbg.geometry.GearPair` and
+:class:`MeshContact` turns a :class:`lsbg.gear.geometry.GearPair` and
 :class:`lsbg.contact.parameters.ContactParameters` into the arrays the compiled
 kernels of :mod:`lsbg.contact.kernels` read, and gives them a Python face:
 :meth:`MeshContact.forces` (all outputs at one state),
@@ -24,7 +24,7 @@ import numpy as np
 from lsbg.contact import kernels as k
 from lsbg.contact.parameters import ContactParameters
 from lsbg.contact.statics import static_mismatch
-from lsbg.geometry import MEMBERS, SIDES
+from lsbg.gear.geometry import MEMBERS, SIDES
 
 #: Samples of the point model's phase table per base pitch. At the paper's
 #: speed the contact lines turn one table step in about 0.26 µs, below the
@@ -122,7 +122,7 @@ class MeshContact:
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     params : ContactParameters, optional
         Contact model and law; the paper's (point model) by default.
     gear_inertia : float, optional
@@ -130,7 +130,7 @@ class MeshContact:
         for its damping (a damping ratio of the mesh mode, whose natural
         frequency is sqrt(k_theta / J2) with the pinion's motion prescribed);
         without it the line model is undamped, which only static analyses
-        (:mod:`lsbg.ltca`) should use.
+        (:mod:`lsbg.tca.loaded`) should use.
     samples_per_pitch : int
         Resolution of the point model's phase tables [-].
     separation : callable, optional
@@ -512,7 +512,7 @@ def calibrated_line_stiffness(pair, mesh_stiffness=ISO_MESH_STIFFNESS, side="dri
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     mesh_stiffness : float, default ISO 6336-1 c_γ = 20 N/(mm·µm)
         Mean mesh stiffness per unit face width [N/m^2].
     side : {"drive", "coast"}

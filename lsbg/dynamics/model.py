@@ -277,8 +277,8 @@ def load_model(geometry_dir, contact_params=None, flanks=None,
     """
     from pathlib import Path
 
-    from lsbg.files import FILE_NAMES, read_design, read_record
-    from lsbg.geometry import GearPair
+    from lsbg.solid.directory import FILE_NAMES, read_design, read_record
+    from lsbg.gear.geometry import GearPair
 
     geometry_dir = Path(geometry_dir)
     record = read_record(geometry_dir)
@@ -320,14 +320,14 @@ def simulate(geometry_dir, settings: SimulationSettings, contact_params=None, co
     Returns
     -------
     xarray.Dataset
-        See :mod:`lsbg.results`.
+        See :mod:`lsbg.dynamics.dataset`.
 
     Raises
     ------
     SimulationError
         If the integration blows up; nothing is returned then.
     """
-    from lsbg.results import run_dataset
+    from lsbg.dynamics.dataset import run_dataset
 
     model = load_model(geometry_dir, contact_params, flanks, slice_stiffness)
     log.info("%s engine, %s model, %s trace, spiral angle %.4g deg: %.4g s simulated",

@@ -14,8 +14,8 @@ import textwrap
 import numpy as np
 from matplotlib.figure import Figure
 
-from lsbg.design import TRACE_LABELS
-from lsbg.results import VARIABLES
+from lsbg.gear.design import TRACE_LABELS
+from lsbg.dynamics.dataset import VARIABLES
 from lsbg.tables.style import display_unit  # one unit spelling for tables and axes
 
 #: Widest figure a report shows at full size: 1340 px at 100 dpi [inch].

@@ -11,12 +11,12 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
-from lsbg.design import TRACE_LABELS
+from lsbg.gear.design import TRACE_LABELS
 from lsbg.figures.base import figure_legend, new_figure, type_color
 from lsbg.stats.samples import scientific
-from lsbg.files import read_record
-from lsbg.results import as_path_list
-from lsbg.runs import TYPE_ORDER, records_by_type
+from lsbg.solid.directory import read_record
+from lsbg.files import as_path_list
+from lsbg.aggregate.runs import TYPE_ORDER, records_by_type
 
 __all__ = [
     "plot_pair_pictures", "plot_spiral_angle_along_face", "plot_pressure_angles",
@@ -24,7 +24,7 @@ __all__ = [
 ]
 
 
-#: Share of the height of ``pair.png`` that :func:`lsbg.render.render_pair` keeps
+#: Share of the height of ``pair.png`` that :func:`lsbg.solid.render.render_pair` keeps
 #: for its caption strip at the top [-] (the design in small print; the panel
 #: titles say it readably instead).
 PICTURE_CAPTION_SHARE = 0.08
@@ -71,7 +71,7 @@ def plot_pair_pictures(geometry_dirs, caption_share=PICTURE_CAPTION_SHARE) -> Fi
     """The pictures of the assembled pairs (``pair.png``) side by side, SBG first.
 
     Each picture is shown without the caption strip that
-    :func:`lsbg.render.render_pair` prints at its top (too small to read at
+    :func:`lsbg.solid.render.render_pair` prints at its top (too small to read at
     report size) and trimmed to the gears; the panel's title names the gear
     type, its tooth trace and spiral angle instead.
 

@@ -1,4 +1,4 @@
-"""Figures of the loaded tooth contact analysis (:mod:`lsbg.ltca`)."""
+"""Figures of the loaded tooth contact analysis (:mod:`lsbg.tca.loaded`)."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ from lsbg.figures.base import axis_label, figure_legend, new_figure, type_color
 #: curves are piecewise linear with a few kinks per cycle; a coarse grid puts
 #: its points beside the kinks, cuts the peaks off, and draws what looks like
 #: sampling rather than the curve (the default analysis has 256,
-#: :data:`lsbg.ltca.PHASES`).
+#: :data:`lsbg.tca.loaded.PHASES`).
 MIN_PHASES = 32
 
 

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from lsbg import spectra
+from lsbg.stats import spectra
 from lsbg.figures.base import (axis_label, envelope, figure_legend, new_figure, type_color,
                                wrap_categories)
-from lsbg.runs import QUANTITY_LABELS, full_rate_series
+from lsbg.aggregate.runs import QUANTITY_LABELS, full_rate_series
 
 
 def plot_spectra(runs, quantity, start=0.2, harmonics=6, title=""):
@@ -18,7 +18,7 @@ def plot_spectra(runs, quantity, start=0.2, harmonics=6, title=""):
     runs : dict
         ``{label: run}``; each run's pinion speed and teeth set its mesh frequency.
     quantity : str
-        A key of :data:`lsbg.runs.FULL_RATE_OF`.
+        A key of :data:`lsbg.aggregate.runs.FULL_RATE_OF`.
     start : float
         Start of the steady state [s].
     harmonics : int
@@ -120,7 +120,7 @@ def plot_full_rate(runs, quantity, start=0.2, span=0.02):
     runs : dict
         ``{label: run}``.
     quantity : str
-        A key of :data:`lsbg.runs.FULL_RATE_OF` that is also an output variable.
+        A key of :data:`lsbg.aggregate.runs.FULL_RATE_OF` that is also an output variable.
     start : float
         Start of the stretch [s].
     span : float

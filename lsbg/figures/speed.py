@@ -1,10 +1,10 @@
-"""Figures of the dynamic-factor curve (:func:`lsbg.speed.speed_curve`)."""
+"""Figures of the dynamic-factor curve (:func:`lsbg.experiments.speed.speed_curve`)."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from lsbg.design import TRACE_LABELS
+from lsbg.gear.design import TRACE_LABELS
 from lsbg.figures.base import figure_legend, new_figure, sparse_log_ticks, type_color, wrap_label
 
 #: Curve variables plotted against pinion speed, with their axis labels.
@@ -38,7 +38,7 @@ def plot_speed_curve(curve):
     Parameters
     ----------
     curve : xarray.Dataset
-        From :func:`lsbg.speed.speed_curve`.
+        From :func:`lsbg.experiments.speed.speed_curve`.
 
     Returns
     -------
@@ -81,7 +81,7 @@ def plot_campbell(curve, floor_db=-20.0):
     Parameters
     ----------
     curve : xarray.Dataset
-        From :func:`lsbg.speed.speed_curve`.
+        From :func:`lsbg.experiments.speed.speed_curve`.
     floor_db : float
         Lowest level shown [dB re 1 µrad].
 

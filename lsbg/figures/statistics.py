@@ -18,7 +18,7 @@ from matplotlib.figure import Figure
 from scipy import special, stats as sps
 
 from lsbg.figures.base import MAX_WIDTH, axis_label, display_unit, legend_above, new_figure
-from lsbg.runs import runs_by_type, quantity_label, steady
+from lsbg.aggregate.runs import runs_by_type, quantity_label, steady
 from lsbg.stats.control import xbar_r_ylims
 from lsbg.stats.normality import anderson_darling, normal_probability
 from lsbg.stats.samples import as_1d, describe, format_number, scientific

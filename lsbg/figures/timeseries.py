@@ -1,6 +1,6 @@
 """Time series of runs: both gear types over time, and their steady-state samples (Figs. 8–12).
 
-Built from run datasets (:mod:`lsbg.runs`); the theoretical value (Eq. 12–13)
+Built from run datasets (:mod:`lsbg.aggregate.runs`); the theoretical value (Eq. 12–13)
 is drawn where the run carries one.
 
 References
@@ -14,7 +14,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from lsbg.figures.base import axis_label, display_unit, figure_legend, new_figure, type_color
-from lsbg.runs import THEORY_ATTRIBUTES, runs_by_type, quantity_label, run_theory
+from lsbg.aggregate.runs import THEORY_ATTRIBUTES, runs_by_type, quantity_label, run_theory
 
 __all__ = ["plot_time_series", "plot_steady_scatter"]
 

@@ -6,7 +6,7 @@ import numpy as np
 
 from lsbg.figures.base import (QUANTITY_UNITS, axis_label, figure_legend, new_figure, type_color,
                                type_entries, wrap_categories)
-from lsbg.runs import QUANTITY_LABELS, TYPE_ORDER
+from lsbg.aggregate.runs import QUANTITY_LABELS, TYPE_ORDER
 
 
 def _angles(ax, values):
@@ -245,7 +245,7 @@ def plot_parameter_sweep(table, along, variables, units, by=None):
     Parameters
     ----------
     table : pandas.DataFrame
-        :func:`lsbg.sweep_dataset.sweep_long` (one spiral angle).
+        :func:`lsbg.aggregate.sweep_dataset.sweep_long` (one spiral angle).
     along : str
         The swept key on the x axis (``contact.dynamic_friction``).
     variables : sequence of str

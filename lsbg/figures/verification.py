@@ -9,9 +9,9 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.figure import Figure
 
-from lsbg.design import TRACE_LABELS
+from lsbg.gear.design import TRACE_LABELS
 from lsbg.figures.base import figure_legend, new_figure, type_color, type_entries, wrap_label
-from lsbg.runs import QUANTITY_LABELS
+from lsbg.aggregate.runs import QUANTITY_LABELS
 
 __all__ = ["plot_convergence", "plot_engine_agreement"]
 

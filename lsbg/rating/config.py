@@ -103,7 +103,7 @@ def rate_design(design, section, tooth_section, gear_torque, pinion_speed,
 
     Parameters
     ----------
-    design : lsbg.design.GearPairDesign
+    design : lsbg.gear.design.GearPairDesign
     section, tooth_section : dict
         The ``rating`` and ``tooth`` sections (:func:`rating_from_config`;
         the tooth's fillet radius is the tool's edge radius).
@@ -152,7 +152,7 @@ def rating_problems(config, pairs):
     config : dict
         The study configuration, defaults filled in.
     pairs : dict
-        ``(trace, spiral label) -> lsbg.geometry.GearPair`` of the design
+        ``(trace, spiral label) -> lsbg.gear.geometry.GearPair`` of the design
         points that passed their own checks.
 
     Returns

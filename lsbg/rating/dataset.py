@@ -32,7 +32,7 @@ def rating_dataset(rating, design, material, conditions, dynamic_factor_source, 
     Parameters
     ----------
     rating : lsbg.rating.iso10300.BevelRating
-    design : lsbg.design.GearPairDesign
+    design : lsbg.gear.design.GearPairDesign
     material : lsbg.rating.iso10300.RatingMaterial
     conditions : lsbg.rating.iso10300.RatingConditions
     dynamic_factor_source : str
@@ -45,7 +45,7 @@ def rating_dataset(rating, design, material, conditions, dynamic_factor_source, 
         displacement envelope (:func:`lsbg.tooth.analysis.fe_envelope`).
     cases : dict, optional
         ``{sensitivity case: BevelRating}``: the same pair rated with the
-        dynamic factor of each case's run (:mod:`lsbg.sensitivity`).
+        dynamic factor of each case's run (:mod:`lsbg.experiments.sensitivity`).
 
     Returns
     -------

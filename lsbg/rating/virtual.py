@@ -102,7 +102,7 @@ def rating_geometry(design, tool_edge_radius=0.25, effective_face_width=0.85):
 
     Parameters
     ----------
-    design : lsbg.design.GearPairDesign
+    design : lsbg.gear.design.GearPairDesign
     tool_edge_radius : float
         rho_a0 / m_mn, both members (the FE segment's root fillet) [-].
     effective_face_width : float

@@ -3,7 +3,7 @@
 The paper claims that the LSBG (1) meshes more stably, (2) has a better tooth
 contact state and (3) lives longer. Each claim is answered at the paper's
 design point from the study's files, in every cell of a model-form
-sensitivity study (:mod:`lsbg.sensitivity`): the baseline and the cases that
+sensitivity study (:mod:`lsbg.experiments.sensitivity`): the baseline and the cases that
 reach the claim's analysis. A ranking is stated only where it holds in every
 cell (:func:`claim_verdict`).
 
@@ -29,8 +29,8 @@ import math
 import numpy as np
 import pandas as pd
 
-from lsbg.runs import QUANTITY_LABELS, TYPE_ORDER
-from lsbg.sensitivity import case_label, parse_case
+from lsbg.aggregate.runs import QUANTITY_LABELS, TYPE_ORDER
+from lsbg.experiments.sensitivity import case_label, parse_case
 
 __all__ = ["BASELINE", "CONTACT_STATE_RESOLUTION", "better_type", "stability_table",
            "stability_cells",
@@ -83,7 +83,7 @@ def _corner(ds, corner):
 def _by_case(files):
     """{case name: {gear type: dataset}} of case files, by their ``sensitivity_case``
     attribute (``lsbg misalignment-map --case``, ``lsbg ltca --case``)."""
-    from lsbg.runs import gear_type
+    from lsbg.aggregate.runs import gear_type
 
     out = {}
     for ds in files:
@@ -104,7 +104,7 @@ def stability_table(sensitivity, vh_maps, vh_cases=()):
     vh_maps : dict
         ``{gear type: V-H map}`` at the study's crowning.
     vh_cases : iterable of xarray.Dataset
-        The V-H maps of the crowning cases (:mod:`lsbg.sensitivity`).
+        The V-H maps of the crowning cases (:mod:`lsbg.experiments.sensitivity`).
 
     Returns
     -------
@@ -219,7 +219,7 @@ def contact_state_by_angle(sweep):
     Parameters
     ----------
     sweep : xarray.Dataset
-        :func:`lsbg.combine.combine_runs` with the V-H maps' sensitivities
+        :func:`lsbg.aggregate.combine.combine_runs` with the V-H maps' sensitivities
         (``pattern_shift_{lengthwise,profile}_per_0_1_{axis}`` over ``trace``
         and ``spiral_angle``).
 
@@ -229,7 +229,7 @@ def contact_state_by_angle(sweep):
         ``spiral_angle`` [deg], one column per gear type [mm] and ``better``
         (ties within :data:`CONTACT_STATE_RESOLUTION`); empty without them.
     """
-    from lsbg.design import TRACE_LABELS
+    from lsbg.gear.design import TRACE_LABELS
 
     axes = sorted({name.rsplit("_", 1)[1] for name in sweep.data_vars
                    if name.startswith("pattern_shift_lengthwise_per_0_1_")})

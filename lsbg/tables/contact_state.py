@@ -14,7 +14,7 @@ import math
 import numpy as np
 import pandas as pd
 
-from lsbg.runs import gear_type
+from lsbg.aggregate.runs import gear_type
 
 __all__ = ["tca_table", "sensitivity_table", "pattern_movement",
            "movement_statement", "sensitivity_by_angle", "steadier_by_angle",
@@ -204,7 +204,7 @@ def contact_state_checks(pair, modification, positions=100):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     modification : lsbg.tca.modification.FlankModification
         The crowning to check (with lengthwise and profile crowning).
     positions : int
@@ -225,7 +225,7 @@ def contact_state_checks(pair, modification, positions=100):
         [mm] (the displacement that moves both types' patterns most).
     """
     from lsbg.contact import ContactParameters, MeshContact
-    from lsbg.ltca import loaded_tca
+    from lsbg.tca.loaded import loaded_tca
     from lsbg.tca.analysis import tooth_contact_analysis
     from lsbg.tca.misalignment import Misalignment
     from lsbg.tca.separation import separation_field

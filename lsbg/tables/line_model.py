@@ -1,9 +1,9 @@
 """Tables of the line model's verdict: LSBG against SBG, with the model form varied.
 
-Built from run datasets (:mod:`lsbg.results`, opened with
-:func:`lsbg.results.open_run`), loaded TCAs (:mod:`lsbg.ltca`) and the sweep
-dataset (:func:`lsbg.combine.combine_runs`); every statistic comes from
-:mod:`lsbg.stats` and :mod:`lsbg.spectra`. Units are the datasets' (deg/s, N,
+Built from run datasets (:mod:`lsbg.dynamics.dataset`, opened with
+:func:`lsbg.dynamics.dataset.open_run`), loaded TCAs (:mod:`lsbg.tca.loaded`) and the sweep
+dataset (:func:`lsbg.aggregate.combine.combine_runs`); every statistic comes from
+:mod:`lsbg.stats` and :mod:`lsbg.stats.spectra`. Units are the datasets' (deg/s, N,
 µrad, N/µm).
 
 * :func:`mesh_table`: the loaded TCA of both gear types side by side;
@@ -26,9 +26,10 @@ import numpy as np
 import pandas as pd
 from scipy import stats as sps
 
-from lsbg import spectra, stats
-from lsbg.design import TRACE_LABELS
-from lsbg.runs import QUANTITY_LABELS, TYPE_ORDER, full_rate_series, steady
+from lsbg import stats
+from lsbg.stats import spectra
+from lsbg.gear.design import TRACE_LABELS
+from lsbg.aggregate.runs import QUANTITY_LABELS, TYPE_ORDER, full_rate_series, steady
 
 #: Quantities compared under the line model (full-rate variables exist for them).
 VERDICT_QUANTITIES = ("gear_speed", "tangential_force", "transmission_error")
@@ -94,7 +95,7 @@ def compare_fluctuation(runs, quantity, start=0.2, full_rate=True, confidence=0.
     runs : dict
         ``{'SBG': run, 'LSBG': run}``.
     quantity : str
-        A key of :data:`lsbg.runs.FULL_RATE_OF`.
+        A key of :data:`lsbg.aggregate.runs.FULL_RATE_OF`.
     start : float
         Start of the steady state [s].
     full_rate : bool
@@ -288,7 +289,7 @@ def sweep_fluctuation_table(sweep, start=0.2, quantities=VERDICT_QUANTITIES, con
     Parameters
     ----------
     sweep : xarray.Dataset
-        From :func:`lsbg.combine.combine_runs` (with full-rate variables).
+        From :func:`lsbg.aggregate.combine.combine_runs` (with full-rate variables).
     start : float
         Start of the steady state [s].
     quantities : sequence of str
@@ -341,7 +342,7 @@ def sweep_ratio_table(sweep, contact_model="line", quantities=VERDICT_QUANTITIES
     Parameters
     ----------
     sweep : xarray.Dataset
-        From :func:`lsbg.combine.combine_runs`.
+        From :func:`lsbg.aggregate.combine.combine_runs`.
     contact_model : str
     quantities : sequence of str
     start : float
@@ -488,7 +489,7 @@ def speed_curve_table(curve) -> pd.DataFrame:
     Parameters
     ----------
     curve : xarray.Dataset
-        From :func:`lsbg.speed.speed_curve`.
+        From :func:`lsbg.experiments.speed.speed_curve`.
 
     Returns
     -------

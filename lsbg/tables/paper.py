@@ -21,8 +21,8 @@ import numpy as np
 import pandas as pd
 
 from lsbg import stats
-from lsbg.runs import (QUANTITIES, QUANTITY_LABELS, TYPE_ORDER, records_by_type, run_theory,
-                       runs_by_type, steady)
+from lsbg.aggregate.runs import (QUANTITIES, QUANTITY_LABELS, TYPE_ORDER, records_by_type,
+                                 run_theory, runs_by_type, steady)
 
 __all__ = [
     "PAPER", "design_table", "theory_table", "paper_comparison_table", "compare_types",

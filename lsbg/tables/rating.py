@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from lsbg.runs import TYPE_ORDER
+from lsbg.aggregate.runs import TYPE_ORDER
 
 __all__ = ["rating_table", "life_table", "life_statement", "rating_by_angle", "LIFE_STRESSES",
            "RESOLVED_STRESS_DIFFERENCE"]
@@ -242,7 +242,7 @@ def rating_by_angle(config, summary, engine="compiled"):
         The study's settings as validated (``results/config.yaml``): its
         ``design``, ``rating``, ``tooth`` and ``simulation`` sections.
     summary : pandas.DataFrame
-        The summary table (:func:`lsbg.summary.summary_table`): its design
+        The summary table (:func:`lsbg.aggregate.summary.summary_table`): its design
         points (``trace``, ``spiral_angle_deg``) and dynamic factors.
     engine : str
         The engine of the line-model runs whose K_v is taken.
@@ -257,7 +257,7 @@ def rating_by_angle(config, summary, engine="compiled"):
     """
     import math
 
-    from lsbg.design import TRACE_LABELS, GearPairDesign
+    from lsbg.gear.design import TRACE_LABELS, GearPairDesign
     from lsbg.rating.config import rate_design
 
     simulation = config.get("simulation", {})

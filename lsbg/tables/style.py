@@ -32,8 +32,8 @@ import re
 
 import pandas as pd
 
-from lsbg.design import TRACE_LABELS
-from lsbg.runs import QUANTITY_LABELS
+from lsbg.gear.design import TRACE_LABELS
+from lsbg.aggregate.runs import QUANTITY_LABELS
 from lsbg.stats import samples
 
 __all__ = ["UNIT_DISPLAY", "COLUMN_HEADERS", "CELL_LABELS", "display_unit", "column_header",

@@ -1,6 +1,6 @@
 """Tables of the tooth itself: the uniform bed of springs against the tooth's own compliance.
 
-Built from the loaded TCAs of a design point (:func:`lsbg.ltca.loaded_tca`,
+Built from the loaded TCAs of a design point (:func:`lsbg.tca.loaded.loaded_tca`,
 the uniform bed) and the loaded TCAs with the FE compliance
 (:func:`lsbg.tooth.analysis.fe_ltca`). Units are the datasets' (µrad, N/µm,
 N/(mm·µm), MPa).
@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import pandas as pd
 
-from lsbg.runs import TYPE_ORDER
+from lsbg.aggregate.runs import TYPE_ORDER
 
 __all__ = ["COMPLIANCE_FIGURES", "compliance_table", "fe_mesh_table"]
 

@@ -8,7 +8,7 @@
   from the contact law and the gear's inertia;
 * :func:`pressure_angle_table` and :func:`conjugacy_errors`: the pressure
   angles along the face and the deviation of the flanks from conjugacy
-  (:mod:`lsbg.geometry`);
+  (:mod:`lsbg.gear.geometry`);
 * :func:`setting_label`, :func:`convergence_display` and :func:`by_gear_type`:
   the tables as the verification report shows them (narrow; nothing computed).
 """
@@ -20,9 +20,9 @@ import math
 import numpy as np
 import pandas as pd
 
-from lsbg.design import TRACE_LABELS
-from lsbg.results import as_path_list
-from lsbg.runs import records_by_type, run_spiral_angle, steady
+from lsbg.gear.design import TRACE_LABELS
+from lsbg.files import as_path_list
+from lsbg.aggregate.runs import records_by_type, run_spiral_angle, steady
 from lsbg.stats.samples import format_number
 
 __all__ = [
@@ -155,9 +155,9 @@ def read_convergence(paths) -> pd.DataFrame:
     ------
     FileNotFoundError, ValueError
         Naming the file if it is missing or lacks a column of
-        :data:`lsbg.verification.COLUMNS`.
+        :data:`lsbg.experiments.verification.COLUMNS`.
     """
-    from lsbg.verification import COLUMNS
+    from lsbg.experiments.verification import COLUMNS
 
     tables = []
     for path in as_path_list(paths):
@@ -249,7 +249,7 @@ def conjugacy_errors(design, side="drive", phases=25, n=17) -> pd.DataFrame:
 
     Parameters
     ----------
-    design : lsbg.design.GearPairDesign
+    design : lsbg.gear.design.GearPairDesign
     side : {'drive', 'coast'}
     phases : int, default 25
         Mesh positions across the field of contact (and a little beyond) [-].
@@ -265,8 +265,8 @@ def conjugacy_errors(design, side="drive", phases=25, n=17) -> pd.DataFrame:
         member's flank point from the contact line point) [m] and
         ``normal_mismatch`` (largest |n1 + n2|) [-].
     """
-    from lsbg.geometry import GearPair
-    from lsbg.vectors import rotate
+    from lsbg.gear.geometry import GearPair
+    from lsbg.gear.vectors import rotate
 
     pair = GearPair(design)
     lo, hi = pair.planes[side].field[:2]

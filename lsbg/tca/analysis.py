@@ -32,13 +32,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lsbg.ltca import active_polar_range
+from lsbg.tca.loaded import active_polar_range
 from lsbg.tca import surface
 from lsbg.tca.pattern import (MARKING_COMPOUND, bearing_pattern, chart_ellipses,
                                contact_ellipses, profile_height, raster_centres)
 from lsbg.tca.misalignment import Misalignment, member_frames
 from lsbg.tca.modification import FlankModification, flank_attributes, relieved_flank
-from lsbg.vectors import unit
+from lsbg.gear.vectors import unit
 
 #: Mesh positions over one mesh cycle.
 POSITIONS = 200
@@ -56,7 +56,7 @@ class SurfacePair:
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     modification : FlankModification
     misalignment : Misalignment
     face_points, profile_points : int
@@ -212,7 +212,7 @@ def designed_transmission_error(pair, modification, side="drive"):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     modification : FlankModification
         Lengthwise and profile crowning (bias and topography are not part of
         the closed form).
@@ -285,7 +285,7 @@ def tooth_contact_analysis(pair, modification=None, misalignment=None, positions
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     modification : FlankModification, optional
         Relief of the pinion flank (default: none, the conjugate flank).
     misalignment : Misalignment, optional

@@ -1,6 +1,6 @@
 """Checks of a contact state before any job: modification, displacements, V-H map.
 
-:func:`contact_state_problems` is what :mod:`lsbg.config_check` runs on the
+:func:`contact_state_problems` is what :mod:`lsbg.study.checks` runs on the
 ``flank_modification:``, ``misalignment:`` and ``misalignment_map:`` sections
 at a design point: one line per key at fault, naming the key and its value.
 
@@ -50,7 +50,7 @@ def displacement_problems(pair, modification, misalignment, where):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     modification : FlankModification
     misalignment : Misalignment
     where : str
@@ -89,7 +89,7 @@ def contact_state_problems(pair, modification_config, misalignment_config, map_c
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     modification_config, misalignment_config, map_config : dict or None
         The ``flank_modification:``, ``misalignment:`` and
         ``misalignment_map:`` sections (configuration units).

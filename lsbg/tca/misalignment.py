@@ -136,7 +136,7 @@ def member_frames(pair, misalignment):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     misalignment : Misalignment
 
     Returns

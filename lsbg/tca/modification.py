@@ -213,7 +213,7 @@ def lengthwise_coordinate(design, cone_distance):
 
     Parameters
     ----------
-    design : lsbg.design.GearPairDesign
+    design : lsbg.gear.design.GearPairDesign
     cone_distance : array_like
         Distance R from the apex [m].
     """
@@ -225,13 +225,13 @@ def profile_coordinate(pair, polar_angle, side="drive"):
     """v of pinion flank points from their polar angle about the pinion axis [-].
 
     A pinion flank point at polar angle theta meets the plane of action at
-    psi = psi_g + s chi(theta) (:meth:`lsbg.geometry.GearPair.roll_angle`),
+    psi = psi_g + s chi(theta) (:meth:`lsbg.gear.geometry.GearPair.roll_angle`),
     at every cone distance; v maps the field of contact psi_lo..psi_hi to
     -1..+1.
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     polar_angle : array_like
         Angle theta between the point and the pinion axis [rad].
     side : {"drive", "coast"}
@@ -258,7 +258,7 @@ def pinion_relief(pair, modification, cone_distance, polar_angle):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     modification : FlankModification
     cone_distance : array_like
         R [m].
@@ -279,7 +279,7 @@ def relieved_flank(pair, modification, cone_distance, psi, side="drive", polar_r
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     modification : FlankModification
     cone_distance, psi : array_like
         R [m] and the polar angle in the plane of action [rad], broadcast.

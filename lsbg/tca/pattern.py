@@ -110,7 +110,7 @@ def bearing_pattern(raster, limits, pair, marking=MARKING_COMPOUND):
         Least separation over the mesh cycle on the gear-flank raster [m].
     limits : array_like
         R_lo, R_hi [m], theta_lo, theta_hi [rad] of the raster.
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     marking : float
         Marking-compound thickness [m].
 

@@ -29,7 +29,7 @@ class RealFlanks:
     """The flanks a line-model analysis runs on: modification and displacements.
 
     Passed as ``flanks=`` to :func:`lsbg.dynamics.load_model`,
-    :func:`lsbg.dynamics.simulate` and :func:`lsbg.ltca.ltca_for_geometry`,
+    :func:`lsbg.dynamics.simulate` and :func:`lsbg.tca.loaded.ltca_for_geometry`,
     which build the pair first and then ask for its separation field.
 
     Parameters
@@ -110,7 +110,7 @@ def separation_field(pair, modification=None, misalignment=None):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     modification : FlankModification, optional
     misalignment : Misalignment, optional
 

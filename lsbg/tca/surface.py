@@ -5,7 +5,7 @@ displaced) flank fixes the gear rotation phi2(X) at which the gear's
 (displaced) flank passes through it. That needs no iteration: taken into the
 gear's nominal frame, X has a cone distance R' and a polar angle theta' about
 the gear axis, both unchanged by the gear's rotation, and the gear flank
-point with those two coordinates is closed form (:meth:`lsbg.geometry.GearPair.flank`:
+point with those two coordinates is closed form (:meth:`lsbg.gear.geometry.GearPair.flank`:
 the plane of action's point (R', psi(theta')) turned about the gear axis), so
 phi2(X) is the difference of two azimuths. The gear touches first where it
 has to turn furthest, phi2* = max phi2(X); the separation of the flanks at X

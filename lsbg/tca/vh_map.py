@@ -6,7 +6,7 @@ watches the bearing pattern and the transmission error. :func:`misalignment_map`
 does it on a grid of two of the displacements E, P, G, Sigma
 (:mod:`lsbg.tca.misalignment`): at each cell the unloaded TCA from the
 surfaces (:func:`lsbg.tca.analysis.tooth_contact_summary`) and the loaded TCA
-of the line model on the same separation field (:func:`lsbg.ltca.loaded_tca`).
+of the line model on the same separation field (:func:`lsbg.tca.loaded.loaded_tca`).
 The pattern's movement per 0.1 mm (or 0.1 degree) of each displacement is the
 sensitivity a designer reads off it: the less the pattern and the
 transmission error move, the more tolerant the pair is of its assembly.
@@ -19,7 +19,7 @@ import math
 import numpy as np
 
 from lsbg.contact import ContactParameters, MeshContact
-from lsbg.ltca import loaded_tca
+from lsbg.tca.loaded import loaded_tca
 from lsbg.tca.analysis import MARKING_COMPOUND, tooth_contact_summary
 from lsbg.tca.misalignment import DISPLACEMENTS, Misalignment
 from lsbg.tca.modification import FlankModification, flank_attributes
@@ -82,7 +82,7 @@ def misalignment_map(pair, modification=None, axes=DEFAULT_AXES, values=None, lo
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     modification : lsbg.tca.FlankModification, optional
     axes : (str, str)
         Two of "E", "P", "G", "Sigma" (default E and P).

@@ -3,7 +3,7 @@
 :func:`fe_ltca_for_geometry` runs the complementarity LTCA with the FE
 compliance (:func:`lsbg.tooth.ltca.fe_loaded_tca`), turns its equilibria into
 the line model's slice stiffness (:mod:`lsbg.tooth.slices`), and runs the
-line model's own LTCA (:func:`lsbg.ltca.loaded_tca`) on that stiffness. The
+line model's own LTCA (:func:`lsbg.tca.loaded.loaded_tca`) on that stiffness. The
 file it returns has every variable of today's loaded TCA, so the sweep
 dataset, the summary and the reports read it as they read the uniform bed's,
 with the complementarity solution's transmission error and mesh stiffness in
@@ -45,7 +45,7 @@ def fe_ltca(contact, compliance, load_torque, phases):
     Returns
     -------
     xarray.Dataset
-        :func:`lsbg.ltca.loaded_tca`'s variables and attributes (contact
+        :func:`lsbg.tca.loaded.loaded_tca`'s variables and attributes (contact
         length, pattern, tooth-pair loads from the line model on the slice
         stiffness), with ``transmission_error`` and ``mesh_stiffness`` and the
         summary attributes of the complementarity solution;
@@ -57,7 +57,7 @@ def fe_ltca(contact, compliance, load_torque, phases):
     """
     from lsbg.contact import MeshContact
     from lsbg.contact.slices import SliceStiffness
-    from lsbg.ltca import loaded_tca
+    from lsbg.tca.loaded import loaded_tca
     from lsbg.tooth.ltca import fe_loaded_tca
 
     fe = fe_loaded_tca(contact, compliance, load_torque, phases)
@@ -112,8 +112,8 @@ def fe_ltca_for_geometry(geometry_dir, load_torque, contact_params, compliance, 
     xarray.Dataset
     """
     from lsbg.contact import MeshContact
-    from lsbg.files import read_design
-    from lsbg.geometry import GearPair
+    from lsbg.solid.directory import read_design
+    from lsbg.gear.geometry import GearPair
 
     pair = GearPair(read_design(geometry_dir))
     separation = flanks.separation(pair) if flanks is not None else None
@@ -135,7 +135,7 @@ def fe_envelope(pair, contact_params, compliance, load_torque, phases, modificat
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     contact_params : lsbg.contact.ContactParameters
         The line model's bands (its model and compliance are set here).
     compliance : xarray.Dataset

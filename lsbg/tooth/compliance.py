@@ -197,7 +197,7 @@ def member_polar_angle(pair, member, cone_distance, profile_angle):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
     cone_distance, profile_angle : array_like
         (rho [m], psi [rad]) in the drive side's plane of action.
@@ -220,7 +220,7 @@ def drive_flank(pair, member, cone_distance, polar_angle):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
     cone_distance, polar_angle : array_like
         [m], [rad] from the member's axis.
@@ -240,7 +240,7 @@ def flank_grid(pair, member, settings):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
     settings : FEMeshSettings
 
@@ -279,7 +279,7 @@ def _load_patches(pair, member, grid, depth):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
     grid : FlankGrid
     depth : float
@@ -326,7 +326,7 @@ def mesh_sizes(pair, member, settings):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
     settings : FEMeshSettings
 
@@ -414,7 +414,7 @@ def fe_resource_estimate(pair, settings=None):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     settings : FEMeshSettings, optional
         Default: ``FEMeshSettings()``.
 
@@ -430,7 +430,7 @@ def fe_resource_estimate(pair, settings=None):
         Naming ``tooth_size``, if it leaves fewer than three elements across
         a member's teeth (:func:`mesh_sizes`).
     """
-    from lsbg.mass import quadrature_mass_properties
+    from lsbg.solid.mass import quadrature_mass_properties
 
     settings = settings or FEMeshSettings()
     model = RESOURCE_MODEL
@@ -459,7 +459,7 @@ def member_compliance(pair, member, material, settings):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
     material : ToothMaterial
     settings : FEMeshSettings
@@ -481,7 +481,7 @@ def member_compliance(pair, member, material, settings):
 
     from lsbg.tooth.elasticity import ElasticSegment
     from lsbg.tooth.segment import fillet_points, segment_mesh
-    from lsbg.vectors import rotate
+    from lsbg.gear.vectors import rotate
 
     started = time.perf_counter()
     d = pair.design
@@ -535,7 +535,7 @@ def tooth_compliance(pair, material=None, settings=None):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     material : ToothMaterial, optional
     settings : FEMeshSettings, optional
 

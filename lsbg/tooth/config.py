@@ -100,7 +100,7 @@ def compliance_for_design(pair, material, settings, path):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     material : lsbg.tooth.compliance.ToothMaterial
     settings : lsbg.tooth.compliance.FEMeshSettings
     path : str or pathlib.Path
@@ -116,7 +116,7 @@ def compliance_for_design(pair, material, settings, path):
     """
     import xarray as xr
 
-    from lsbg.results import write_dataset
+    from lsbg.files import write_dataset
     from lsbg.tooth.compliance import compliance_hash, tooth_compliance
 
     path = Path(path)
@@ -139,7 +139,7 @@ def fe_design_points(config, pairs):
     config : dict
         The study configuration, defaults filled in.
     pairs : dict
-        ``(trace, spiral label) -> lsbg.geometry.GearPair`` of the design points.
+        ``(trace, spiral label) -> lsbg.gear.geometry.GearPair`` of the design points.
 
     Returns
     -------
@@ -163,7 +163,7 @@ def tooth_problems(config, pairs, memory_limit, memory_source):
     config : dict
         The study configuration, defaults filled in.
     pairs : dict
-        ``(trace, spiral label) -> lsbg.geometry.GearPair`` of the design
+        ``(trace, spiral label) -> lsbg.gear.geometry.GearPair`` of the design
         points that passed their own checks.
     memory_limit : float
         Memory one job may use [GB].

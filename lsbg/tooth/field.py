@@ -128,7 +128,7 @@ def generated_flank_start(pair, member, edge_radius, cone_distance):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
     edge_radius : float
         Edge radius of the generating rack [m], >= 0.
@@ -162,7 +162,7 @@ def active_field(pair, edge_radius, cone_distance):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     edge_radius : float
         Edge radius of the generating rack [m].
     cone_distance : array_like

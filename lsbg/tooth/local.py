@@ -15,7 +15,7 @@ q [N/m],
   form of it).
 
 The curvatures are those of lsbg's exact flanks, by central differences of
-:meth:`lsbg.geometry.GearPair.flank`; the direction across the line is the
+:meth:`lsbg.gear.geometry.GearPair.flank`; the direction across the line is the
 flank's tangent perpendicular to the contact line, whose direction on the
 flank is that of the generating curve.
 
@@ -37,7 +37,7 @@ def normal_curvature_across(pair, member, cone_distance, profile_angle, step=1e-
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
     cone_distance, profile_angle : array_like
         Contact point (rho [m], psi [rad]) in the drive side's plane of action.
@@ -90,7 +90,7 @@ def relative_curvature(pair, cone_distance, profile_angle):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     cone_distance, profile_angle : array_like
         Contact points in the plane of action [m, rad].
 

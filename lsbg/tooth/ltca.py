@@ -23,7 +23,7 @@ where both members' generated flanks start (:func:`active_field`): a small
 pinion's involute does not reach its base cone, where its curvature is
 infinite.
 
-Outputs beside the uniform line model's (:func:`lsbg.ltca.loaded_tca`): the
+Outputs beside the uniform line model's (:func:`lsbg.tca.loaded.loaded_tca`): the
 loaded transmission error, the mesh stiffness, the load of each tooth pair,
 the Hertz peak pressure over the flank and its maximum per position, and the
 root stress of pinion and gear (the largest tensile principal stress at the
@@ -166,7 +166,7 @@ class FECompliance:
     ----------
     dataset : xarray.Dataset
         :func:`lsbg.tooth.compliance.tooth_compliance`.
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     orientation : {-1, 1}
         :attr:`lsbg.contact.MeshContact.orientation`.
     band_rho : numpy.ndarray
@@ -449,7 +449,7 @@ def fe_loaded_tca(contact, compliance, load_torque, phases=200, form_limit=True)
     import xarray as xr
 
     from lsbg.contact.mesh import MAX_PAIRS
-    from lsbg.ltca import mesh_phase_pinion_angle, transmission_error_summary
+    from lsbg.tca.loaded import mesh_phase_pinion_angle, transmission_error_summary
     from lsbg.tooth.elasticity import largest_principal
     from lsbg.tooth.local import HertzLines, peak_pressure
     from lsbg.tooth.slices import slice_stiffness_grid

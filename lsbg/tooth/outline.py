@@ -2,7 +2,7 @@
 
 The segment (:mod:`lsbg.tooth.segment`) is lofted through these outlines: on
 each sphere of the loft, the exact outline of lsbg's gear blank
-(:func:`lsbg.solids.section_outline`) from the middle of the root of the gap
+(:func:`lsbg.solid.solids.section_outline`) from the middle of the root of the gap
 before its first tooth to that after its last, in smooth pieces.
 
 lsbg's gear blank has a sharp corner where each flank (or its radial
@@ -49,7 +49,7 @@ def fillet_corners(pair, member, samples=41, margin=0.0):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
     samples : int
         Points along each line [-].
@@ -61,7 +61,7 @@ def fillet_corners(pair, member, samples=41, margin=0.0):
     numpy.ndarray, shape (2, samples, 3)
         Drive side, then coast side.
     """
-    from lsbg.solids import _sphere_points
+    from lsbg.solid.solids import _sphere_points
 
     d = pair.design
     start = pair.flank_polar_range(member)[0]
@@ -248,16 +248,16 @@ def round_corners(runs, corners, spines, sphere_radius, radius):
 def tooth_zero_column(pair, member, outline, section):
     """Outline tooth that holds tooth 0's flanks on one section [-].
 
-    :meth:`lsbg.geometry.GearPair.flank` gives the flanks of tooth 0; the
+    :meth:`lsbg.gear.geometry.GearPair.flank` gives the flanks of tooth 0; the
     outline counts its teeth from its own start. The tooth whose azimuth span
     (low-flank root to the next tooth's) contains tooth 0's drive flank at the
     middle of its profile is tooth 0.
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
-    outline : lsbg.solids.SectionOutline
+    outline : lsbg.solid.solids.SectionOutline
     section : int
         Row of the outline to look on [-].
 
@@ -329,7 +329,7 @@ def segment_sections(pair, member, teeth, fillet_radius, sections=SEGMENT_SECTIO
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
     teeth : int
         Teeth in the segment, odd [-].
@@ -350,8 +350,8 @@ def segment_sections(pair, member, teeth, fillet_radius, sections=SEGMENT_SECTIO
     ValueError
         If a gap's root is too narrow for its two fillets.
     """
-    from lsbg.solids import _sphere_points
-    from lsbg.step import loft_sections
+    from lsbg.solid.solids import _sphere_points
+    from lsbg.solid.step import loft_sections
 
     outline, n_top, n_root = loft_sections(pair, member, sections)
     radii = outline.cone_distance

@@ -2,13 +2,13 @@
 
 The tooth's compliance comes from a segment of each member, not from the
 whole gear (:mod:`lsbg.tooth.compliance`): the tooth the contact loads (tooth
-0 of :meth:`lsbg.geometry.GearPair.flank`), its neighbours on both sides, and
+0 of :meth:`lsbg.gear.geometry.GearPair.flank`), its neighbours on both sides, and
 the body under them down to the bore, as lsbg's gear blank defines it
-(:mod:`lsbg.solids`: the spherical shell R_i <= |r| <= R_e, bored).
+(:mod:`lsbg.solid.solids`: the spherical shell R_i <= |r| <= R_e, bored).
 
 The solid is lofted through the exact section outlines of
-:func:`lsbg.solids.section_outline` as the STEP solids are
-(:mod:`lsbg.step`), cut in each gap beyond the outer teeth along the middle of
+:func:`lsbg.solid.solids.section_outline` as the STEP solids are
+(:mod:`lsbg.solid.step`), cut in each gap beyond the outer teeth along the middle of
 the root (so the cut follows the spiral), the root corners of tooth 0's gaps
 rounded in every section with the tool edge radius rho_a0 = ``fillet_radius``
 x module (:mod:`lsbg.tooth.outline`): lsbg's blank has a sharp corner where
@@ -85,7 +85,7 @@ def _build_segment(pair, member, teeth, fillet_radius, sections):
     """
     import gmsh
 
-    from lsbg.vectors import rotate
+    from lsbg.gear.vectors import rotate
 
     occ = gmsh.model.occ
     d = pair.design
@@ -303,7 +303,7 @@ def segment_mesh(pair, member, tooth_size, body_size=None, teeth=3, fillet_radiu
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
     tooth_size : float
         Element size on the loaded tooth (tooth 0) [m].
@@ -337,7 +337,7 @@ def segment_mesh(pair, member, tooth_size, body_size=None, teeth=3, fillet_radiu
         For an even or too small number of teeth, or sizes that are not
         positive.
     """
-    from lsbg.step import _gmsh
+    from lsbg.solid.step import _gmsh
 
     if isinstance(teeth, bool) or int(teeth) != teeth or teeth < 3 or teeth % 2 == 0:
         raise ValueError(f"teeth = {teeth!r}: the segment needs an odd number >= 3 of teeth")
@@ -414,7 +414,7 @@ def fillet_points(pair, member, segment_mesh, fillet_radius):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
     segment_mesh : SegmentMesh
     fillet_radius : float

@@ -31,10 +31,10 @@ from pathlib import Path
 from numba import njit
 
 from lsbg.contact import ContactParameters, kernels
-from lsbg.design import GearPairDesign
+from lsbg.gear.design import GearPairDesign
 from lsbg.dynamics import SimulationSettings, load_model
-from lsbg.export import write_geometry
-from lsbg.verification import convergence_study, pybullet_step_costs
+from lsbg.solid.export import write_geometry
+from lsbg.experiments.verification import convergence_study, pybullet_step_costs
 
 #: Targets [wall seconds per simulated second] (None: reported only).
 TARGETS = {("compiled", "point"): 1.0, ("compiled", "line"): 2.0,
@@ -77,9 +77,9 @@ import time
 start = time.perf_counter()
 import numpy as np
 from lsbg.contact import ContactParameters, MeshContact, kernels
-from lsbg.design import GearPairDesign
+from lsbg.gear.design import GearPairDesign
 from lsbg.dynamics.compiled_engine import integrate, tableau
-from lsbg.geometry import GearPair
+from lsbg.gear.geometry import GearPair
 imported = time.perf_counter()
 pair = GearPair(GearPairDesign())
 for model in ("point", "line"):

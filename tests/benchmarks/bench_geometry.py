@@ -5,7 +5,7 @@ Run as a script (pytest does not collect it: no ``test_`` prefix)::
     python tests/benchmarks/bench_geometry.py [--repeat N] [--spiral-angle DEG]
 
 Targets: at most 20 s per design point (DESIGN.md workflow budget); reading a
-geometry directory back (``lsbg.files.read_record``, which hashes every file of
+geometry directory back (``lsbg.solid.directory.read_record``, which hashes every file of
 its manifest on each read) at most 50 ms.
 """
 
@@ -16,9 +16,9 @@ import tempfile
 import time
 from pathlib import Path
 
-from lsbg.design import GearPairDesign
-from lsbg.export import STAGES, write_geometry
-from lsbg.files import read_record
+from lsbg.gear.design import GearPairDesign
+from lsbg.solid.export import STAGES, write_geometry
+from lsbg.solid.directory import read_record
 
 TARGET_S = 20.0
 READ_TARGET_S = 0.05

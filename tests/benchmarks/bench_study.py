@@ -79,9 +79,9 @@ STARTUP_PROBES = {
     # when scontrol is installed but no controller answers)
     "snakemake (import, executor plugins)": "import snakemake.cli",
     "lsbg command line (parser)": "import lsbg.cli; lsbg.cli.build_parser()",
-    "simulation stage (lsbg.dynamics)": "import lsbg.dynamics, lsbg.results",
-    "design point stage (geometry, solids, ltca)": "import lsbg.export, lsbg.ltca",
-    "aggregate stage (combine, summary)": "import lsbg.combine, lsbg.summary",
+    "simulation stage (lsbg.dynamics)": "import lsbg.dynamics, lsbg.dynamics.dataset",
+    "design point stage (geometry, solids, ltca)": "import lsbg.solid.export, lsbg.tca.loaded",
+    "aggregate stage (combine, summary)": "import lsbg.aggregate.combine, lsbg.aggregate.summary",
     "report stage (figures, tables)": "import lsbg.tables.paper, lsbg.tables.line_model, "
                                       "lsbg.figures.statistics, lsbg.figures.speed",
 }

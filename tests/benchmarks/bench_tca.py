@@ -22,8 +22,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from bench_dynamics import figure  # noqa: E402
 
-from lsbg.design import GearPairDesign  # noqa: E402
-from lsbg.geometry import GearPair  # noqa: E402
+from lsbg.gear.design import GearPairDesign  # noqa: E402
+from lsbg.gear.geometry import GearPair  # noqa: E402
 from lsbg.tca.analysis import tooth_contact_analysis  # noqa: E402
 from lsbg.tca.modification import FlankModification  # noqa: E402
 from lsbg.tca.vh_map import misalignment_map  # noqa: E402

@@ -29,8 +29,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from bench_dynamics import figure  # noqa: E402
 
 from lsbg.contact import ContactParameters, MeshContact  # noqa: E402
-from lsbg.design import GearPairDesign  # noqa: E402
-from lsbg.geometry import GearPair  # noqa: E402
+from lsbg.gear.design import GearPairDesign  # noqa: E402
+from lsbg.gear.geometry import GearPair  # noqa: E402
 from lsbg.tooth.compliance import (FEMeshSettings, fe_resource_estimate,  # noqa: E402
                                    tooth_compliance)
 from lsbg.tooth.ltca import fe_loaded_tca  # noqa: E402

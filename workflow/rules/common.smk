@@ -1,11 +1,11 @@
-"""Glue between Snakemake and lsbg.workflow (no rules here).
+"""Glue between Snakemake and lsbg.study.plan (no rules here).
 
-The configuration is checked completely by lsbg.config_check.check_config
+The configuration is checked completely by lsbg.study.checks.check_config
 (finite numbers, workflow/schemas/config.schema.yaml, file names, lsbg's own
 checks of the settings and the statistics, the physics and the resource
 guard of every design point), which also fills in the schema's defaults,
 before any job runs; each problem is one line naming the user's key.
-lsbg.workflow.Study then names every design point, run and file; the rules
+lsbg.study.plan.Study then names every design point, run and file; the rules
 read it as STUDY. Paths are relative to the working directory; the
 repository's own files (the notebooks) are found next to the Snakefile.
 """
@@ -17,8 +17,8 @@ from pathlib import Path
 import yaml
 from snakemake.logging import logger
 
-from lsbg import config_check
-from lsbg import workflow as plan
+from lsbg.study import checks as config_check
+from lsbg.study import plan
 from lsbg.files import duplicate_key_problems
 
 #: The repository: the directory of the top-level Snakefile.
@@ -80,8 +80,8 @@ def repo_path(relative):
 
 
 def sources(stage):
-    """Inputs of the rules of ``stage``: the lsbg files it runs (lsbg.stages.STAGE_MODULES)."""
-    from lsbg.stages import stage_sources
+    """Inputs of the rules of ``stage``: the lsbg files it runs (lsbg.study.stages.STAGE_MODULES)."""
+    from lsbg.study.stages import stage_sources
 
     return stage_sources(stage, root=os.getcwd())
 

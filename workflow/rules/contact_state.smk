@@ -9,7 +9,7 @@
 # the others. The geometry comes from the study's point rules (points.smk). The
 # paper's point of each trace is a job of its own, which also maps the
 # sensitivity cases that reach the contact state (crowning, line stiffness;
-# lsbg.sensitivity) at sweep_steps; the other angles of a trace are one job (one
+# lsbg.experiments.sensitivity) at sweep_steps; the other angles of a trace are one job (one
 # start-up, about 2 s, instead of one per angle), as in points.smk.
 
 

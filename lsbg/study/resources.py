@@ -1,6 +1,6 @@
 """The resource guard: what a design point and a run will cost, estimated before any job.
 
-Part of the configuration check (:mod:`lsbg.config_check`): a design point's
+Part of the configuration check (:mod:`lsbg.study.checks`): a design point's
 geometry memory and time from its mesh size (:func:`geometry_cost`), a run's
 record memory (:func:`run_memory_gb`), and the line model's and PyBullet's
 time against the runtime the simulation rules request
@@ -15,9 +15,9 @@ from __future__ import annotations
 import math
 import os
 
-from lsbg.design import GearPairDesign
+from lsbg.gear.design import GearPairDesign
 from lsbg.files import number_label
-from lsbg.workflow import CONTACT_MODELS, simulation_runtime, speed_keywords, speed_labels
+from lsbg.study.plan import CONTACT_MODELS, simulation_runtime, speed_keywords, speed_labels
 
 __all__ = [
     "RUN_MEMORY_BASE_GB", "RUN_BYTES_PER_INSTANT", "LINE_SECONDS_PER_SLICE",
@@ -71,9 +71,9 @@ def run_cost_problems(config):
     second (:data:`RUN_BYTES_PER_INSTANT`). A line-model step costs in
     proportion to the slices (:data:`LINE_SECONDS_PER_SLICE`, the compiled
     engine, the fastest: the estimate is a lower bound); the rules request
-    :func:`lsbg.workflow.simulation_runtime` minutes per run.
+    :func:`lsbg.study.plan.simulation_runtime` minutes per run.
     """
-    from lsbg.sensitivity import scaled_contact
+    from lsbg.experiments.sensitivity import scaled_contact
 
     simulation = config["simulation"]
     duration, samples, rate = (simulation["duration_s"], simulation["samples"],
@@ -134,12 +134,12 @@ GEOMETRY_TIME_EXPONENT = 1.2
 def geometry_cost(pair):
     """Estimated peak memory and wall time of ``lsbg geometry`` for a design point.
 
-    The geometry stage builds both solid meshes (:func:`lsbg.solids.gear_mesh`)
+    The geometry stage builds both solid meshes (:func:`lsbg.solid.solids.gear_mesh`)
     and works on arrays of their vertices and triangles (mass properties,
     STL, the rendered picture); its cost grows with the vertex count and is
     otherwise nearly constant (the exact flanks, ``flanks.nc``). The vertex
     count is estimated without building a mesh, from the same resolution
-    (:data:`lsbg.solids.DEFAULT_RESOLUTION`): per member, the lofted sections
+    (:data:`lsbg.solid.solids.DEFAULT_RESOLUTION`): per member, the lofted sections
     times the teeth times the outline points per tooth, plus on each end
     face a ring of at least z points per ``end_face_step`` of polar angle
     between bore and root and the cap area over ``end_face_step**2``
@@ -175,7 +175,7 @@ def geometry_cost(pair):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
 
     Returns
     -------
@@ -183,8 +183,8 @@ def geometry_cost(pair):
         ``vertices`` ({member: estimated vertex count} [-]), ``memory_gb``
         [GB], ``minutes`` [min].
     """
-    from lsbg import solids
-    from lsbg.geometry import MEMBERS
+    from lsbg.solid import solids
+    from lsbg.gear.geometry import MEMBERS
 
     design, resolution = pair.design, solids.DEFAULT_RESOLUTION
     step = resolution.end_face_step
@@ -232,7 +232,7 @@ def speed_sweep_problems(config):
     """The speed sweep's settings, checked as ``lsbg speed-run`` will use them: one line
     per problem, starting with the ``speed_sweep`` key and its value."""
     from lsbg.dynamics import SimulationSettings
-    from lsbg.speed import speed_settings
+    from lsbg.experiments.speed import speed_settings
 
     speed = config["speed_sweep"]
     grid = speed["pinion_speeds_deg_s"]
@@ -265,7 +265,7 @@ def speed_sweep_problems(config):
         try:
             run = speed_settings(base, value, teeth, **speed_keywords(speed))
         except ValueError as error:
-            # a setting lsbg.speed derives for the run ("full_rate = ...: why")
+            # a setting lsbg.experiments.speed derives for the run ("full_rate = ...: why")
             why = str(error).split(": ", 1)[-1]
             problems.append(f"{at} (speed_sweep.engine = {speed['engine']!r}): {why}")
             continue
@@ -297,7 +297,7 @@ def mesh_torque_capacity(pair, contact, model):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     contact : dict
         The ``contact`` section (paper units).
     model : {"line", "point"}
@@ -343,7 +343,7 @@ def load_problems(config, pairs):
     list of str
         One line per problem, naming the key and its value.
     """
-    from lsbg.mass import quadrature_mass_properties
+    from lsbg.solid.mass import quadrature_mass_properties
 
     simulation, contact = config["simulation"], config["contact"]
     models = ("line", "point")  # both run at the paper's point (the speed sweep: its own guard)

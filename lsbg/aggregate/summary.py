@@ -7,7 +7,7 @@ spread over the sampling phases and the dynamic factor. Loaded TCAs add two
 rows each (static transmission error and mesh stiffness); the contact state
 (engine "tca") a row per unloaded TCA (its transmission error) and, per V-H
 map, four rows per displacement axis (:data:`CONTACT_STATE_QUANTITIES`). All
-statistics come from :mod:`lsbg.stats` and :mod:`lsbg.spectra`.
+statistics come from :mod:`lsbg.stats` and :mod:`lsbg.stats.spectra`.
 
 References
 ----------
@@ -23,9 +23,11 @@ import numpy as np
 import pandas as pd
 
 from lsbg import stats
-from lsbg.combine import open_tca, open_vh_map
-from lsbg.results import VARIABLES, as_path_list, open_run
-from lsbg.runs import QUANTITIES, THEORY_ATTRIBUTES, full_rate_series, open_mesh, run_spiral_angle
+from lsbg.aggregate.combine import open_tca, open_vh_map
+from lsbg.dynamics.dataset import VARIABLES, open_run
+from lsbg.files import as_path_list
+from lsbg.aggregate.runs import (QUANTITIES, THEORY_ATTRIBUTES, full_rate_series, open_mesh,
+                                 run_spiral_angle)
 
 __all__ = [
     "SUMMARY_QUANTITIES", "SUMMARY_UNITS", "SUMMARY_COLUMNS", "STATISTICS_KEYS", "statistics_options",
@@ -50,7 +52,7 @@ CONTACT_STATE_QUANTITIES = {"pattern_shift_lengthwise": "mm", "pattern_shift_pro
 _AXIS_UNITS = {"E": "mm", "P": "mm", "G": "mm", "Sigma": "degree"}
 
 #: Unit of each quantity of the summary table's rows, as the datasets write it: the
-#: runs' (:data:`lsbg.results.VARIABLES`), the loaded TCA's rows (:mod:`lsbg.ltca`)
+#: runs' (:data:`lsbg.dynamics.dataset.VARIABLES`), the loaded TCA's rows (:mod:`lsbg.tca.loaded`)
 #: and the contact state's (:mod:`lsbg.tca`; ``mm/(0.1 mm)``: mm per 0.1 mm).
 SUMMARY_UNITS = {**{q: VARIABLES[q][0] for q in SUMMARY_QUANTITIES},
                  "static_transmission_error": "urad", "mesh_stiffness": "N/um",
@@ -166,7 +168,7 @@ def quantity_summary(ds, quantity, steady_state_after=0.2, window=(0.8, 1.0),
     ValueError
         If the windows do not fit the run (e.g. no subgroups of that size).
     """
-    from lsbg import spectra
+    from lsbg.stats import spectra
 
     if quantity not in SUMMARY_QUANTITIES:
         raise ValueError(f"quantity = {quantity!r}: must be one of {SUMMARY_QUANTITIES}")
@@ -212,16 +214,16 @@ def run_dynamic_factor(ds, steady_state_after=0.2):
     Parameters
     ----------
     ds : xarray.Dataset
-        A run (:func:`lsbg.results.open_run`).
+        A run (:func:`lsbg.dynamics.dataset.open_run`).
     steady_state_after : float
         Start of the steady state [s].
 
     Returns
     -------
     float
-        [-] (:func:`lsbg.spectra.dynamic_factor`).
+        [-] (:func:`lsbg.stats.spectra.dynamic_factor`).
     """
-    from lsbg import spectra
+    from lsbg.stats import spectra
 
     full = full_rate_series(ds, "contact_torque", steady_state_after)
     return spectra.dynamic_factor(full, float(ds.attrs["solver_load_torque_N_m"]))
@@ -234,7 +236,7 @@ def _run_name(ds):
 
 
 def mesh_summary(ds) -> list:
-    """Summary rows of a loaded TCA (:func:`lsbg.ltca.loaded_tca`).
+    """Summary rows of a loaded TCA (:func:`lsbg.tca.loaded.loaded_tca`).
 
     Returns
     -------

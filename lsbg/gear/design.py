@@ -8,7 +8,7 @@ inside; :meth:`GearPairDesign.from_config` reads the paper's units (``*_mm``,
 
 Every derived quantity here is closed form (standard bevel gear geometry with
 tooth depth tapering to the common apex). The flank surfaces built on top of
-these numbers live in :mod:`lsbg.geometry`.
+these numbers live in :mod:`lsbg.gear.geometry`.
 """
 
 from __future__ import annotations

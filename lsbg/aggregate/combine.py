@@ -21,9 +21,10 @@ import xarray as xr
 
 import lsbg
 from lsbg.contact.parameters import CONTACT_MODELS
-from lsbg.design import TRACES, TRACE_LABELS
-from lsbg.results import FULL_RATE_VARIABLES, VARIABLES, as_path_list, open_dataset, open_run
-from lsbg.runs import open_mesh, run_source, run_spiral_angle
+from lsbg.gear.design import TRACES, TRACE_LABELS
+from lsbg.dynamics.dataset import FULL_RATE_VARIABLES, VARIABLES, open_run
+from lsbg.files import as_path_list, open_dataset
+from lsbg.aggregate.runs import open_mesh, run_source, run_spiral_angle
 
 __all__ = ["POINT_VARIABLES", "MESH_VARIABLES", "TCA_VARIABLES", "VH_PREFIX", "combine_runs",
            "add_contact_state", "open_tca", "open_vh_map", "contact_state_point",
@@ -140,9 +141,9 @@ def combine_runs(paths, meshes=(), tca=(), vh_maps=()) -> xr.Dataset:
         Dims (contact_model, trace, spiral_angle, time) and time_full.
         Coordinates ``contact_model``, ``trace`` (with ``gear_type``:
         'LSBG'/'SBG'), ``spiral_angle`` [degree], ``time``, ``time_full`` [s];
-        the run variables of :data:`lsbg.results.VARIABLES` on (contact_model,
+        the run variables of :data:`lsbg.dynamics.dataset.VARIABLES` on (contact_model,
         trace, spiral_angle, time) and those of
-        :data:`lsbg.results.FULL_RATE_VARIABLES` on (..., time_full); per
+        :data:`lsbg.dynamics.dataset.FULL_RATE_VARIABLES` on (..., time_full); per
         design point the variables of :data:`POINT_VARIABLES` and, from the
         loaded TCAs, :data:`MESH_VARIABLES` and the ``static_transmission_error``
         and ``mesh_stiffness`` curves on (trace, spiral_angle, mesh_phase);
@@ -264,9 +265,9 @@ def combine_runs(paths, meshes=(), tca=(), vh_maps=()) -> xr.Dataset:
                  f"{', '.join(TRACE_LABELS.get(t, t) for t in traces)} at spiral angles "
                  f"{', '.join(f'{a:g}' for a in angles)} deg ({engine} engine, "
                  f"{' and '.join(models)} contact model)",
-        "source": f"lsbg {lsbg.__version__} (lsbg.combine.combine_runs), engine {engine}",
+        "source": f"lsbg {lsbg.__version__} (lsbg.aggregate.combine.combine_runs), engine {engine}",
         "institution": "lsbg reproducible research workflow",
-        "history": f"{now} lsbg.combine.combine_runs of {len(runs)} runs, {len(mesh_data)} "
+        "history": f"{now} lsbg.aggregate.combine.combine_runs of {len(runs)} runs, {len(mesh_data)} "
                    f"loaded TCAs, {len(tcas)} unloaded TCAs and {len(maps)} V-H maps: "
                    + ", ".join(Path(p).name for p in [*paths, *as_path_list(meshes)])
                    + "".join(f", {Path(p).parent.name}/{Path(p).name}"

@@ -5,14 +5,14 @@ inner cone distance R_i and the heel at the outer cone distance R_e), the
 toothed surface and a coaxial bore cylinder. On every sphere |r| = R the
 toothed surface cuts a closed *section outline*: root arc, one flank from root
 to tip, top land, the other flank from tip to root, next tooth. The flanks are
-the exact surfaces of :class:`lsbg.geometry.GearPair`; the meshes loft the
+the exact surfaces of :class:`lsbg.gear.geometry.GearPair`; the meshes loft the
 outlines between spheres (DESIGN.md §1: solids feed the mass properties,
-:mod:`lsbg.mass`, and the URDF, :mod:`lsbg.urdf`; contact comes from the
+:mod:`lsbg.solid.mass`, and the URDF, :mod:`lsbg.solid.urdf`; contact comes from the
 exact geometry, never from these meshes).
 
 Coordinates on a member's spheres are the polar angle theta from the axis
 ``pair.axis[m]`` and the azimuth phi about the forward rotation axis
-``pair.rotation_axis[m]``, measured as :meth:`lsbg.geometry.GearPair.azimuth`
+``pair.rotation_axis[m]``, measured as :meth:`lsbg.gear.geometry.GearPair.azimuth`
 does.
 
 Flank below the involute. Where the base cone lies above the root cone (the
@@ -34,8 +34,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lsbg.geometry import MEMBERS, MEMBER_NAMES
-from lsbg.polyhedra import TriangleMesh
+from lsbg.gear.geometry import MEMBERS, MEMBER_NAMES
+from lsbg.solid.polyhedra import TriangleMesh
 
 __all__ = [
     "MeshResolution", "side_order", "SectionOutline", "section_outline",
@@ -121,7 +121,7 @@ def side_order(pair, member):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
 
     Returns
@@ -230,7 +230,7 @@ def section_outline(pair, member, cone_distance, resolution=DEFAULT_RESOLUTION):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
     cone_distance : array_like
         Sphere radii R [m], scalar or 1-D.
@@ -300,7 +300,7 @@ def section_cone_distances(pair, member, resolution=DEFAULT_RESOLUTION):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
     resolution : MeshResolution
 
@@ -527,13 +527,13 @@ def gear_mesh(pair, member, resolution=DEFAULT_RESOLUTION):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
     resolution : MeshResolution
 
     Returns
     -------
-    lsbg.polyhedra.TriangleMesh
+    lsbg.solid.polyhedra.TriangleMesh
         Watertight, consistently wound, outward normals [m]. ``metadata``
         holds ``member``, ``name`` and ``sections``.
     """

@@ -9,17 +9,14 @@ from __future__ import annotations
 
 import datetime
 import math
-import os
 import platform
-from pathlib import Path
 
 import numpy as np
 import xarray as xr
 
 import lsbg
-from lsbg import theory
-from lsbg.files import (InputError, InputFileNotFoundError, remove_stale_temporaries,
-                        temporary_beside)
+from lsbg.gear import theory
+from lsbg.files import as_path_list, open_dataset
 
 #: Variables of a run dataset on ``time``: name -> (units, long_name).
 VARIABLES = {
@@ -36,6 +33,7 @@ VARIABLES = {
     "transmission_error": ("urad", "gear rotation behind its kinematic position "
                                    "phi1 z1/z2 - phi2"),
 }
+
 #: Variables of a run dataset on ``time_full`` (the full-rate record):
 #: name -> variable of :data:`VARIABLES` it samples at the full rate.
 FULL_RATE_VARIABLES = {
@@ -120,7 +118,7 @@ def run_dataset(record, model, settings, command=""):
         "source": f"lsbg {lsbg.__version__}, engine {settings.engine}",
         "institution": "lsbg reproducible research workflow",
         "history": f"{datetime.datetime.now(datetime.timezone.utc).isoformat(timespec='seconds')} "
-                   f"{command or 'lsbg.results.run_dataset'}",
+                   f"{command or 'lsbg.dynamics.dataset.run_dataset'}",
         "lsbg_version": lsbg.__version__,
         "python_version": platform.python_version(),
         "theory_gear_speed_deg_s": theory.gear_speed(math.degrees(settings.pinion_speed), z1, z2),
@@ -154,85 +152,10 @@ def run_dataset(record, model, settings, command=""):
     return ds
 
 
-def write_atomically(path, write):
-    """Write a file through a temporary file beside it, renamed at the end.
-
-    A failure (or an interrupt) leaves neither a half-written ``path`` nor the
-    temporary file behind; the temporaries of ``path`` that a killed writer
-    left (``.<name>.<random>.part``, :func:`lsbg.files.temporary_beside`) are
-    removed before writing. The previous ``path`` stays until the new one is
-    complete.
-
-    Parameters
-    ----------
-    path : str or pathlib.Path
-        Target file; its folder is created if needed.
-    write : callable
-        ``write(tmp_path)`` writes the content to the temporary path (a str).
-
-    Returns
-    -------
-    pathlib.Path
-        ``path``.
-    """
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    remove_stale_temporaries(path)
-    tmp = temporary_beside(path, "part")
-    try:
-        write(str(tmp))
-        os.replace(tmp, path)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
-    return path
-
-
-def write_dataset(ds, path):
-    """Write a dataset to NetCDF atomically (see :func:`write_atomically`).
-
-    Data variables on ``time_full`` (the full-rate record) are compressed
-    (zlib level 1, lossless). Every numeric array carries a Fletcher-32
-    checksum, so that reading a corrupted file fails (:func:`open_dataset`)
-    instead of returning wrong numbers; it costs about 13 % of the size.
-
-    Parameters
-    ----------
-    ds : xarray.Dataset
-    path : str or pathlib.Path
-    """
-    encoding = {}
-    for name, var in ds.variables.items():
-        # HDF5 checksums chunked storage only: not scalars, empty arrays or strings
-        if var.dtype.kind in "fiu" and var.ndim and var.size:
-            encoding[name] = {"fletcher32": True}
-            if name in ds.data_vars and "time_full" in var.dims:
-                encoding[name].update(zlib=True, complevel=1, shuffle=True)
-    write_atomically(path, lambda tmp: ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding))
-
-
 #: Attributes every run dataset carries (checked by :func:`open_run`).
 REQUIRED_ATTRIBUTES = ("design_trace", "design_spiral_angle_deg", "solver_engine",
                        "contact_model", "solver_full_rate_hz", "solver_load_torque_N_m",
                        "theory_gear_speed_deg_s", "theory_tangential_force_N")
-
-
-def as_path_list(value) -> list:
-    """A list of paths from a path, a list of paths, or ``""``/``None`` (empty).
-
-    Parameters
-    ----------
-    value : str, os.PathLike, sequence of them, or None
-
-    Returns
-    -------
-    list of pathlib.Path
-    """
-    if value is None or (isinstance(value, str) and not value.strip()):
-        return []
-    if isinstance(value, (str, Path)):
-        return [Path(value)]
-    return [Path(v) for v in value if str(v).strip()]
 
 
 def open_run(path) -> xr.Dataset:
@@ -254,61 +177,7 @@ def open_run(path) -> xr.Dataset:
         See :func:`open_dataset`.
     """
     return open_dataset(path, "run", ("time", "time_full", *VARIABLES, *FULL_RATE_VARIABLES),
-                        REQUIRED_ATTRIBUTES, "a run dataset of lsbg.results")
-
-
-def open_dataset(path, kind, variables, attributes, what) -> xr.Dataset:
-    """Read a NetCDF file of lsbg into memory, checking what it must hold.
-
-    Parameters
-    ----------
-    path : str or os.PathLike
-    kind : str
-        Named in the message for a missing file ("run", "mesh").
-    variables, attributes : sequence of str
-        Names the dataset must have.
-    what : str
-        Named in the message for a file that lacks them.
-
-    Returns
-    -------
-    xarray.Dataset
-        Loaded (the file is closed); ``encoding['source']`` is the path.
-
-    Raises
-    ------
-    lsbg.files.InputError
-        In one line naming the file: it does not exist
-        (:class:`lsbg.files.InputFileNotFoundError`), is a directory, cannot be
-        read, is not NetCDF, is truncated or corrupt (a failed checksum of
-        :func:`write_dataset`), or lacks ``variables`` or ``attributes``.
-    """
-    path = Path(path)
-    if not path.exists():
-        raise InputFileNotFoundError(f"{path}: no such {kind} file")
-    if not path.is_file():
-        raise InputError(f"{path}: a directory, not a {kind} file")
-    again = "delete it and rerun snakemake (or the lsbg command that wrote it)"
-    try:
-        with xr.open_dataset(path, engine="netcdf4") as ds:
-            ds = ds.load()
-    except PermissionError:
-        raise InputError(f"{path}: {kind} file not readable (permission denied)") from None
-    # netCDF4 reports a truncated or corrupt file as OSError or RuntimeError
-    # ("NetCDF: HDF error", also a failed checksum) or AttributeError (an
-    # unreadable attribute); the try holds nothing but the reading.
-    except (OSError, ValueError, RuntimeError, AttributeError) as err:
-        # the reason without the path again (an OSError's strerror), in one line
-        detail = getattr(err, "strerror", None) or (str(err).splitlines() or [repr(err)])[0]
-        raise InputError(f"{path}: not a readable NetCDF file, truncated or corrupt "
-                         f"({detail}); {again}") from None
-    missing = [name for name in variables if name not in ds.variables]
-    missing += [name for name in attributes if name not in ds.attrs]
-    if missing:
-        more = f" and {len(missing) - 5} more" if len(missing) > 5 else ""
-        raise InputError(f"{path}: not {what} (missing {missing[:5]}{more}); {again}")
-    ds.encoding["source"] = str(path)
-    return ds
+                        REQUIRED_ATTRIBUTES, "a run dataset of lsbg.dynamics.dataset")
 
 
 def open_runs(paths) -> list:

@@ -37,8 +37,8 @@ from functools import cached_property
 
 import numpy as np
 
-from lsbg.design import DesignError, GearPairDesign
-from lsbg.vectors import cross, rotate, unit
+from lsbg.gear.design import DesignError, GearPairDesign
+from lsbg.gear.vectors import cross, rotate, unit
 
 SIDES = ("drive", "coast")
 MEMBERS = (1, 2)

@@ -13,7 +13,7 @@ from xml.etree import ElementTree
 
 import numpy as np
 
-from lsbg.geometry import MEMBERS, MEMBER_NAMES
+from lsbg.gear.geometry import MEMBERS, MEMBER_NAMES
 
 __all__ = ["write_urdf"]
 
@@ -45,13 +45,13 @@ def write_urdf(path, pair, props, mesh_files):
     moment. Limits: effort 1e9 N m, velocity 1e4 rad/s (PyBullet's own
     ``maxJointVelocity`` of 100 rad/s is separate; see DESIGN.md §3), no
     damping or friction. There is no ``<collision>`` element: contact forces
-    come from :mod:`lsbg.geometry`, never from Bullet (DESIGN.md §3).
+    come from :mod:`lsbg.gear.geometry`, never from Bullet (DESIGN.md §3).
 
     Parameters
     ----------
     path : str or os.PathLike
         URDF file to write.
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     props : dict
         ``{member: MassProperties}`` for members 1 and 2.
     mesh_files : dict

@@ -4,7 +4,7 @@ A sweep names settings of the physics sections by their path
 (``contact.dynamic_friction``) and their values; the study then runs every
 combination at the design points it names (the paper's point, both traces, by
 default) and combines the runs into one dataset with a coordinate per swept
-key (``results/sweeps/{name}.nc``, :mod:`lsbg.sweep_dataset`)::
+key (``results/sweeps/{name}.nc``, :mod:`lsbg.aggregate.sweep_dataset`)::
 
     sweeps:
       friction:                                  # one key: its values
@@ -26,7 +26,7 @@ per point, one column per key), whose instance patterns name the points' files
 (``dynamic_friction~0.05``); a value is written as Python writes it, so a
 negative or fractional value is named safely and 0.1 and 0.1000001 are two
 points. :func:`sweep_problems` checks every point as if its values were set in
-their own sections, before any job (:mod:`lsbg.sweep_checks`).
+their own sections, before any job (:mod:`lsbg.study.sweep_checks`).
 """
 
 from __future__ import annotations

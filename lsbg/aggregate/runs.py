@@ -1,7 +1,7 @@
 """Run datasets read back: which gear type, which samples, which theory.
 
-A run is one NetCDF file of :mod:`lsbg.results` (``lsbg simulate``). The
-stages after the runs (:mod:`lsbg.combine`, :mod:`lsbg.summary`, the tables
+A run is one NetCDF file of :mod:`lsbg.dynamics.dataset` (``lsbg simulate``). The
+stages after the runs (:mod:`lsbg.aggregate.combine`, :mod:`lsbg.aggregate.summary`, the tables
 and figures) see them through this module: the paper's names of the
 quantities and of the gear types (SBG, LSBG, in the paper's order), the
 steady-state samples, the full-rate record and the theoretical value
@@ -18,9 +18,10 @@ from __future__ import annotations
 import numpy as np
 
 from lsbg.stats.samples import steady_state
-from lsbg.design import TRACE_LABELS
-from lsbg.files import read_record
-from lsbg.results import as_path_list, open_dataset, open_run
+from lsbg.gear.design import TRACE_LABELS
+from lsbg.solid.directory import read_record
+from lsbg.files import as_path_list, open_dataset
+from lsbg.dynamics.dataset import open_run
 
 __all__ = [
     "QUANTITIES", "QUANTITY_LABELS", "THEORY_ATTRIBUTES", "FULL_RATE_OF", "TYPE_ORDER",
@@ -224,7 +225,7 @@ def open_mesh(path):
     """
     return open_dataset(path, "mesh", ("transmission_error", "mesh_stiffness"),
                         ("design_trace", "transmission_error_harmonic_1_urad"),
-                        "a loaded-TCA dataset of lsbg.ltca")
+                        "a loaded-TCA dataset of lsbg.tca.loaded")
 
 
 # ------------------------------------------------------- the paper's report

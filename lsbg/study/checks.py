@@ -24,9 +24,9 @@ configuration that returns its problem lines):
 5. the statistics: steady state <= chart window start < window end <=
    duration, and enough samples for the Anderson-Darling test, the Xbar-R
    subgroups and the sampling-phase spread of the summary;
-6. every design point: :class:`lsbg.geometry.GearPair` runs lsbg's own
-   checks (:mod:`lsbg.design`: proportions, backlash, bores, cutter radius;
-   :mod:`lsbg.geometry`: pointed teeth, contact ratio >= 1 under
+6. every design point: :class:`lsbg.gear.geometry.GearPair` runs lsbg's own
+   checks (:mod:`lsbg.gear.design`: proportions, backlash, bores, cutter radius;
+   :mod:`lsbg.gear.geometry`: pointed teeth, contact ratio >= 1 under
    interference), their messages mapped back to the design key in mm;
 7. the resource guard: each design point's geometry memory and time,
    estimated from its mesh size (:func:`geometry_cost`), against
@@ -35,7 +35,7 @@ configuration that returns its problem lines):
    runtime the simulation rules request (:func:`run_cost_problems`); the
    load and the pinion speed against what the teeth of each contact model
    can carry and the full-rate record can resolve
-   (:func:`lsbg.resources.load_problems`);
+   (:func:`lsbg.study.resources.load_problems`);
 8. the contact state at each design point that passed 6 and 7 (odd map steps
    first; :func:`lsbg.tca.checks.contact_state_problems`): the relief within
    the backlash, the misalignment and the V-H map's corners neither losing
@@ -45,7 +45,7 @@ configuration that returns its problem lines):
    cost (:func:`lsbg.tooth.config.tooth_problems`);
 10. the rating section and the paper point's ISO 10300 rating
     (:func:`lsbg.rating.config.rating_problems`);
-11. the sweeps (:func:`lsbg.sweep_checks.sweep_problems`): every point of every
+11. the sweeps (:func:`lsbg.study.sweep_checks.sweep_problems`): every point of every
     sweep through the schema and steps 4, 6 and 7 as if its values were set in
     their own sections, at the sweep's own design points; points that give one
     file name; the number of runs against the resource guard.
@@ -71,12 +71,11 @@ from pathlib import Path
 
 import numpy as np
 
-from lsbg.design import CONFIG_KEYS, DesignError, GearPairDesign
+from lsbg.gear.design import CONFIG_KEYS, DesignError, GearPairDesign
 from lsbg.files import number_label
-from lsbg.resources import (
-    engines_run, geometry_cost, load_problems, memory_limit_gb, run_cost_problems,
-    run_memory_gb, speed_sweep_problems)
-from lsbg.workflow import design_points, map_steps
+from lsbg.study.resources import (engines_run, geometry_cost, load_problems, memory_limit_gb,
+                                  run_cost_problems, run_memory_gb, speed_sweep_problems)
+from lsbg.study.plan import design_points, map_steps
 
 __all__ = [
     "key_path", "check_config", "nonfinite_problems", "schema_problems", "fill_defaults",
@@ -110,7 +109,7 @@ def check_config(config, schema):
         in the configuration's units; empty if the configuration is valid.
     """
     if "load_sweep" in config:  # the extension became an instance of the sweeps section
-        from lsbg.sweep_checks import load_sweep_moved
+        from lsbg.study.sweep_checks import load_sweep_moved
 
         return [load_sweep_moved(config["load_sweep"])]
     nonfinite = nonfinite_problems(config)
@@ -135,9 +134,9 @@ def check_config(config, schema):
 
 
 def _sweeps_problems(config, schema, pairs):
-    """The ``sweeps`` section (:func:`lsbg.sweep_checks.sweep_problems`): each point through
+    """The ``sweeps`` section (:func:`lsbg.study.sweep_checks.sweep_problems`): each point through
     the schema and steps 4, 6 and 7, at the sweep's own design points."""
-    from lsbg.sweep_checks import sweep_problems
+    from lsbg.study.sweep_checks import sweep_problems
     from lsbg.tca.separation import RealFlanks
 
     def check(changed, sweep):
@@ -264,7 +263,7 @@ def _label_clashes(values, where, label=number_label):
 
 def _name_problems(config):
     """Sweep values that differ but give the same file name (or case name)."""
-    from lsbg.sensitivity import case_name
+    from lsbg.experiments.sensitivity import case_name
 
     problems = _label_clashes(config["sweep"]["spiral_angles_deg"], "sweep.spiral_angles_deg")
     for key, factors in config["sensitivity"].items():
@@ -276,10 +275,10 @@ def _name_problems(config):
 # ----------------------------------------------------------------- settings
 def _settings_problems(config):
     """The engines, simulation, contact, sensitivity, speed and load sweeps as lsbg
-    reads them (:mod:`lsbg.dynamics`, :mod:`lsbg.contact`, :mod:`lsbg.speed`)."""
+    reads them (:mod:`lsbg.dynamics`, :mod:`lsbg.contact`, :mod:`lsbg.experiments.speed`)."""
     from lsbg.contact import ContactParameters
     from lsbg.dynamics import SimulationSettings
-    from lsbg.sensitivity import scaled_contact
+    from lsbg.experiments.sensitivity import scaled_contact
 
     problems = []
     engines = config["engines"]
@@ -361,7 +360,7 @@ def _statistics_problems(config):
     (:meth:`lsbg.dynamics.SimulationSettings.record_grid`) with the
     summary's selection rules.
     """
-    from lsbg import spectra
+    from lsbg.stats import spectra
     from lsbg.dynamics import SimulationSettings
 
     simulation, statistics = config["simulation"], config["statistics"]
@@ -402,7 +401,7 @@ def _statistics_problems(config):
     except ValueError:
         return problems  # the settings themselves: named by _settings_problems
     # The full-rate record and the part of it the summary reads, as
-    # lsbg.dynamics.model and lsbg.runs.full_rate_series select them.
+    # lsbg.dynamics.model and lsbg.aggregate.runs.full_rate_series select them.
     times = settings.record_grid()[1]
     full = times[times >= settings.full_rate_start - 0.5 * settings.full_rate_interval]
     spacing = full[1] - full[0] if full.size > 1 else 1.0
@@ -469,7 +468,7 @@ def _value_at(config, path):
 def _user_message(error, config, point_keys):
     """A DesignError's message under the user's key and units: (key part, why).
 
-    lsbg.design names the dataclass field (``face_width = 0.5``) and writes
+    lsbg.gear.design names the dataclass field (``face_width = 0.5``) and writes
     lengths in metres; the user wrote ``design.face_width_mm: 500``.
     """
     match = _DESIGN_ERROR.match(str(error))
@@ -489,8 +488,8 @@ def _user_message(error, config, point_keys):
 def _design_problems(config, pairs=None):
     """lsbg's physics checks and the resource guard at every design point: one line
     per key at fault, naming the design points where it fails. ``pairs`` is filled in
-    with ``(trace, spiral label) -> lsbg.geometry.GearPair`` of each point that passes."""
-    from lsbg.geometry import GearPair
+    with ``(trace, spiral label) -> lsbg.gear.geometry.GearPair`` of each point that passes."""
+    from lsbg.gear.geometry import GearPair
 
     points = design_points(config)
     failing = {}  # key part -> [why, points]
@@ -591,11 +590,11 @@ def contact_state_cache_dir():
 
 def _point_contact_state(pair, config, trace, spiral, map_config):
     """lsbg's contact-state problems at one design point, kept for the next start
-    (:func:`lsbg.stages.cached_answer`: asked again when an input, the topography
+    (:func:`lsbg.study.stages.cached_answer`: asked again when an input, the topography
     file's content or the sources of the contact_state stage change)."""
     from importlib import metadata
 
-    from lsbg.stages import cached_answer
+    from lsbg.study.stages import cached_answer
 
     modification, misalignment = config["flank_modification"], config["misalignment"]
     name = modification.get("topography_file")

@@ -2,16 +2,16 @@
 
 CAD tools read STEP. Each member becomes one closed solid whose toothed
 surface is lofted through the exact section outlines of
-:func:`lsbg.solids.section_outline` (on spheres about the apex): per tooth an
+:func:`lsbg.solid.solids.section_outline` (on spheres about the apex): per tooth an
 interpolating spline through the flank points of each side, the top land and
 the root arc, so that the surface passes through the exact flank points of
 every section and interpolates smoothly between them
 (``occ.addThruSections``). Lofted a little beyond the toe and the heel, the
 body is cut to the spherical shell R_i <= |r| <= R_e and bored, as
-:mod:`lsbg.solids` defines the gear blank.
+:mod:`lsbg.solid.solids` defines the gear blank.
 
 Checked (``tests/test_step.py``) by reading the file back with OCC: one closed
-solid, its volume against :func:`lsbg.mass.quadrature_mass_properties`, and the
+solid, its volume against :func:`lsbg.solid.mass.quadrature_mass_properties`, and the
 exact flanks' distance from its surface at a few hundred points (measured for
 the paper's pair: 0.2 µm on the pinion, 0.05 µm on the gear).
 
@@ -31,8 +31,8 @@ from pathlib import Path
 
 import numpy as np
 
-from lsbg.geometry import MEMBER_NAMES
-from lsbg.solids import DEFAULT_RESOLUTION, _outline_counts, section_outline
+from lsbg.gear.geometry import MEMBER_NAMES
+from lsbg.solid.solids import DEFAULT_RESOLUTION, _outline_counts, section_outline
 
 __all__ = ["STEP_SECTIONS", "STEP_TIME_STAMP", "write_step", "read_step", "flank_deviation"]
 
@@ -90,8 +90,8 @@ def relieved_outline(pair, outline, relief):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
-    outline : lsbg.solids.SectionOutline
+    pair : lsbg.gear.geometry.GearPair
+    outline : lsbg.solid.solids.SectionOutline
         The pinion's (member 1).
     relief : callable
         ``relief(cone_distance, polar_angle)``: material removed normal to the
@@ -104,8 +104,8 @@ def relieved_outline(pair, outline, relief):
     -------
     numpy.ndarray, shape of ``outline.points``
     """
-    from lsbg.solids import side_order
-    from lsbg.vectors import rotate
+    from lsbg.solid.solids import side_order
+    from lsbg.gear.vectors import rotate
 
     n = outline.per_tooth
     n_top = np.sum(np.isclose(outline.polar_angle[0, :n], pair.design.tip_angle(1)))
@@ -132,14 +132,14 @@ def loft_sections(pair, member, sections):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
     sections : int
         Spheres, evenly spaced in cone distance [-].
 
     Returns
     -------
-    outline : lsbg.solids.SectionOutline
+    outline : lsbg.solid.solids.SectionOutline
     n_top, n_root : int
         Interior points of each top land and root arc [-].
     """
@@ -155,7 +155,7 @@ def build_solid(pair, member, sections=STEP_SECTIONS, relief=None):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
     sections : int
         Sections of the loft [-].
@@ -203,7 +203,7 @@ def write_step(pair, member, path, relief=None):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
     path : str or os.PathLike
     relief : callable, optional
@@ -296,7 +296,7 @@ def flank_deviation(pair, member, path, points=200, seed=0, relief=None):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
     path : str or os.PathLike
         The member's STEP file (:func:`write_step`).

@@ -1,11 +1,11 @@
 """A parameter sweep's runs as one dataset, and as summary rows.
 
-The runs of one sweep (``lsbg sweep-run``, :mod:`lsbg.sweeps`) record their
+The runs of one sweep (``lsbg sweep-run``, :mod:`lsbg.experiments.sweeps`) record their
 swept values as attributes ``sweep_<section>_<key>``. :func:`sweep_dataset`
 stacks their statistics over the trace, the spiral angle and the points: a
 sweep of one key gets that key as a dimension, a product sweep its grid (one
 dimension per key), a list of combinations a ``point`` dimension with a
-coordinate per key. Statistics per run and quantity (:func:`lsbg.summary.
+coordinate per key. Statistics per run and quantity (:func:`lsbg.aggregate.summary.
 quantity_summary`): the mean, the std of the output samples, the full-rate std
 and, of the contact torque, the dynamic factor. Units in the attributes (the
 runs' own, paper units); the swept keys' units are their configuration units.
@@ -24,7 +24,7 @@ SWEEP_STATISTICS = {"mean": "mean", "std": "std", "full_rate_std": "full_rate_st
 
 def _swept(ds):
     """(sweep name, kind, {key: value}) of a run of ``lsbg sweep-run``."""
-    from lsbg.sweeps import swept_attribute
+    from lsbg.experiments.sweeps import swept_attribute
 
     if "sweep_name" not in ds.attrs:
         raise ValueError(f"{ds.encoding.get('source', '<run>')}: not a run of a sweep "
@@ -42,15 +42,15 @@ def sweep_rows(runs, steady_state_after=0.2, window=(0.8, 1.0), subgroup_size=4)
     runs : sequence of xarray.Dataset
         Runs of one sweep.
     steady_state_after, window, subgroup_size
-        As :func:`lsbg.summary.quantity_summary` [s, s, -].
+        As :func:`lsbg.aggregate.summary.quantity_summary` [s, s, -].
 
     Returns
     -------
     pandas.DataFrame
-        :data:`lsbg.summary.SUMMARY_COLUMNS`'s run columns, ``sweep`` and one
+        :data:`lsbg.aggregate.summary.SUMMARY_COLUMNS`'s run columns, ``sweep`` and one
         column per swept key (``contact.dynamic_friction``).
     """
-    from lsbg.summary import SUMMARY_QUANTITIES, quantity_summary
+    from lsbg.aggregate.summary import SUMMARY_QUANTITIES, quantity_summary
 
     swept = [_swept(ds) for ds in runs]
     names = {name for name, _, _ in swept}
@@ -74,7 +74,7 @@ def sweep_dataset(runs, steady_state_after=0.2, window=(0.8, 1.0), subgroup_size
     runs : sequence of xarray.Dataset
         Runs of one sweep (all its points at its design points).
     steady_state_after, window, subgroup_size
-        As :func:`lsbg.summary.quantity_summary` [s, s, -].
+        As :func:`lsbg.aggregate.summary.quantity_summary` [s, s, -].
     rows : pandas.DataFrame, optional
         :func:`sweep_rows` of these runs with these options, if already computed.
 
@@ -164,7 +164,7 @@ def sweep_long(ds, variables):
         ``gear_type``, ``spiral_angle_deg``, a column per swept key and per
         variable; rows of points not run (a product's holes) left out.
     """
-    from lsbg.design import TRACE_LABELS
+    from lsbg.gear.design import TRACE_LABELS
 
     keys = str(ds.attrs["sweep_keys"]).split()
     table = ds[list(variables)].to_dataframe().reset_index()

@@ -21,46 +21,25 @@ import os
 from pathlib import Path
 
 #: The lsbg package directory.
-PACKAGE = Path(__file__).resolve().parent
+PACKAGE = Path(__file__).resolve().parents[1]
 
 #: Stage -> the lsbg modules (or packages) its command imports, directly or not.
 STAGE_MODULES = {
     # (contact ... theory, ltca and tca: lsbg.cli.options reads the contact and simulation
     # options and the flanks, lsbg.tca, too)
-    "geometry": ("cli", "design", "files", "geometry", "vectors", "polyhedra", "solids", "mass",
-                 "urdf", "render", "step", "export", "contact", "dynamics", "results", "theory",
-                 "ltca", "tca"),
-    "ltca": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "ltca",
-             "results", "theory", "tca", "tooth", "step", "polyhedra", "solids", "mass",
-             "sections", "sensitivity"),
-    "tooth": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "results",
-              "theory", "ltca", "tca", "tooth", "step", "polyhedra", "solids", "mass",
-              "sections"),
-    "points": ("cli", "design", "files", "geometry", "vectors", "polyhedra", "solids", "mass",
-               "urdf", "render", "step", "export", "contact", "dynamics", "ltca", "results",
-               "theory", "tca", "tooth", "sections"),
-    "simulate": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "results",
-                 "theory", "sensitivity", "ltca", "tca"),
-    "convergence": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics",
-                    "results", "theory", "verification", "ltca", "tca"),
-    "speed": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "results",
-              "theory", "spectra", "speed", "ltca", "tca"),
-    "contact_state": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics",
-                      "ltca", "results", "theory", "tca", "sensitivity"),
-    "sweep": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "ltca",
-              "results", "theory", "tca", "sweeps", "sweep_dataset", "summary", "stats",
-              "spectra", "runs", "export", "solids", "polyhedra", "mass", "urdf", "render",
-              "step", "numba_cache", "combine"),
-    "rating": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "results",
-               "theory", "ltca", "tca", "rating", "summary", "stats", "spectra", "runs",
-               "combine", "sections"),
-    "aggregate": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "results",
-                  "theory", "stats", "spectra", "runs", "combine", "summary", "ltca", "tca"),
+    "geometry": ("cli", "gear", "files", "solid", "contact", "dynamics", "tca"),
+    "ltca": ("cli", "gear", "files", "contact", "dynamics", "tca", "tooth", "solid", "sections", "experiments"),
+    "tooth": ("cli", "gear", "files", "contact", "dynamics", "tca", "tooth", "solid", "sections"),
+    "points": ("cli", "gear", "files", "solid", "contact", "dynamics", "tca", "tooth", "sections"),
+    "simulate": ("cli", "gear", "files", "solid", "contact", "dynamics", "experiments", "tca"),
+    "convergence": ("cli", "gear", "files", "solid", "contact", "dynamics", "experiments", "tca"),
+    "speed": ("cli", "gear", "files", "solid", "contact", "dynamics", "stats", "experiments", "tca"),
+    "contact_state": ("cli", "gear", "files", "solid", "contact", "dynamics", "tca", "experiments"),
+    "sweep": ("cli", "gear", "files", "contact", "dynamics", "tca", "experiments", "aggregate", "stats", "solid", "numba_cache"),
+    "rating": ("cli", "gear", "files", "solid", "contact", "dynamics", "tca", "rating", "aggregate", "stats", "sections"),
+    "aggregate": ("cli", "gear", "files", "solid", "contact", "dynamics", "stats", "aggregate", "tca"),
     # the notebooks' imports too (tests/test_stages.py reads them)
-    "report": ("cli", "design", "files", "geometry", "vectors", "contact", "dynamics", "results",
-               "theory", "stats", "spectra", "runs", "combine", "summary", "ltca", "reports",
-               "verification", "tables", "figures", "sensitivity", "speed", "tca", "rating",
-               "sections", "sweeps", "sweep_dataset"),
+    "report": ("cli", "gear", "files", "solid", "contact", "dynamics", "stats", "aggregate", "tca", "reports", "experiments", "tables", "figures", "rating", "sections"),
 }
 
 #: Stage -> where its command starts: ``"module:function"`` of the lsbg.cli

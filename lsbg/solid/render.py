@@ -17,7 +17,7 @@ import os
 import numpy as np
 from numba import njit
 
-from lsbg.geometry import MEMBERS
+from lsbg.gear.geometry import MEMBERS
 
 __all__ = ["rasterize", "render_pair"]
 
@@ -124,9 +124,9 @@ def render_pair(path, pair, meshes, size=(900, 700), supersample=2):
     ----------
     path : str or os.PathLike
         PNG file to write.
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     meshes : dict
-        ``{member: lsbg.polyhedra.TriangleMesh}`` for members 1 and 2 [m].
+        ``{member: lsbg.solid.polyhedra.TriangleMesh}`` for members 1 and 2 [m].
     size : tuple of int
         Width and height [pixel].
     supersample : int

@@ -1,7 +1,7 @@
 """Mass properties of the solid gears, twice: from the triangle mesh and by quadrature.
 
-:func:`mass_properties` integrates over the closed mesh of :mod:`lsbg.solids`
-(divergence theorem, :mod:`lsbg.polyhedra`); :func:`quadrature_mass_properties`
+:func:`mass_properties` integrates over the closed mesh of :mod:`lsbg.solid.solids`
+(divergence theorem, :mod:`lsbg.solid.polyhedra`); :func:`quadrature_mass_properties`
 integrates independently over the section outlines in spherical coordinates.
 The tests compare the two. Lengths in metres, masses in kilograms, inertias in
 kg·m².
@@ -13,8 +13,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lsbg.polyhedra import mesh_mass_properties
-from lsbg.solids import flank_azimuth, side_order, wrap_angle
+from lsbg.solid.polyhedra import mesh_mass_properties
+from lsbg.solid.solids import flank_azimuth, side_order, wrap_angle
 
 __all__ = [
     "MassProperties", "principal_frame", "mass_properties", "section_integrals",
@@ -81,9 +81,9 @@ def mass_properties(mesh, pair, member, density=None):
 
     Parameters
     ----------
-    mesh : lsbg.polyhedra.TriangleMesh
+    mesh : lsbg.solid.polyhedra.TriangleMesh
         Watertight gear mesh from :func:`gear_mesh` [m].
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
     density : float, optional
         [kg/m^3]; default ``pair.design.density``.
@@ -135,7 +135,7 @@ def section_integrals(pair, member, cone_distance, n_profile=48):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
     cone_distance : array_like
         Sphere radii R [m], 1-D.
@@ -214,7 +214,7 @@ def quadrature_mass_properties(pair, member, density=None, n_radial=16, n_profil
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
     density : float, optional
         [kg/m^3]; default ``pair.design.density``.

@@ -1,18 +1,18 @@
-"""The ``sweeps`` section checked before any job (:mod:`lsbg.sweeps`).
+"""The ``sweeps`` section checked before any job (:mod:`lsbg.experiments.sweeps`).
 
 Every point of every sweep goes through the same checks as if its values were
 set in their own sections (the schema, then lsbg's checks of the settings, the
 design points and the load, at the sweep's own design points); the sweep's
 keys must be sweepable, its design points the study's, its points distinct as
 file names, and all sweeps together within the resource guard's number of runs.
-Part of :func:`lsbg.config_check.check_config`.
+Part of :func:`lsbg.study.checks.check_config`.
 """
 
 from __future__ import annotations
 
 import copy
 
-from lsbg.sweeps import FIXED_KEYS, SWEEPABLE_SECTIONS, sweeps_from_config
+from lsbg.experiments.sweeps import FIXED_KEYS, SWEEPABLE_SECTIONS, sweeps_from_config
 
 __all__ = ["MAX_SWEEP_RUNS", "sweep_problems", "load_sweep_moved"]
 
@@ -51,7 +51,7 @@ def _value_problems(name, sweep, config, check):
 def _point_problems(name, sweep, spec, config):
     """The sweep's design points must be the study's (their geometry is the study's)."""
     from lsbg.files import number_label
-    from lsbg.workflow import design_points
+    from lsbg.study.plan import design_points
 
     study = set(design_points(config))
     missing = [(t, a) for t in sweep.traces for a in sweep.spiral_angles
@@ -96,7 +96,7 @@ def sweep_problems(config, check):
     check : callable
         ``check(config, sweep) -> list of str``: the configuration check of the
         swept sections (the schema, the settings, the load guard, the design
-        points' physics; :mod:`lsbg.config_check`), applied to the
+        points' physics; :mod:`lsbg.study.checks`), applied to the
         configuration with each point's values set.
 
     Returns

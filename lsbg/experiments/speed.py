@@ -23,7 +23,7 @@ import math
 
 import numpy as np
 
-from lsbg import spectra
+from lsbg.stats import spectra
 from lsbg.dynamics.settings import SimulationSettings
 
 __all__ = ["SPEED_QUANTITIES", "speed_grid", "resonance_speeds", "speed_settings",

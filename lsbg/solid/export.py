@@ -11,7 +11,7 @@ the temporaries of a writer that was killed. The files:
     every derived quantity (:meth:`GearPairDesign.derived`) and measurements
     on the exact flanks and solids. Keys carry their unit as a suffix
     (``_mm``, ``_deg``, ``_kg``, ``_kg_m2``); values are plain numbers,
-    strings or lists. :func:`lsbg.files.read_design` reads the design back
+    strings or lists. :func:`lsbg.solid.directory.read_design` reads the design back
     exactly.
 ``flanks.nc``
     Points and outward normals of tooth 0's flanks, both members and sides,
@@ -21,12 +21,12 @@ the temporaries of a writer that was killed. The files:
     STL: the URDF's visual meshes too; an OBJ copy cost 0.3 s per design
     point and 3 MB).
 ``pair.urdf``
-    The assembled pair for PyBullet (:func:`lsbg.urdf.write_urdf`).
+    The assembled pair for PyBullet (:func:`lsbg.solid.urdf.write_urdf`).
 ``pair.png``
-    A picture of the assembled pair (:func:`lsbg.render.render_pair`).
+    A picture of the assembled pair (:func:`lsbg.solid.render.render_pair`).
 ``manifest.json``
     Written last: size and SHA-256 of every other file and the design point
-    they belong to (:func:`lsbg.files.write_manifest`); every reader checks it.
+    they belong to (:func:`lsbg.solid.directory.write_manifest`); every reader checks it.
 """
 
 from __future__ import annotations
@@ -43,11 +43,12 @@ from pathlib import Path
 import numpy as np
 
 import lsbg
-from lsbg import mass, render, solids, urdf
-from lsbg.design import GearPairDesign
-from lsbg.files import (FILE_NAMES, MANIFEST, OPTIONAL_FILE_NAMES, read_design,
-                        remove_stale_temporaries, temporary_beside, write_manifest)
-from lsbg.geometry import MEMBER_NAMES, MEMBERS, SIDES, GearPair
+from lsbg.solid import mass, render, solids, urdf
+from lsbg.gear.design import GearPairDesign
+from lsbg.solid.directory import (FILE_NAMES, MANIFEST, OPTIONAL_FILE_NAMES, read_design,
+                                  write_manifest)
+from lsbg.files import remove_stale_temporaries, temporary_beside
+from lsbg.gear.geometry import MEMBER_NAMES, MEMBERS, SIDES, GearPair
 
 __all__ = ["GeometryFiles", "write_geometry", "read_design", "design_record",
            "flank_dataset", "FILE_NAMES", "STAGES"]  # read_design, FILE_NAMES: lsbg.files
@@ -97,13 +98,13 @@ def design_record(pair: GearPair, props=None, quadrature=None, meshes=None) -> d
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     props : dict, optional
-        ``{member: lsbg.mass.MassProperties}`` from the meshes.
+        ``{member: lsbg.solid.mass.MassProperties}`` from the meshes.
     quadrature : dict, optional
-        ``{member: lsbg.mass.QuadratureMassProperties}``, the mesh-free check.
+        ``{member: lsbg.solid.mass.QuadratureMassProperties}``, the mesh-free check.
     meshes : dict, optional
-        ``{member: lsbg.polyhedra.TriangleMesh}``, for the triangle counts.
+        ``{member: lsbg.solid.polyhedra.TriangleMesh}``, for the triangle counts.
 
     Returns
     -------
@@ -176,7 +177,7 @@ def flank_dataset(pair: GearPair, n_cone=21, n_profile=31):
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     n_cone, n_profile : int
         Grid size along the face width and the profile [-].
 
@@ -232,10 +233,10 @@ def flank_dataset(pair: GearPair, n_cone=21, n_profile=31):
         },
         attrs={
             "title": f"Tooth flanks of a {d.trace} spiral bevel gear pair",
-            "source": f"lsbg {lsbg.__version__} (lsbg.geometry.GearPair.flank)",
+            "source": f"lsbg {lsbg.__version__} (lsbg.gear.geometry.GearPair.flank)",
             # no time stamp: a rerun writes the same bytes, so the directory and
             # its manifest are bit-identical too
-            "history": "created by lsbg.export.flank_dataset",
+            "history": "created by lsbg.solid.export.flank_dataset",
             "Conventions": "CF-1.11",
             **{f"design_{key}": value for key, value in d.to_config().items()},
         },
@@ -248,8 +249,8 @@ def write_geometry(design: GearPairDesign, out_dir, resolution=solids.DEFAULT_RE
                    step=False, relief=None):
     """Write the geometry of one design point into ``out_dir``.
 
-    The design is checked (:class:`lsbg.geometry.GearPair` raises
-    :class:`lsbg.design.DesignError`) before anything is written. Files go to
+    The design is checked (:class:`lsbg.gear.geometry.GearPair` raises
+    :class:`lsbg.gear.design.DesignError`) before anything is written. Files go to
     a temporary directory beside ``out_dir``, which replaces ``out_dir`` only
     when all of them and the manifest are written. Temporaries of ``out_dir``
     left by a killed writer are removed first.
@@ -259,14 +260,14 @@ def write_geometry(design: GearPairDesign, out_dir, resolution=solids.DEFAULT_RE
     design : GearPairDesign
     out_dir : str or os.PathLike
         Output directory; replaced if it exists.
-    resolution : lsbg.solids.MeshResolution
+    resolution : lsbg.solid.solids.MeshResolution
     step : bool
         Also write the exact solids as STEP (``pinion.step``, ``gear.step``;
-        :mod:`lsbg.step`, a few seconds per design point).
+        :mod:`lsbg.solid.step`, a few seconds per design point).
     relief : callable, optional
         The pinion's flank modification for its STEP solid,
         ``relief(cone_distance [m], polar_angle [rad])`` [m]
-        (:func:`lsbg.step.relieved_outline`); the other files keep the
+        (:func:`lsbg.solid.step.relieved_outline`); the other files keep the
         conjugate flanks.
 
     Returns
@@ -312,7 +313,7 @@ def write_geometry(design: GearPairDesign, out_dir, resolution=solids.DEFAULT_RE
         render.render_pair(paths["picture"], pair, meshes)
         lap("picture")
         if step:
-            from lsbg import step as step_files
+            from lsbg.solid import step as step_files
 
             for member in MEMBERS:
                 name = OPTIONAL_FILE_NAMES[f"{MEMBER_NAMES[member]}_step"]

@@ -206,9 +206,9 @@ def loaded_tca(contact: MeshContact, load_torque, phases=PHASES, profile_points=
         "Conventions": "CF-1.11",
         "title": f"Loaded tooth contact analysis of a {design.trace} spiral bevel gear pair "
                  f"({z1}:{z2}, spiral angle {math.degrees(design.spiral_angle):g} deg)",
-        "source": f"lsbg {lsbg.__version__} (lsbg.ltca.loaded_tca), line contact model",
+        "source": f"lsbg {lsbg.__version__} (lsbg.tca.loaded.loaded_tca), line contact model",
         "history": f"{datetime.datetime.now(datetime.timezone.utc).isoformat(timespec='seconds')} "
-                   f"lsbg.ltca.loaded_tca",
+                   f"lsbg.tca.loaded.loaded_tca",
         "lsbg_version": lsbg.__version__,
         "load_torque_N_m": float(load_torque),
         "phases": int(phases),
@@ -340,11 +340,11 @@ def unloaded_transmission_error(pair, pinion_angles, side="drive", n_face=7):
     the most advanced point is found by a bounded scalar maximisation over
     the pinion's polar angle, for the teeth near the mesh. The transmission
     error is the kinematic rotation phi1 z1/z2 minus the gear's. It uses only
-    :meth:`lsbg.geometry.GearPair.flank`, not the plane-of-action kernel.
+    :meth:`lsbg.gear.geometry.GearPair.flank`, not the plane-of-action kernel.
 
     Parameters
     ----------
-    pair : lsbg.geometry.GearPair
+    pair : lsbg.gear.geometry.GearPair
     pinion_angles : array_like
         Pinion rotations [rad].
     side : {"drive"}
@@ -360,7 +360,7 @@ def unloaded_transmission_error(pair, pinion_angles, side="drive", n_face=7):
     """
     from scipy.optimize import minimize_scalar
 
-    from lsbg.vectors import rotate
+    from lsbg.gear.vectors import rotate
 
     if side != "drive":
         raise ValueError(f"side = {side!r}: only the drive side is implemented")
@@ -423,8 +423,8 @@ def ltca_for_geometry(geometry_dir, load_torque, contact_params=None, phases=PHA
     -------
     xarray.Dataset
     """
-    from lsbg.files import read_design
-    from lsbg.geometry import GearPair
+    from lsbg.solid.directory import read_design
+    from lsbg.gear.geometry import GearPair
 
     params = (contact_params or ContactParameters()).replace(model="line")
     pair = GearPair(read_design(geometry_dir))

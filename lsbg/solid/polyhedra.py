@@ -1,6 +1,6 @@
 """Closed triangle meshes: topology checks, mass properties, binary STL.
 
-The solids of :mod:`lsbg.solids` need a handful of operations on a triangle
+The solids of :mod:`lsbg.solid.solids` need a handful of operations on a triangle
 mesh: its normals and triangles, whether it is watertight and consistently
 wound, its mass properties by the divergence theorem and a binary STL file.
 They live here on plain numpy arrays (a general mesh library cost 0.65 s of

@@ -2,7 +2,7 @@
 what each rule depends on.
 
 ``workflow/rules/common.smk`` is only glue: it checks the configuration with
-:func:`lsbg.config_check.check_config` (which also fills in the schema's
+:func:`lsbg.study.checks.check_config` (which also fills in the schema's
 defaults) and builds a :class:`Study`, whose attributes the rules read.
 Everything here is tested by pytest without Snakemake
 (tests/test_workflow_plan.py, tests/test_config_checks.py).
@@ -21,7 +21,7 @@ from pathlib import Path
 import yaml
 
 from lsbg.files import number_label
-from lsbg.job_order import GATE_RULES, JOB_SECONDS, job_priority
+from lsbg.study.job_order import GATE_RULES, JOB_SECONDS, job_priority
 
 __all__ = ["PAPER_TRACES", "CONTACT_MODELS", "REPORT_NAMES", "STUDY_SECTIONS", "FILES",
            "design_points", "speed_labels", "speed_keywords", "canonical", "yaml_text",
@@ -124,14 +124,14 @@ def speed_labels(grid):
     grid : dict
         ``speed_sweep.pinion_speeds_deg_s``: ``start``, ``stop`` [deg/s], ``count``.
     """
-    from lsbg.speed import speed_grid
+    from lsbg.experiments.speed import speed_grid
 
     speeds = speed_grid(math.radians(grid["start"]), math.radians(grid["stop"]), grid["count"])
     return speeds, [number_label(round(math.degrees(v), 3)) for v in speeds]
 
 
 def speed_keywords(speed):
-    """Keywords of :func:`lsbg.speed.speed_settings` from the ``speed_sweep`` section."""
+    """Keywords of :func:`lsbg.experiments.speed.speed_settings` from the ``speed_sweep`` section."""
     return {"mesh_cycles": speed["mesh_cycles"], "min_window": speed["min_window_s"],
             "settle_time": speed["settle_time_s"], "ramp_time": speed["ramp_time_s"],
             "samples_per_mesh": speed["samples_per_mesh"]}
@@ -262,7 +262,7 @@ class Study:
     Parameters
     ----------
     config : dict
-        Checked by :func:`lsbg.config_check.check_config` (defaults filled in).
+        Checked by :func:`lsbg.study.checks.check_config` (defaults filled in).
     """
 
     config: dict
@@ -280,12 +280,12 @@ class Study:
         self.reference = {m: [e for e in c["engines"]["reference"].get(m, [])
                               if e != self.sweep_engine] for m in CONTACT_MODELS}
         self.paper_engine = c["engines"]["paper"]
-        from lsbg.sensitivity import study_cases
-        from lsbg.sweeps import sweeps_from_config
+        from lsbg.experiments.sensitivity import study_cases
+        from lsbg.experiments.sweeps import sweeps_from_config
 
         #: sensitivity case -> (key, factor, switch value or corner label)
         self.sensitivity = study_cases(c["sensitivity"], c["misalignment_map"])
-        #: the parameter sweeps of the ``sweeps`` section (lsbg.sweeps.Sweep)
+        #: the parameter sweeps of the ``sweeps`` section (lsbg.experiments.sweeps.Sweep)
         self.sweeps = sweeps_from_config(c)
 
     # -------------------------------------------------------- design points
@@ -438,8 +438,8 @@ class Study:
 
     def case_options(self, stage):
         """``--case KEY=VALUE`` options of the ``sensitivity`` section's entries that
-        reach ``stage`` (:data:`lsbg.sensitivity.CASE_STAGES`)."""
-        from lsbg.sensitivity import CASE_STAGES
+        reach ``stage`` (:data:`lsbg.experiments.sensitivity.CASE_STAGES`)."""
+        from lsbg.experiments.sensitivity import CASE_STAGES
 
         return " ".join(f"--case {key}={value!r}" for key, values in
                         self.config["sensitivity"].items() if stage in CASE_STAGES[key]
@@ -447,7 +447,7 @@ class Study:
 
     def stage_cases(self, stage):
         """The sensitivity cases (names) that reach ``stage``."""
-        from lsbg.sensitivity import stage_cases
+        from lsbg.experiments.sensitivity import stage_cases
 
         return list(stage_cases(self.sensitivity, stage))
 
