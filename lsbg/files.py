@@ -22,7 +22,7 @@ from pathlib import Path
 __all__ = ["InputError", "InputFileNotFoundError", "file_digest", "number_label", "fill_template",
            "temporary_beside", "remove_stale_temporaries", "write_atomically", "write_dataset",
            "as_path_list", "open_dataset", "load_yaml", "DuplicateKeyError",
-           "duplicate_key_problems"]
+           "duplicate_key_problems", "read_yaml_file"]
 
 
 class InputError(ValueError):
@@ -375,3 +375,44 @@ def duplicate_key_problems(paths):
         except (OSError, yaml.YAMLError):  # Snakemake has read it, or says why not itself
             continue
     return problems
+
+
+def read_yaml_file(path, option="--config"):
+    """A YAML file that holds a mapping (``{}`` if empty), read refusing duplicate keys.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+    option : str
+        What gave the file (``"--config"``), for the message.
+
+    Returns
+    -------
+    dict
+
+    Raises
+    ------
+    InputError
+        One line naming ``option`` and the file: it cannot be read, is not
+        valid YAML (line and column), names a key twice, or holds no mapping.
+    """
+    import yaml
+
+    try:
+        with open(path, encoding="utf-8") as handle:
+            data = load_yaml(handle, str(path))
+    except DuplicateKeyError as error:
+        raise InputError(f"{option} {error}") from None
+    except OSError as error:
+        raise InputError(f"{option} {path}: {error.strerror}") from None
+    except yaml.YAMLError as error:
+        # one line: where and what, without the YAML library's excerpt of the file
+        mark = getattr(error, "problem_mark", None)
+        where = f"line {mark.line + 1}, column {mark.column + 1}: " if mark else ""
+        problem = getattr(error, "problem", None) or str(error).splitlines()[0]
+        raise InputError(f"{option} {path}: not valid YAML ({where}{problem})") from None
+    if data is None:
+        return {}
+    if not isinstance(data, dict):
+        raise InputError(f"{option} {path}: must hold a mapping of keys")
+    return data

@@ -16,7 +16,7 @@ PLOTTING = ("figures", "reports", "cli")
 #: Top-level modules in the order the data flows: a module may import only
 #: modules of its own layer or of layers before it.
 LAYERS = (
-    ("numba_cache", "files", "sections"),
+    ("numba_cache", "files", "config"),
     ("gear",),
     ("solid",),
     ("contact",),

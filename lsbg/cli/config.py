@@ -14,33 +14,14 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from lsbg.cli.options import CommandError, _read_yaml
+from lsbg.cli.options import CommandError
+from lsbg.config import merge_config
+from lsbg.files import read_yaml_file as _read_yaml
 
 __all__ = ["add_check_config_parser", "merge_config"]
 
 #: The repository of an editable install: the workflow's files are beside lsbg/.
 REPO = Path(__file__).resolve().parents[2]
-
-
-def merge_config(base, update):
-    """``update`` merged into ``base`` key by key, as Snakemake merges config files.
-
-    Parameters
-    ----------
-    base, update : dict
-
-    Returns
-    -------
-    dict
-        A new mapping: nested mappings merged, any other value replaced.
-    """
-    merged = dict(base)
-    for key, value in update.items():
-        if isinstance(value, dict) and isinstance(merged.get(key), dict):
-            merged[key] = merge_config(merged[key], value)
-        else:
-            merged[key] = value
-    return merged
 
 
 def add_check_config_parser(subparsers):

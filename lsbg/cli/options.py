@@ -13,6 +13,7 @@ import math
 import os
 from pathlib import Path
 
+from lsbg.files import read_yaml_file
 from lsbg.gear.design import BASE_CONE_RULES, CONFIG_KEYS, HANDS, TRACES, GearPairDesign
 
 __all__ = ["CommandError", "check_output", "add_design_options", "design_from_args",
@@ -144,31 +145,6 @@ def add_design_options(parser):
         group.add_argument(*flags, **kwargs)
 
 
-def _read_yaml(path, option="--design"):
-    import yaml
-
-    from lsbg.files import DuplicateKeyError, load_yaml
-
-    try:
-        with open(path, encoding="utf-8") as handle:
-            data = load_yaml(handle, str(path))
-    except DuplicateKeyError as error:
-        raise CommandError(f"{option} {error}") from None
-    except OSError as error:
-        raise CommandError(f"{option} {path}: {error.strerror}") from None
-    except yaml.YAMLError as error:
-        # one line: where and what, without the YAML library's excerpt of the file
-        mark = getattr(error, "problem_mark", None)
-        where = f"line {mark.line + 1}, column {mark.column + 1}: " if mark else ""
-        problem = getattr(error, "problem", None) or str(error).splitlines()[0]
-        raise CommandError(f"{option} {path}: not valid YAML ({where}{problem})") from None
-    if data is None:
-        return {}
-    if not isinstance(data, dict):
-        raise CommandError(f"{option} {path}: must hold a mapping of keys")
-    return data
-
-
 def design_from_args(args) -> GearPairDesign:
     """The design from ``--design`` (if any) overridden by the design options.
 
@@ -188,7 +164,7 @@ def design_from_args(args) -> GearPairDesign:
     CommandError
         The YAML file cannot be read.
     """
-    config = _read_yaml(args.design) if getattr(args, "design", None) else {}
+    config = read_yaml_file(args.design, "--design") if getattr(args, "design", None) else {}
     if isinstance(config.get("design"), dict):
         # a study configuration (workflow/config.yaml, results/config.yaml)
         config = dict(config["design"])
@@ -203,7 +179,7 @@ def read_study_sections(path, *sections):
     """The named sections of a study configuration file (``{}`` if no file)."""
     if path is None:
         return [{} for _ in sections]
-    config = _read_yaml(path, "--config")
+    config = read_yaml_file(path, "--config")
     return [config.get(section) or {} for section in sections]
 
 

@@ -59,7 +59,7 @@ def rating_from_config(section, tooth_section=None, dynamic_factor=None):
         Naming ``rating.<key>`` (or ``tooth.<key>``) and its value.
     """
     from lsbg.rating.iso10300 import RatingConditions, RatingMaterial
-    from lsbg.sections import config_key, section_objects
+    from lsbg.config import config_key, section_objects
 
     section = dict(section or {})
     values = {"material": {}, "conditions": {}}

@@ -61,9 +61,7 @@ Snakemake does, names the file and line of such an error, and runs
 
 from __future__ import annotations
 
-import copy
 import hashlib
-import math
 import os
 import re
 import warnings
@@ -71,6 +69,7 @@ from pathlib import Path
 
 import numpy as np
 
+from lsbg.config import fill_defaults, key_path, nonfinite_problems, schema_problems
 from lsbg.gear.design import CONFIG_KEYS, DesignError, GearPairDesign
 from lsbg.files import number_label
 from lsbg.study.resources import (engines_run, geometry_cost, load_problems, memory_limit_gb,
@@ -81,14 +80,6 @@ __all__ = [
     "key_path", "check_config", "nonfinite_problems", "schema_problems", "fill_defaults",
     "contact_state_cache_dir", "AD_MIN_SAMPLES"
 ]
-
-
-def key_path(parts):
-    """``["sweep", "spiral_angles_deg", 2]`` -> ``"sweep.spiral_angles_deg[2]"``."""
-    text = ""
-    for part in parts:
-        text += f"[{part}]" if isinstance(part, int) else (f".{part}" if text else str(part))
-    return text or "(top level)"
 
 
 def check_config(config, schema):
@@ -161,88 +152,6 @@ def _sweeps_problems(config, schema, pairs):
 
 
 # ----------------------------------------------------------- values, schema
-def nonfinite_problems(config, where=()):
-    """NaN and infinite numbers anywhere in ``config``, one line each.
-
-    Parameters
-    ----------
-    config : dict or list or scalar
-    where : tuple
-        Key path of ``config`` itself.
-
-    Returns
-    -------
-    list of str
-    """
-    if isinstance(config, dict):
-        return [p for key, value in config.items()
-                for p in nonfinite_problems(value, (*where, key))]
-    if isinstance(config, list):
-        return [p for k, value in enumerate(config)
-                for p in nonfinite_problems(value, (*where, k))]
-    if isinstance(config, float) and not math.isfinite(config):
-        return [f"{key_path(where)} = {config!r}: must be a finite number"]
-    return []
-
-
-#: A number YAML 1.1 reads as text: an exponent without a decimal point (1e-6).
-_NUMBER_TEXT = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)[eE][-+]?\d+$")
-
-
-def schema_problems(config, schema):
-    """Every violation of the schema, one line each, starting with the key path.
-
-    Parameters
-    ----------
-    config : dict
-    schema : dict
-        workflow/schemas/config.schema.yaml, loaded.
-
-    Returns
-    -------
-    list of str
-    """
-    import jsonschema
-
-    problems = []
-    for error in jsonschema.Draft202012Validator(schema).iter_errors(config):
-        where = list(error.absolute_path)
-        if error.validator == "additionalProperties":
-            known = sorted(error.schema.get("properties", {}))
-            problems += [f"{key_path(where + [key])}: unknown key (known: {', '.join(known)})"
-                         for key in sorted(set(error.instance) - set(known))]
-        elif error.validator == "required":
-            problems += [f"{key_path(where + [key])}: missing (a required key)"
-                         for key in error.validator_value if key not in error.instance]
-        else:
-            hint = ""
-            if (error.validator == "type" and isinstance(error.instance, str)
-                    and _NUMBER_TEXT.match(error.instance)):
-                hint = (f" (YAML reads {error.instance} as text: write the mantissa with a "
-                        f"decimal point, e.g. 1.0e-6)")
-            problems.append(f"{key_path(where)}: {error.message}{hint}")
-    return sorted(problems)
-
-
-def fill_defaults(config, schema):
-    """Fill in the schema's ``default`` of every missing key, in place.
-
-    The same as ``snakemake.utils.validate(config, schema, set_default=True)``
-    for this schema (objects nested in ``properties`` only): a section left
-    out takes its default (e.g. ``{}``), whose own keys then take theirs.
-
-    Parameters
-    ----------
-    config : dict
-        Valid under ``schema``.
-    schema : dict
-    """
-    for key, subschema in schema.get("properties", {}).items():
-        if key not in config and "default" in subschema:
-            # a copy: the schema's default objects must not be filled in themselves
-            config[key] = copy.deepcopy(subschema["default"])
-        if isinstance(config.get(key), dict):
-            fill_defaults(config[key], subschema)
 
 
 # ------------------------------------------------------------- file names

@@ -16,7 +16,7 @@ import logging
 import math
 from pathlib import Path
 
-from lsbg.sections import config_key, section_objects
+from lsbg.config import config_key, section_objects
 
 __all__ = ["TOOTH_CONFIG_KEYS", "TOOTH_DEFAULTS", "tooth_from_config",
            "compliance_for_design", "fe_design_points", "tooth_problems"]
