@@ -19,10 +19,10 @@ import shutil
 import tempfile
 from pathlib import Path
 
-__all__ = ["InputError", "InputFileNotFoundError", "file_digest", "number_label", "fill_template",
-           "temporary_beside", "remove_stale_temporaries", "write_atomically", "write_dataset",
-           "as_path_list", "open_dataset", "load_yaml", "DuplicateKeyError",
-           "duplicate_key_problems", "read_yaml_file"]
+__all__ = ["InputError", "InputFileNotFoundError", "file_digest", "number_label",
+           "label_clashes", "fill_template", "temporary_beside", "remove_stale_temporaries",
+           "write_atomically", "write_dataset", "as_path_list", "open_dataset", "load_yaml",
+           "DuplicateKeyError", "duplicate_key_problems", "read_yaml_file"]
 
 
 class InputError(ValueError):
@@ -259,6 +259,36 @@ def number_label(value):
     str
     """
     return f"{float(value):.6f}".rstrip("0").rstrip(".")
+
+
+def label_clashes(values, where, label=number_label):
+    """Values of a list whose file-name labels equal an earlier one's, one line each.
+
+    Parameters
+    ----------
+    values : list
+        The list as the user wrote it (a sweep's angles, a sensitivity key's factors).
+    where : str
+        Its key path (``sweep.spiral_angles_deg``).
+    label : callable, optional
+        The value's part of a file name (default :func:`number_label`).
+
+    Returns
+    -------
+    list of str
+        ``where[k] = value: gives the same file name ... as where[j] = ...``.
+    """
+    seen, problems = {}, []
+    for k, value in enumerate(values):
+        name = label(value)
+        if name in seen:
+            first = seen[name]
+            problems.append(f"{where}[{k}] = {value!r}: gives the same file name ({name}) as "
+                            f"{where}[{first}] = {values[first]!r} (file names keep "
+                            f"6 decimals)")
+        else:
+            seen[name] = k
+    return problems
 
 
 def fill_template(template, option, **fields):

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from lsbg.solid import render, solids
+from lsbg.solid import outline, render, solids
 from lsbg.gear.design import GearPairDesign
 from lsbg.gear.geometry import GearPair
 
@@ -49,7 +49,7 @@ def test_picture_of_the_pair_shows_both_members(tmp_path):
     from PIL import Image
 
     pair = GearPair(GearPairDesign())
-    meshes = solids.gear_meshes(pair, solids.MeshResolution(chord_tolerance=1e-3, twist_step=0.2))
+    meshes = solids.gear_meshes(pair, outline.MeshResolution(chord_tolerance=1e-3, twist_step=0.2))
     path = render.render_pair(tmp_path / "pair.png", pair, meshes, size=(300, 240))
     pixels = np.asarray(Image.open(path).convert("RGB")).astype(float) / 255
     assert pixels.shape == (240, 300, 3)

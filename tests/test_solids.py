@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from scipy import integrate
 
-from lsbg.solid import mass, solids
+from lsbg.solid import mass, outline, solids
 from lsbg.solid.urdf import write_urdf
 from lsbg.gear.design import GearPairDesign
 from lsbg.gear.geometry import GearPair
@@ -48,7 +48,7 @@ def pitch_crossings(pair, member, outline_row_polar, outline_row_azimuth):
 def test_outline_is_a_closed_loop_by_azimuth_on_the_sphere(lsbg_pair, member):
     pair, d = lsbg_pair, lsbg_pair.design
     radii = np.array([d.inner_cone_distance, d.mean_cone_distance, d.outer_cone_distance])
-    out = solids.section_outline(pair, member, radii)
+    out = outline.section_outline(pair, member, radii)
     z = d.teeth[member - 1]
     assert out.points.shape == (3, z * out.per_tooth, 3)
     norm = np.linalg.norm(out.points, axis=-1)
@@ -70,9 +70,9 @@ def test_outline_is_a_closed_loop_by_azimuth_on_the_sphere(lsbg_pair, member):
 def test_outline_has_z_teeth_of_the_design_thickness(built, member):
     pair, d = built.pair, built.pair.design
     expected = d.mean_tooth_thickness(member) / d.mean_pitch_radius(member)
-    for resolution, rtol in ((solids.DEFAULT_RESOLUTION, 5e-4),
-                             (solids.MeshResolution(chord_tolerance=1e-9), 2e-6)):
-        out = solids.section_outline(pair, member, d.mean_cone_distance, resolution)
+    for resolution, rtol in ((outline.DEFAULT_RESOLUTION, 5e-4),
+                             (outline.MeshResolution(chord_tolerance=1e-9), 2e-6)):
+        out = outline.section_outline(pair, member, d.mean_cone_distance, resolution)
         rising, falling = pitch_crossings(pair, member, out.polar_angle[0], out.azimuth[0])
         assert rising.size == falling.size == d.teeth[member - 1]
         np.testing.assert_allclose(falling - rising, expected, rtol=rtol)
@@ -82,10 +82,10 @@ def test_outline_has_z_teeth_of_the_design_thickness(built, member):
 def test_outline_follows_the_exact_flanks(lsbg_pair, member):
     """Flank vertices are points of GearPair.flank, tooth j turned by 2 pi j / z."""
     pair, d = lsbg_pair, lsbg_pair.design
-    out = solids.section_outline(pair, member, d.mean_cone_distance)
+    out = outline.section_outline(pair, member, d.mean_cone_distance)
     z = d.teeth[member - 1]
     start, tip = pair.flank_polar_range(member)
-    low, high = solids.side_order(pair, member)
+    low, high = outline.side_order(pair, member)
     for j in (0, z - 1):
         tooth = slice(j * out.per_tooth, (j + 1) * out.per_tooth)
         polar, points = out.polar_angle[0, tooth], out.points[0, tooth]
@@ -101,15 +101,15 @@ def test_pinion_flank_continues_radially_below_the_base_cone(lsbg_pair):
     """The paper's pinion: base cone (12.47 deg) above the root cone (10.55 deg)."""
     pair, d = lsbg_pair, lsbg_pair.design
     assert d.base_cone_angle(1) > d.root_angle(1)
-    out = solids.section_outline(pair, 1, d.mean_cone_distance)
+    out = outline.section_outline(pair, 1, d.mean_cone_distance)
     polar, phi = out.polar_angle[0, :out.per_tooth], out.azimuth[0, :out.per_tooth]
     below = polar < d.base_cone_angle(1) - 1e-12
     above_root = below & (polar > d.root_angle(1) + 1e-12)
-    assert above_root.sum() >= 2 * solids.DEFAULT_RESOLUTION.extension - 2
+    assert above_root.sum() >= 2 * outline.DEFAULT_RESOLUTION.extension - 2
     start = np.flatnonzero(np.isclose(polar, d.base_cone_angle(1), rtol=0, atol=1e-14))
     for k in start:   # each involute start sits on a meridian with its continuation
         same = np.isclose(phi, phi[k], rtol=0, atol=0)
-        assert same.sum() == solids.DEFAULT_RESOLUTION.extension + 1
+        assert same.sum() == outline.DEFAULT_RESOLUTION.extension + 1
     # the gear's base cone lies below its root: no continuation
     assert d.base_cone_angle(2) < d.root_angle(2)
 
@@ -247,7 +247,7 @@ def test_tooth_region_matches_the_loop_on_outlines_and_gears(lsbg_pair):
     pair, d = lsbg_pair, lsbg_pair.design
     for member in MEMBERS:        # the pinion has the radial continuation
         radii = [d.inner_cone_distance, d.outer_cone_distance]
-        out = solids.section_outline(pair, member, radii)
+        out = outline.section_outline(pair, member, radii)
         for k in range(2):
             cases.append((np.arange(out.azimuth.shape[1]) + 50, out.polar_angle[k],
                           out.azimuth[k], d.root_angle(member), 0.03))

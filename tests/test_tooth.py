@@ -11,7 +11,8 @@ from lsbg.gear.geometry import GearPair
 from lsbg.tooth.compliance import FEMeshSettings, ToothMaterial, tooth_compliance
 from lsbg.tooth.local import HertzLines, local_approach, normal_curvature_across
 from lsbg.tooth.field import active_field, undercut_roll
-from lsbg.tooth.ltca import FECompliance, contact_points, fe_loaded_tca, solve_contact
+from lsbg.tooth.contact_points import FECompliance, contact_points
+from lsbg.tooth.ltca import fe_loaded_tca, solve_contact
 
 TORQUE = 1964.99  # the paper's gear torque [N m]
 
@@ -67,7 +68,7 @@ def test_segments_mesh_at_the_ends_of_the_sweep(spiral, member):
 def test_flank_curvature_along_the_contact_line_is_the_generating_curve(pair):
     # both flanks contain the contact line, which lies in the plane of action
     # with the flanks' normals: its normal curvature is the curve's, sin(beta_p)/R
-    from lsbg.tooth.compliance import member_polar_angle
+    from lsbg.gear.flank import member_polar_angle
 
     d = pair.design
     rho = d.mean_cone_distance
@@ -252,7 +253,7 @@ def test_nodal_cholesky_solves_a_block_system():
 
 
 def test_resource_estimate_matches_the_mesh_and_grows_with_it(pair, compliance):
-    from lsbg.tooth.compliance import fe_resource_estimate
+    from lsbg.tooth.resources import fe_resource_estimate
 
     coarse = fe_resource_estimate(pair, FEMeshSettings(tooth_size=0.52, body_size=10.0))
     for name in ("pinion", "gear"):

@@ -16,7 +16,7 @@
    :func:`~lsbg.tooth.local.peak_pressure`), against Hertz's line contact with
    the radii of curvature of the virtual gears in the normal section
    (ISO 10300-1/-2); once at points of the FE flank grid, once through the FE
-   LTCA's own path (:class:`lsbg.tooth.ltca.FECompliance`,
+   LTCA's own path (:class:`lsbg.tooth.contact_points.FECompliance`,
    :func:`~lsbg.tooth.ltca.solve_contact`) with a compliance that makes the
    load uniform.
 
@@ -46,7 +46,8 @@ from lsbg.tooth import reference as ref
 from lsbg.tooth.compliance import FEMeshSettings, ToothMaterial, grid_axes, tooth_compliance
 from lsbg.tooth.local import local_approach, peak_pressure, relative_curvature
 from lsbg.tooth.field import active_field
-from lsbg.tooth.ltca import FECompliance, contact_points, solve_contact
+from lsbg.tooth.contact_points import FECompliance, contact_points
+from lsbg.tooth.ltca import solve_contact
 
 STEEL = ToothMaterial(young_modulus=2.06e11, poisson_ratio=0.3)
 N_PER_MM_UM = 1e9   # 1 N/(mm um) in N/m^2

@@ -67,10 +67,9 @@ def test_every_run_and_file_of_the_default_study_is_planned_once(default):
     assert len(by_tables) == len(set(by_tables))
     assert set(by_tables) == set(study.paper_runs)
     assert set(study.reference_runs()) < set(by_tables)
-    options = study.convergence_default_runs("circular", "point")
-    assert options.split() == [
-        "--default-run", "compiled=results/runs/circular_beta35_point_compiled.nc",
-        "--default-run", "pybullet=results/runs/circular_beta35_point_pybullet.nc"]
+    assert study.default_runs("circular", "point") == [
+        "compiled=results/runs/circular_beta35_point_compiled.nc",
+        "pybullet=results/runs/circular_beta35_point_pybullet.nc"]
     assert study.targets == [*study.reports.values(), plan.FILES["sweep"],
                              plan.FILES["summary"], *study.tca_files, *study.vh_maps,
                              *study.vh_cases(), *study.tooth_files, *study.fe_cases(),
@@ -89,7 +88,9 @@ def test_every_run_and_file_of_the_default_study_is_planned_once(default):
                                   "results/rating/circular_beta35.nc"]
     assert study.rating_run("circular") == ["results/runs/circular_beta35_line_compiled.nc"]
     # the displaced assemblies' FE loaded TCAs: half the aligned one's positions
-    assert plan.envelope_positions(default) == default["tooth"]["ltca_positions"] // 2 == 100
+    from lsbg.tooth.analysis import envelope_positions
+
+    assert envelope_positions(default["tooth"]["ltca_positions"]) == 100
 
 
 def test_the_fe_compliance_is_planned_at_the_paper_point_or_everywhere(default):
@@ -220,41 +221,46 @@ def test_study_config_is_written_only_when_it_changes(default, tmp_path):
     assert not list(path.parent.glob("*.part"))
 
 
-def _rule_priorities():
-    """{rule: the rule named in its ``priority: plan.job_priority(...)``} of every rule in
-    workflow/rules/*.smk that has one (the convergence rules, made in a loop over the
-    contact models, once per model)."""
-    found = {}
-    for path in sorted((REPO / "workflow" / "rules").glob("*.smk")):
-        text = path.read_text(encoding="utf-8")
-        starts = [(m.start(), m.group(1) or m.group(2)) for m in
-                  re.finditer(r"^\s*rule (\w+):|^\s*f\"(convergence_\{model\})\"", text, re.M)]
-        for (start, name), (end, _) in zip(starts, starts[1:] + [(len(text), None)]):
-            match = re.search(r"priority: plan\.job_priority\(f?\"([^\"]+)\"\)", text[start:end])
-            if match:
-                for model in plan.CONTACT_MODELS:
-                    found[name.format(model=model)] = match.group(1).format(model=model)
-    return found
+class Rule:
+    """A stand-in of a Snakemake rule: a name, input files (or functions) and outputs."""
+
+    def __init__(self, name, input=(), output=()):
+        self.name, self.input, self.output, self.priority = name, list(input), list(output), 0
 
 
-def test_jobs_run_highest_level_first_after_the_paper_points_gates():
-    priorities = _rule_priorities()
-    assert priorities == {rule: rule for rule in priorities}     # each rule names itself
-    assert set(priorities) == set(plan.JOB_SECONDS) | set(plan.GATE_RULES)
-    assert set(priorities) == set(job_order.WAITING) | set(plan.GATE_RULES)
-    gates = [plan.job_priority(rule) for rule in plan.GATE_RULES]
-    assert gates == sorted(gates, reverse=True) and len(set(gates)) == len(gates)
-    others = [rule for rule in priorities if rule not in plan.GATE_RULES]
-    assert all(min(gates) > plan.job_priority(rule) for rule in others)
-    # a job starts before every job that waits for it
-    for rule, waiting in job_order.WAITING.items():
-        for later in waiting:
-            assert plan.job_priority(rule) > plan.job_priority(later), (rule, later)
-    # the FE compliance's chain to the paper report, summed by hand
-    seconds = plan.JOB_SECONDS
-    chain = ("tooth_compliance", "fe_ltca", "sensitivity", "rating", "report_paper")
-    assert job_order.level("tooth_compliance") == pytest.approx(sum(seconds[r] for r in chain))
-    assert plan.job_priority("tooth_compliance") == round(10 * sum(seconds[r] for r in chain))
-    # ... which now starts before the convergence runs that used to hold it back
-    assert plan.job_priority("fe_ltca") > plan.job_priority("convergence_point")
-    assert plan.job_priority("speed_run") == 0        # not measured: after the study's jobs
+def test_the_rule_graph_comes_from_the_rules_files():
+    geometry = Rule("geometry", output=["results/geometry/{trace}_beta{spiral}"])
+    ltca = Rule("ltca", input=["results/geometry/{trace}_beta{spiral}", "results/config.yaml"],
+                output=["results/mesh/{trace}_beta{spiral}.nc"])
+    run = Rule("run", input=[lambda w: [f"results/geometry/{w.trace}_beta{w.spiral}"]],
+               output=["results/runs/{trace}_beta{spiral}_{model}.nc"])
+    combine = Rule("combine", input=[["results/runs/circular_beta20_line.nc",
+                                      "results/mesh/circular_beta20.nc"]],
+                   output=["results/sweep.nc"])
+    report = Rule("report", input=["results/sweep.nc", "results/mesh/circular_beta20.nc"],
+                  output=["reports/paper.html"])
+    graph = job_order.rule_graph([geometry, ltca, run, combine, report],
+                                 samples={"trace": "circular", "spiral": "35"})
+    assert graph == {"geometry": ["ltca", "run"], "ltca": ["combine", "report"],
+                     "run": ["combine"], "combine": ["report"], "report": []}
+    # a function that needs more than sample wildcards draws no edge (and raises nothing)
+    broken = Rule("broken", input=[lambda w: 1 / 0])
+    assert job_order.rule_graph([geometry, broken])["geometry"] == []
+
+
+def test_jobs_run_highest_level_first():
+    seconds = {"geometry": 5.0, "ltca": 1.0, "run": 10.0, "combine": 3.0, "report": 15.0}
+    rules = [Rule("geometry", output=["g/{p}"]), Rule("ltca", ["g/{p}"], ["m/{p}"]),
+             Rule("run", ["g/{p}"], ["r/{p}"]), Rule("combine", ["r/x", "m/x"], ["s"]),
+             Rule("report", ["s", "m/x"], ["h"]), Rule("new_stage", ["s"], ["n"])]
+    priorities = job_order.assign_priorities(rules, seconds=seconds)
+    # its own seconds plus the longest chain of the rules that wait for it, in 0.1 s
+    assert priorities == {"geometry": 330, "ltca": 190, "run": 280, "combine": 180,
+                          "report": 150, "new_stage": 0}
+    assert [r.priority for r in rules] == list(priorities.values())
+    # a job starts before every job that waits for it; a rule not measured counts 0 s
+    graph = job_order.rule_graph(rules)
+    assert all(priorities[a] > priorities[b] for a, later in graph.items() for b in later
+               if b != "new_stage")
+    # the measured seconds are the default study's rules
+    assert {"paper_geometry", "sweep_points", "report_paper"} <= set(job_order.JOB_SECONDS)

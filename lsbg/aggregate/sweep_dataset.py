@@ -13,7 +13,6 @@ runs' own, paper units); the swept keys' units are their configuration units.
 
 from __future__ import annotations
 
-import numpy as np
 import pandas as pd
 
 __all__ = ["SWEEP_STATISTICS", "sweep_rows", "sweep_dataset", "sweep_long"]

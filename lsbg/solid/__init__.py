@@ -1,7 +1,8 @@
 """The solid gears of a design point and its geometry directory on disk.
 
-* :mod:`lsbg.solid.solids`: section outlines and closed triangle meshes from
-  the exact flanks;
+* :mod:`lsbg.solid.outline`: the section outlines of the gears on spheres
+  about the apex, and the sampling of the solids;
+* :mod:`lsbg.solid.solids`: the closed triangle meshes lofted through them;
 * :mod:`lsbg.solid.polyhedra`: closed triangle meshes, their mass
   properties and binary STL;
 * :mod:`lsbg.solid.mass`: the mass properties of the solids (mesh and

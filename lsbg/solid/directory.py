@@ -43,7 +43,7 @@ MANIFEST = "manifest.json"
 MANIFEST_FORMAT = "lsbg geometry manifest 1"
 #: Keys of ``design.json`` that the readers need: the design and the inertias.
 REQUIRED_KEYS = (*CONFIG_KEYS, "axial_inertia_pinion_kg_m2", "axial_inertia_gear_kg_m2")
-#: The workflow's name of a geometry directory (``lsbg.study.plan.FILES["geometry"]``,
+#: The workflow's name of a geometry directory (``lsbg.study.points.FILES["geometry"]``,
 #: ``{trace}_beta{spiral}``); a directory so named must hold that design point.
 POINT_NAME = re.compile(rf"^(?P<trace>{'|'.join(TRACES)})_beta(?P<spiral>[-+0-9.]+)$")
 

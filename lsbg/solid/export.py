@@ -47,6 +47,7 @@ from lsbg.solid import mass, render, solids, urdf
 from lsbg.gear.design import GearPairDesign
 from lsbg.solid.directory import (FILE_NAMES, MANIFEST, OPTIONAL_FILE_NAMES, read_design,
                                   write_manifest)
+from lsbg.solid.outline import DEFAULT_RESOLUTION
 from lsbg.files import remove_stale_temporaries, temporary_beside
 from lsbg.gear.geometry import MEMBER_NAMES, MEMBERS, SIDES, GearPair
 
@@ -245,7 +246,7 @@ def flank_dataset(pair: GearPair, n_cone=21, n_profile=31):
 
 
 # --------------------------------------------------------------- the stage
-def write_geometry(design: GearPairDesign, out_dir, resolution=solids.DEFAULT_RESOLUTION,
+def write_geometry(design: GearPairDesign, out_dir, resolution=DEFAULT_RESOLUTION,
                    step=False, relief=None):
     """Write the geometry of one design point into ``out_dir``.
 
@@ -260,7 +261,7 @@ def write_geometry(design: GearPairDesign, out_dir, resolution=solids.DEFAULT_RE
     design : GearPairDesign
     out_dir : str or os.PathLike
         Output directory; replaced if it exists.
-    resolution : lsbg.solid.solids.MeshResolution
+    resolution : lsbg.solid.outline.MeshResolution
     step : bool
         Also write the exact solids as STEP (``pinion.step``, ``gear.step``;
         :mod:`lsbg.solid.step`, a few seconds per design point).

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from lsbg.solid.polyhedra import mesh_mass_properties
-from lsbg.solid.solids import flank_azimuth, side_order, wrap_angle
+from lsbg.solid.outline import flank_azimuth, side_order, wrap_angle
 
 __all__ = [
     "MassProperties", "principal_frame", "mass_properties", "section_integrals",

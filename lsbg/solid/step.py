@@ -2,13 +2,13 @@
 
 CAD tools read STEP. Each member becomes one closed solid whose toothed
 surface is lofted through the exact section outlines of
-:func:`lsbg.solid.solids.section_outline` (on spheres about the apex): per tooth an
+:func:`lsbg.solid.outline.section_outline` (on spheres about the apex): per tooth an
 interpolating spline through the flank points of each side, the top land and
 the root arc, so that the surface passes through the exact flank points of
 every section and interpolates smoothly between them
 (``occ.addThruSections``). Lofted a little beyond the toe and the heel, the
 body is cut to the spherical shell R_i <= |r| <= R_e and bored, as
-:mod:`lsbg.solid.solids` defines the gear blank.
+:mod:`lsbg.solid.outline` defines the gear blank.
 
 Checked (``tests/test_step.py``) by reading the file back with OCC: one closed
 solid, its volume against :func:`lsbg.solid.mass.quadrature_mass_properties`, and the
@@ -32,7 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from lsbg.gear.geometry import MEMBER_NAMES
-from lsbg.solid.solids import DEFAULT_RESOLUTION, _outline_counts, section_outline
+from lsbg.solid.outline import DEFAULT_RESOLUTION, _outline_counts, section_outline, side_order
 
 __all__ = ["STEP_SECTIONS", "STEP_TIME_STAMP", "write_step", "read_step", "flank_deviation"]
 
@@ -91,7 +91,7 @@ def relieved_outline(pair, outline, relief):
     Parameters
     ----------
     pair : lsbg.gear.geometry.GearPair
-    outline : lsbg.solid.solids.SectionOutline
+    outline : lsbg.solid.outline.SectionOutline
         The pinion's (member 1).
     relief : callable
         ``relief(cone_distance, polar_angle)``: material removed normal to the
@@ -104,7 +104,6 @@ def relieved_outline(pair, outline, relief):
     -------
     numpy.ndarray, shape of ``outline.points``
     """
-    from lsbg.solid.solids import side_order
     from lsbg.gear.vectors import rotate
 
     n = outline.per_tooth
@@ -139,7 +138,7 @@ def loft_sections(pair, member, sections):
 
     Returns
     -------
-    outline : lsbg.solid.solids.SectionOutline
+    outline : lsbg.solid.outline.SectionOutline
     n_top, n_root : int
         Interior points of each top land and root arc [-].
     """

@@ -1,9 +1,12 @@
-"""The Snakemake workflow's plan in plain Python: design points, file names and
-what each rule depends on.
+"""The Snakemake workflow's plan in plain Python: design points, runs and file names.
 
 ``workflow/rules/common.smk`` is only glue: it checks the configuration with
 :func:`lsbg.study.checks.check_config` (which also fills in the schema's
 defaults) and builds a :class:`Study`, whose attributes the rules read.
+The design points and the file-name table are :mod:`lsbg.study.points`, what
+each rule depends on (its ``params``) :mod:`lsbg.study.params`, the rules'
+priorities :mod:`lsbg.study.job_order`; the rules read them all through this
+module (``plan.FILES``, ``plan.simulation_params``, ``plan.assign_priorities``).
 Everything here is tested by pytest without Snakemake
 (tests/test_workflow_plan.py, tests/test_config_checks.py).
 
@@ -13,241 +16,23 @@ run the documented way).
 
 from __future__ import annotations
 
-import math
 import re
 from dataclasses import dataclass, field
-from pathlib import Path
-
-import yaml
 
 from lsbg.files import number_label
-from lsbg.study.job_order import GATE_RULES, JOB_SECONDS, job_priority
+from lsbg.study.job_order import JOB_SECONDS, assign_priorities
+from lsbg.study.params import (CONTACT_STATE_SECTIONS, STUDY_SECTIONS, canonical,
+                               contact_state_params, simulation_params,
+                               simulation_runtime, write_study_config,
+                               yaml_text)
+from lsbg.study.points import (CONTACT_MODELS, FILES, PAPER_TRACES, REPORT_NAMES,
+                               design_points, map_steps, speed_labels)
 
 __all__ = ["PAPER_TRACES", "CONTACT_MODELS", "REPORT_NAMES", "STUDY_SECTIONS", "FILES",
-           "design_points", "speed_labels", "speed_keywords", "canonical", "yaml_text",
+           "design_points", "speed_labels", "canonical", "yaml_text",
            "write_study_config", "simulation_params", "simulation_runtime", "map_steps",
-           "CONTACT_STATE_SECTIONS", "contact_state_params", "JOB_SECONDS", "GATE_RULES",
-           "job_priority", "envelope_positions", "Study"]
-
-#: Both traces run at the paper's design point (the paper compares them).
-PAPER_TRACES = ("logarithmic", "circular")
-CONTACT_MODELS = ("point", "line")
-REPORT_NAMES = ("paper", "sweep", "verification")
-#: The contact state: the flanks every line-model analysis and run reads
-#: (lsbg.cli.options.flanks_from_args), and the settings of `lsbg misalignment-map`.
-FLANK_SECTIONS = ("flank_modification", "misalignment")
-CONTACT_STATE_SECTIONS = (*FLANK_SECTIONS, "tca", "misalignment_map")
-#: Sections of the configuration that lsbg's commands read from results/config.yaml.
-STUDY_SECTIONS = ("design", "simulation", "contact", *CONTACT_STATE_SECTIONS, "statistics",
-                  "tooth", "rating")
-
-#: File name patterns of every stage (Snakemake wildcards in braces).
-FILES = {
-    "study_config": "results/config.yaml",
-    "geometry": "results/geometry/{trace}_beta{spiral}",
-    "mesh": "results/mesh/{trace}_beta{spiral}.nc",
-    "run": "results/runs/{trace}_beta{spiral}_{model}_{engine}.nc",
-    "sensitivity_run": "results/sensitivity/{trace}_beta{spiral}_{case}.nc",
-    "convergence": "results/verification/convergence_{trace}_{model}.csv",
-    "sweep": "results/sweep.nc",
-    "summary": "results/summary.csv",
-    "speed_run": "results/speed/{trace}_beta{spiral}_w{speed}.nc",
-    "speed_curve": "results/speed_curve.nc",
-    "tca": "results/tca/{trace}_beta{spiral}.nc",
-    "vh_map": "results/vh/{trace}_beta{spiral}.nc",
-    "compliance": "results/tooth/{trace}_beta{spiral}_compliance.nc",
-    "fe_ltca": "results/tooth/{trace}_beta{spiral}_ltca.nc",
-    "fe_envelope": "results/tooth/{trace}_beta{spiral}_envelope.nc",
-    "fe_case": "results/tooth/{trace}_beta{spiral}_{case}_ltca.nc",
-    "vh_case": "results/vh/{trace}_beta{spiral}_{case}.nc",
-    "rating": "results/rating/{trace}_beta{spiral}.nc",
-    "sweep_run": "results/sweeps/{name}/{trace}_beta{spiral}_{point}.nc",
-    "sweep_dataset": "results/sweeps/{name}.nc",
-    "sweep_table": "results/sweeps/{name}.csv",
-    "report": "reports/{name}.html",
-}
-
-#: Simulation keys that only some engines read.
-ENGINE_ONLY_KEYS = {"time_step_s": ("pybullet",), "method": ("scipy",),
-                    "compiled_method": ("compiled",), "rtol": ("scipy", "compiled")}
-#: Contact keys that only one model reads (``model`` itself: the rules name it).
-MODEL_ONLY_KEYS = {
-    "point": ("stiffness_N_per_mm1_5", "exponent", "damping_N_s_per_mm", "penetration_depth_mm"),
-    "line": ("line_stiffness_N_per_mm_um", "mesh_damping_ratio", "slices",
-             "line_approach_limit_mm", "compliance"),
-}
-
-
-# ------------------------------------------------------------ design points
-def design_points(config):
-    """Every design point of a study and the keys of the configuration that ask for it.
-
-    Parameters
-    ----------
-    config : dict
-        Validated by the schema, its defaults filled in.
-
-    Returns
-    -------
-    dict
-        ``(trace, spiral label)`` -> key paths of the spiral angles that give the
-        point, e.g. ``("circular", "35") -> ["paper_spiral_angle_deg",
-        "sweep.spiral_angles_deg[1]"]``; sorted by trace, then angle. The label
-        is the angle [deg] as file names and the jobs have it
-        (:func:`lsbg.files.number_label`).
-    """
-    asked = [(trace, number_label(angle), f"sweep.spiral_angles_deg[{k}]")
-             for trace in config["sweep"]["traces"]
-             for k, angle in enumerate(config["sweep"]["spiral_angles_deg"])]
-    asked += [(trace, number_label(config["paper_spiral_angle_deg"]), "paper_spiral_angle_deg")
-              for trace in PAPER_TRACES]
-    speed = config.get("speed_sweep")
-    if speed:
-        key = "speed_sweep.spiral_angle_deg" if "spiral_angle_deg" in speed \
-            else "paper_spiral_angle_deg"
-        angle = speed.get("spiral_angle_deg", config["paper_spiral_angle_deg"])
-        asked += [(trace, number_label(angle), key)
-                  for trace in speed.get("traces", PAPER_TRACES)]
-    points = {}
-    for trace, spiral, key in sorted(asked, key=lambda a: (a[0], float(a[1]), a[2])):
-        keys = points.setdefault((trace, spiral), [])
-        if key not in keys:
-            keys.append(key)
-    return points
-
-
-def speed_labels(grid):
-    """The speed sweep's pinion speeds [rad/s] and their file-name labels [deg/s, to 1e-3].
-
-    Parameters
-    ----------
-    grid : dict
-        ``speed_sweep.pinion_speeds_deg_s``: ``start``, ``stop`` [deg/s], ``count``.
-    """
-    from lsbg.experiments.speed import speed_grid
-
-    speeds = speed_grid(math.radians(grid["start"]), math.radians(grid["stop"]), grid["count"])
-    return speeds, [number_label(round(math.degrees(v), 3)) for v in speeds]
-
-
-def speed_keywords(speed):
-    """Keywords of :func:`lsbg.experiments.speed.speed_settings` from the ``speed_sweep`` section."""
-    return {"mesh_cycles": speed["mesh_cycles"], "min_window": speed["min_window_s"],
-            "settle_time": speed["settle_time_s"], "ramp_time": speed["ramp_time_s"],
-            "samples_per_mesh": speed["samples_per_mesh"]}
-
-
-def canonical(value):
-    """``value`` with every mapping's keys sorted: stable ``params`` for the rerun trigger."""
-    if isinstance(value, dict):
-        return {key: canonical(value[key]) for key in sorted(value)}
-    if isinstance(value, list):
-        return [canonical(item) for item in value]
-    return value
-
-
-def yaml_text(data, comment):
-    """``data`` as YAML (keys sorted) under the comment line ``comment``."""
-    body = yaml.safe_dump(canonical(dict(data)), sort_keys=False)
-    return f"# {comment}\n{body}"
-
-
-def write_study_config(path, config, only_if_missing=False):
-    """Write the validated settings lsbg reads to ``path`` if they changed.
-
-    The rules take the file as ancient() input and rerun on a change of their
-    own settings (params), not on the file's time stamp. The workflow writes it
-    when parsed only if it is missing (a dry run, or a second invocation
-    refused by the lock, must not change it under a running workflow), and in
-    its ``onstart`` handler (real runs, under Snakemake's lock) if it changed.
-    Not by a rule: when a job upstream of an ancient() input runs, Snakemake
-    9.27 skips the params check of the jobs below it, so they would not rerun.
-    """
-    path = Path(path)
-    if only_if_missing and path.exists():
-        return
-    sections = {s: config[s] for s in STUDY_SECTIONS}
-    text = yaml_text(sections,
-                     "the lsbg study settings as validated (written by the workflow; do not edit)")
-    if path.exists() and path.read_text(encoding="utf-8") == text:
-        return
-    path.parent.mkdir(parents=True, exist_ok=True)
-    part = path.with_name(f"{path.name}.part")
-    part.write_text(text, encoding="utf-8")
-    part.replace(path)
-
-
-def simulation_params(config, engine, model):
-    """The simulation and contact settings a run of ``engine`` and ``model`` depends on
-    (the rules' rerun trigger).
-
-    The line model's contact settings include the flanks it runs on: the
-    ``flank_modification`` and ``misalignment`` sections (every line-model
-    command applies them; the point model keeps the conjugate flanks), so
-    that every rule whose trigger holds them (the loaded TCA's too) reruns on
-    a change of the contact state; under ``compliance: fe`` also the ``tooth``
-    section (the FE compliance it runs on).
-    """
-    simulation = {k: v for k, v in config["simulation"].items()
-                  if engine in ENGINE_ONLY_KEYS.get(k, (engine,))}
-    others = {key for name, keys in MODEL_ONLY_KEYS.items() if name != model for key in keys}
-    contact = {k: v for k, v in config["contact"].items() if k not in others and k != "model"}
-    if model == "line":
-        contact.update({section: config.get(section, {}) for section in FLANK_SECTIONS})
-        if contact.get("compliance") == "fe":
-            contact["tooth"] = config.get("tooth", {})
-    return canonical({"simulation": simulation, "contact": contact})
-
-
-def map_steps(config, spiral):
-    """Values per axis of the V-H map at a design point's spiral angle (its file-name
-    label): ``misalignment_map.steps`` at the paper's, else ``sweep_steps``."""
-    section = config["misalignment_map"]
-    paper = number_label(config["paper_spiral_angle_deg"])
-    return section["steps"] if number_label(spiral) == paper else section["sweep_steps"]
-
-
-def contact_state_params(config, spiral, engine):
-    """What a design point's contact-state job (``lsbg misalignment-map``) depends on
-    (its rule's rerun trigger): the contact-state sections, the map's steps there,
-    the line model's contact settings and the load of the loaded TCAs."""
-    load = config["misalignment_map"].get("load_torque_N_m")
-    return canonical({
-        **{section: config[section] for section in CONTACT_STATE_SECTIONS},
-        "steps": map_steps(config, spiral),
-        "contact": simulation_params(config, engine, "line")["contact"],
-        "load_torque_N_m": config["simulation"]["load_torque_N_m"] if load is None else load,
-    })
-
-
-#: Budgeted wall time per simulated second and run [s] (measured: PyBullet
-#: about 8, scipy 3-14, compiled about 1; tests/benchmarks/bench_dynamics.py).
-BUDGET_PER_SECOND = 100.0
-
-
-def simulation_runtime(config, runs=1):
-    """Cluster time limit [min] of ``runs`` simulations (generous, at least 10 min)."""
-    return max(10, math.ceil(runs * config["simulation"]["duration_s"] * BUDGET_PER_SECOND / 60))
-
-
-def envelope_positions(config):
-    """Mesh positions of each FE loaded TCA of the displacement envelope (rule fe_sensitivity).
-
-    Half the aligned LTCA's (``tooth.ltca_positions``, at least 8): measured on
-    the paper's pair (35 deg, both members, four corners), 100 positions put
-    the largest contact pressure and root stresses within 0.5 % (their medians
-    over the cycle within 0.3 %) of 200 positions', in 5.7 s instead of 9.6 s.
-
-    Parameters
-    ----------
-    config : dict
-        The study configuration, defaults filled in.
-
-    Returns
-    -------
-    int
-    """
-    return max(8, int(config["tooth"].get("ltca_positions", 200)) // 2)
+           "CONTACT_STATE_SECTIONS", "contact_state_params", "JOB_SECONDS",
+           "assign_priorities", "Study"]
 
 
 # ---------------------------------------------------------------- the study
@@ -436,14 +221,6 @@ class Study:
     def paper_vh_maps(self):
         return [self.vh_map(t, self.paper_spiral) for t in PAPER_TRACES]
 
-    def case_options(self, stage):
-        """``--case KEY=VALUE`` options of the ``sensitivity`` section's entries that
-        reach ``stage`` (:data:`lsbg.experiments.sensitivity.CASE_STAGES`)."""
-        from lsbg.experiments.sensitivity import CASE_STAGES
-
-        return " ".join(f"--case {key}={value!r}" for key, values in
-                        self.config["sensitivity"].items() if stage in CASE_STAGES[key]
-                        for value in values)
 
     def stage_cases(self, stage):
         """The sensitivity cases (names) that reach ``stage``."""
@@ -497,11 +274,11 @@ class Study:
         return [self.run(trace, self.paper_spiral, model, e)
                 for e in self.convergence_engines(model)]
 
-    def convergence_default_runs(self, trace, model):
-        """``--default-run ENGINE=RUN.nc`` options of a convergence table: every run it
-        writes (:meth:`convergence_runs`)."""
-        return " ".join(f"--default-run {e}={r}" for e, r in
-                        zip(self.convergence_engines(model), self.convergence_runs(trace, model)))
+    def default_runs(self, trace, model):
+        """``ENGINE=RUN.nc`` values of a convergence table's ``--default-run``: every run
+        it writes (:meth:`convergence_runs`)."""
+        return [f"{e}={r}" for e, r in zip(self.convergence_engines(model),
+                                           self.convergence_runs(trace, model))]
 
     @property
     def convergence_files(self):
@@ -528,13 +305,6 @@ class Study:
         """Pinion speeds of the speed sweep as file-name labels [deg/s]."""
         return speed_labels(self.speed_sweep["pinion_speeds_deg_s"])[1]
 
-    @property
-    def speed_options(self):
-        """``lsbg speed-run`` options of the speed sweep."""
-        speed = self.speed_sweep
-        return (f"--mesh-cycles {speed['mesh_cycles']} --min-window {speed['min_window_s']} "
-                f"--settle-time {speed['settle_time_s']} --ramp-time {speed['ramp_time_s']} "
-                f"--samples-per-mesh {speed['samples_per_mesh']}")
 
     @property
     def speed_runs(self):
@@ -557,6 +327,13 @@ class Study:
                 *self.rating_files, *self.sweep_files, *extra]
 
     # ------------------------------------------------------------ wildcards
+    @property
+    def sample_wildcards(self):
+        """A design point's wildcards, for the input functions of the rule graph
+        (:func:`lsbg.study.job_order.rule_graph`): the paper's point, the line model."""
+        return {"trace": PAPER_TRACES[0], "spiral": self.paper_spiral, "model": "line",
+                "engine": self.sweep_engine}
+
     @property
     def wildcards(self):
         """Constraints of the wildcards (regular expressions)."""

@@ -1,13 +1,14 @@
 """The resource guard: what a design point and a run will cost, estimated before any job.
 
 Part of the configuration check (:mod:`lsbg.study.checks`): a design point's
-geometry memory and time from its mesh size (:func:`geometry_cost`), a run's
-record memory (:func:`run_memory_gb`), and the line model's and PyBullet's
-time against the runtime the simulation rules request
-(:func:`run_cost_problems`), and the speed sweep's runs
-(:func:`speed_sweep_problems`). The coefficients were measured on a 2-core
-machine (the calibration is in each constant's comment); they overestimate
-rather than under.
+geometry memory and time from its mesh size (:func:`geometry_cost`), against
+the limits (:func:`geometry_problem`); a run's record memory
+(:func:`run_memory_gb`), and the line model's and PyBullet's time against
+the runtime the simulation rules request (:func:`run_cost_problems`); the
+speed sweep's runs (:func:`speed_sweep_problems`); the load against what the
+teeth can carry (:func:`load_problems`). The coefficients were measured on a
+2-core machine (the calibration is in each constant's comment); they
+overestimate rather than under.
 """
 
 from __future__ import annotations
@@ -15,15 +16,17 @@ from __future__ import annotations
 import math
 import os
 
-from lsbg.gear.design import GearPairDesign
 from lsbg.files import number_label
-from lsbg.study.plan import CONTACT_MODELS, simulation_runtime, speed_keywords, speed_labels
+from lsbg.gear.checks import design_value
+from lsbg.gear.design import GearPairDesign
+from lsbg.study.params import simulation_runtime
+from lsbg.study.points import CONTACT_MODELS, speed_labels
 
 __all__ = [
     "RUN_MEMORY_BASE_GB", "RUN_BYTES_PER_INSTANT", "LINE_SECONDS_PER_SLICE",
     "PYBULLET_SECONDS_PER_STEP", "run_memory_gb", "run_cost_problems", "engines_run",
     "GEOMETRY_MEMORY_BASE_GB", "GEOMETRY_BYTES_PER_VERTEX", "GEOMETRY_SECONDS_BASE",
-    "GEOMETRY_SECONDS_PER_VERTEX", "GEOMETRY_TIME_EXPONENT", "geometry_cost",
+    "GEOMETRY_SECONDS_PER_VERTEX", "GEOMETRY_TIME_EXPONENT", "geometry_cost", "geometry_problem",
     "machine_memory_gb", "memory_limit_gb", "speed_sweep_problems", "STEP_SLOPE",
     "mesh_torque_capacity", "load_problems"
 ]
@@ -71,7 +74,7 @@ def run_cost_problems(config):
     second (:data:`RUN_BYTES_PER_INSTANT`). A line-model step costs in
     proportion to the slices (:data:`LINE_SECONDS_PER_SLICE`, the compiled
     engine, the fastest: the estimate is a lower bound); the rules request
-    :func:`lsbg.study.plan.simulation_runtime` minutes per run.
+    :func:`lsbg.study.params.simulation_runtime` minutes per run.
     """
     from lsbg.experiments.sensitivity import scaled_contact
 
@@ -139,7 +142,7 @@ def geometry_cost(pair):
     STL, the rendered picture); its cost grows with the vertex count and is
     otherwise nearly constant (the exact flanks, ``flanks.nc``). The vertex
     count is estimated without building a mesh, from the same resolution
-    (:data:`lsbg.solid.solids.DEFAULT_RESOLUTION`): per member, the lofted sections
+    (:data:`lsbg.solid.outline.DEFAULT_RESOLUTION`): per member, the lofted sections
     times the teeth times the outline points per tooth, plus on each end
     face a ring of at least z points per ``end_face_step`` of polar angle
     between bore and root and the cap area over ``end_face_step**2``
@@ -183,17 +186,17 @@ def geometry_cost(pair):
         ``vertices`` ({member: estimated vertex count} [-]), ``memory_gb``
         [GB], ``minutes`` [min].
     """
-    from lsbg.solid import solids
+    from lsbg.solid import outline
     from lsbg.gear.geometry import MEMBERS
 
-    design, resolution = pair.design, solids.DEFAULT_RESOLUTION
+    design, resolution = pair.design, outline.DEFAULT_RESOLUTION
     step = resolution.end_face_step
     vertices = {}
     for member in MEMBERS:
         teeth = design.teeth[member - 1]
-        sections = solids.section_cone_distances(pair, member, resolution).size
+        sections = outline.section_cone_distances(pair, member, resolution).size
         # the outline counts at the mean point (cheap: one flank of 201 points)
-        flank, top, root_arc = solids._outline_counts(pair, member, resolution)
+        flank, top, root_arc = outline._outline_counts(pair, member, resolution)
         per_tooth = 2 * (flank + resolution.extension) + top + root_arc
         bore = (design.pinion_bore if member == 1 else design.gear_bore) / 2
         theta_bore = math.asin(min(1.0, bore / design.inner_cone_distance))
@@ -207,6 +210,40 @@ def geometry_cost(pair):
     return {"vertices": vertices,
             "memory_gb": GEOMETRY_MEMORY_BASE_GB + GEOMETRY_BYTES_PER_VERTEX * total / 1e9,
             "minutes": seconds / 60}
+
+
+def geometry_problem(pair, config):
+    """The resource guard of a design point's geometry: its :func:`geometry_cost`
+    against ``limits.memory_gb`` and ``limits.geometry_minutes``.
+
+    Parameters
+    ----------
+    pair : lsbg.gear.geometry.GearPair
+    config : dict
+        The configuration, defaults filled in.
+
+    Returns
+    -------
+    tuple of str or None
+        (key part, why) of the problem line, naming the teeth of the member
+        whose mesh is the larger (they make the point large); None if the
+        point is within both limits.
+    """
+    cost = geometry_cost(pair)
+    limit, source = memory_limit_gb(config)
+    minutes = config["limits"]["geometry_minutes"]
+    beyond = ([f"{cost['memory_gb']:.3g} GB of memory, more than {source} = {limit:.3g} GB"]
+              if cost["memory_gb"] > limit else [])
+    if cost["minutes"] > minutes:
+        beyond.append(f"{cost['minutes']:.3g} min, more than limits.geometry_minutes = "
+                      f"{minutes!r}")
+    if not beyond:
+        return None
+    member = max((1, 2), key=lambda m: cost["vertices"][m])
+    head = design_value(config, ("pinion_teeth", "gear_teeth")[member - 1])
+    why = (f"the geometry ({sum(cost['vertices'].values()):.3g} mesh vertices) would "
+           f"need about {' and '.join(beyond)}")
+    return head, why
 
 
 def machine_memory_gb():
@@ -232,7 +269,7 @@ def speed_sweep_problems(config):
     """The speed sweep's settings, checked as ``lsbg speed-run`` will use them: one line
     per problem, starting with the ``speed_sweep`` key and its value."""
     from lsbg.dynamics import SimulationSettings
-    from lsbg.experiments.speed import speed_settings
+    from lsbg.experiments.speed import speed_keywords, speed_settings
 
     speed = config["speed_sweep"]
     grid = speed["pinion_speeds_deg_s"]
@@ -256,7 +293,7 @@ def speed_sweep_problems(config):
     try:
         base = SimulationSettings.from_config(config["simulation"], engine=speed["engine"])
     except ValueError:
-        return problems  # the simulation settings themselves: named by _settings_problems
+        return problems  # the simulation settings themselves: named by lsbg.dynamics.checks
     teeth = config["design"].get("pinion_teeth", GearPairDesign.pinion_teeth)
     limit, source = memory_limit_gb(config)
     for value in (speeds[0], speeds[-1]):

@@ -51,7 +51,7 @@ def _value_problems(name, sweep, config, check):
 def _point_problems(name, sweep, spec, config):
     """The sweep's design points must be the study's (their geometry is the study's)."""
     from lsbg.files import number_label
-    from lsbg.study.plan import design_points
+    from lsbg.study.points import design_points
 
     study = set(design_points(config))
     missing = [(t, a) for t in sweep.traces for a in sweep.spiral_angles

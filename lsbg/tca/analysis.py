@@ -32,12 +32,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lsbg.tca.loaded import active_polar_range
 from lsbg.tca import surface
 from lsbg.tca.pattern import (MARKING_COMPOUND, bearing_pattern, chart_ellipses,
                                contact_ellipses, profile_height, raster_centres)
 from lsbg.tca.misalignment import Misalignment, member_frames
 from lsbg.tca.modification import FlankModification, flank_attributes, relieved_flank
+from lsbg.gear.flank import active_polar_range
 from lsbg.gear.vectors import unit
 
 #: Mesh positions over one mesh cycle.

@@ -2,7 +2,10 @@
 
 :func:`contact_state_problems` is what :mod:`lsbg.study.checks` runs on the
 ``flank_modification:``, ``misalignment:`` and ``misalignment_map:`` sections
-at a design point: one line per key at fault, naming the key and its value.
+at a design point (through :func:`point_problems`, its answers kept by the
+study): one line per key at fault, naming the key and its value;
+:func:`user_lines` writes them in the user's values, and
+:func:`map_steps_problems` checks the map's steps before any point.
 
 * A relief larger than the normal backlash would leave the pinion's tooth
   thinner than the gap it was cut for: rejected.
@@ -14,11 +17,19 @@ at a design point: one line per key at fault, naming the key and its value.
 from __future__ import annotations
 
 import math
+import re
+import warnings
+
+import numpy as np
 
 from lsbg.tca.analysis import tooth_contact_analysis
 from lsbg.tca.misalignment import DISPLACEMENTS, Misalignment
 from lsbg.tca.modification import FlankModification
 from lsbg.tca.vh_map import DEFAULT_AXES, DEFAULT_RANGE, DEFAULT_STEPS, axis_values
+
+__all__ = ["CHECK_POSITIONS", "CHECK_GRID", "normal_backlash", "modification_problems",
+           "displacement_problems", "map_corners", "contact_state_problems",
+           "map_steps_problems", "point_problems", "user_lines"]
 
 #: A quick TCA: positions over the mesh cycle and the pinion grid [-].
 CHECK_POSITIONS = 16
@@ -124,3 +135,76 @@ def contact_state_problems(pair, modification_config, misalignment_config, map_c
             problems += displacement_problems(pair, modification, shifted, where)
     return list(dict.fromkeys(problems))
 
+
+
+def map_steps_problems(section):
+    """The V-H map's steps, which must be odd, before any design point is asked.
+
+    Parameters
+    ----------
+    section : dict
+        The ``misalignment_map`` section, defaults filled in.
+
+    Returns
+    -------
+    list of str
+    """
+    return [f"misalignment_map.{key} = {section[key]!r}: must be odd (the map's values run "
+            f"evenly from -range to +range through the aligned pair, 0 included)"
+            for key in ("steps", "sweep_steps") if section[key] % 2 == 0]
+
+
+def point_problems(pair, config, map_config):
+    """:func:`contact_state_problems` of a configuration at one design point, quietly.
+
+    Parameters
+    ----------
+    pair : lsbg.gear.geometry.GearPair
+    config : dict
+        The configuration: its ``flank_modification`` and ``misalignment`` sections.
+    map_config : dict
+        The V-H map at this point: ``axes``, ``range`` and the point's ``steps``.
+
+    Returns
+    -------
+    list of str
+        As lsbg writes them (:func:`user_lines` turns them into the user's values).
+    """
+    # numpy's warnings of a hopeless contact state would print around the message
+    with warnings.catch_warnings(), np.errstate(all="ignore"):
+        warnings.simplefilter("ignore")
+        return contact_state_problems(pair, config["flank_modification"],
+                                      config["misalignment"], map_config)
+
+
+def user_lines(lines, config):
+    """A design point's problem lines as the configuration's check names them.
+
+    The map is taken about the misalignment: where the misalignment itself
+    fails, it is the key at fault and the map's corners are not named. A
+    ``flank_modification`` key's value is given as the user wrote it (lsbg
+    writes it as read: ``500.0`` for ``500``).
+
+    Parameters
+    ----------
+    lines : list of str
+        :func:`point_problems` at one design point.
+    config : dict
+        The configuration.
+
+    Returns
+    -------
+    list of str
+    """
+    if any(line.startswith("misalignment.") for line in lines):
+        lines = [line for line in lines if not line.startswith("misalignment_map.")]
+    return [_user_value(line, config) for line in lines]
+
+
+def _user_value(line, config):
+    """The line with its flank_modification key's value as the user wrote it."""
+    match = re.match(r"^flank_modification\.(\w+) = (.*?): (.*)$", line, re.DOTALL)
+    if not (match and match.group(1) in config["flank_modification"]):
+        return line
+    return (f"flank_modification.{match.group(1)} = "
+            f"{config['flank_modification'][match.group(1)]!r}: {match.group(3)}")

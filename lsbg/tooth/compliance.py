@@ -42,10 +42,10 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 import lsbg
+from lsbg.gear.flank import drive_flank, member_polar_angle
 
-__all__ = ["ToothMaterial", "FEMeshSettings", "FlankGrid", "FEResources", "drive_flank",
-           "flank_grid", "mesh_sizes", "member_compliance", "tooth_compliance", "compliance_hash",
-           "fe_resource_estimate"]
+__all__ = ["ToothMaterial", "FEMeshSettings", "FlankGrid", "flank_grid", "mesh_sizes",
+           "member_compliance", "tooth_compliance", "compliance_hash"]
 
 #: Tooth offsets of the segment's teeth from the loaded one [-].
 TOOTH_OFFSETS = (-1, 0, 1)
@@ -135,7 +135,7 @@ class FEMeshSettings:
                              f"{MAX_TOOTH_SIZE:.3f}] mean normal modules (coarser leaves fewer "
                              f"than three elements across the tooth, whose normal thickness at "
                              f"the mean point is about pi/2 m_mn; finer costs time and memory, "
-                             f"see lsbg.tooth.compliance.fe_resource_estimate)")
+                             f"see lsbg.tooth.resources.fe_resource_estimate)")
         if not (math.isfinite(self.body_size) and 1.0 <= self.body_size <= 10.0):
             raise ValueError(f"body_size = {self.body_size!r}: must lie in [1, 10] tooth sizes")
         if not (math.isfinite(self.fillet_radius) and 0.05 <= self.fillet_radius <= 0.4):
@@ -190,49 +190,6 @@ def grid_axes(pair, settings):
     psi = np.linspace(psi_lo + inset * (psi_hi - psi_lo), psi_hi - inset * (psi_hi - psi_lo),
                       int(settings.profile_points))
     return rho, psi
-
-
-def member_polar_angle(pair, member, cone_distance, profile_angle):
-    """Polar angle from a member's axis of plane-of-action points [rad].
-
-    Parameters
-    ----------
-    pair : lsbg.gear.geometry.GearPair
-    member : {1, 2}
-    cone_distance, profile_angle : array_like
-        (rho [m], psi [rad]) in the drive side's plane of action.
-
-    Returns
-    -------
-    numpy.ndarray
-    """
-    plane = pair.planes["drive"]
-    point = plane.point(np.asarray(cone_distance, float), np.asarray(profile_angle, float))
-    unit = point / np.linalg.norm(point, axis=-1, keepdims=True)
-    return np.arccos(np.clip(unit @ pair.axis[member], -1.0, 1.0))
-
-
-def drive_flank(pair, member, cone_distance, polar_angle):
-    """Tooth 0's drive flank, its normal out of the tooth, and its coast flank [m, -, m].
-
-    The tooth lies between its drive and coast flanks at the same cone
-    distance and polar angle, which fixes the normal's sense.
-
-    Parameters
-    ----------
-    pair : lsbg.gear.geometry.GearPair
-    member : {1, 2}
-    cone_distance, polar_angle : array_like
-        [m], [rad] from the member's axis.
-
-    Returns
-    -------
-    flank, outward, coast : numpy.ndarray, shape (..., 3)
-    """
-    flank, normal = pair.flank(member, "drive", cone_distance, polar_angle)
-    coast, _ = pair.flank(member, "coast", cone_distance, polar_angle)
-    outward = -np.sign(np.sum(normal * (coast - flank), axis=-1))[..., None] * normal
-    return flank, outward, coast
 
 
 def flank_grid(pair, member, settings):
@@ -359,101 +316,6 @@ def mesh_sizes(pair, member, settings):
             "body": settings.body_size * tooth, "across": across}
 
 
-#: The resource model of :func:`fe_resource_estimate`, fitted to this code's
-#: meshes and runs with 7-tooth segments (3 designs, 2 members, 18 settings
-#: meshed; 7 tooth sizes run, 0.25 to 0.52, on one core of a shared 2-core
-#: x86-64 machine). DOFs of a member: ``dofs_tooth * V_t / h^3 + dofs_fillet
-#: * (b / h_f + b / h_c) + dofs_body * V_s / H^3`` (V_t = b (h_a + h_f) pi m_mn
-#: the loaded tooth's band, h its element size; b the face width, h_f and h_c
-#: the drive and coast fillets' element sizes: the graded tubes along them;
-#: V_s the segment's volume, H the body size): within 5 % of the meshes (rms
-#: 3 %; 3-tooth segments come out about 10 % below it). Seconds of a member
-#: (geometry, meshing, assembly, factorisation, solves): ``seconds_base +
-#: seconds_scale (N / 1e4)^seconds_power``, within 23 % (the geometry's OCC
-#: booleans are most of the base). Peak memory of the process:
-#: ``memory_base + memory_scale (N_max / 1e4)^memory_power``, within 9 %.
-RESOURCE_MODEL = {"dofs_tooth": 13.49, "dofs_fillet": 293.8, "dofs_body": 21.42,
-                  "seconds_base": 2.393, "seconds_scale": 0.1005, "seconds_power": 1.941,
-                  "memory_base": 1.5e8, "memory_scale": 1.018e8, "memory_power": 1.155}
-
-
-@dataclass(frozen=True)
-class FEResources:
-    """Estimated cost of :func:`tooth_compliance` (both members).
-
-    Attributes
-    ----------
-    dofs : int
-        Degrees of freedom of both segments together [-].
-    dofs_pinion, dofs_gear : int
-        Of each member's segment [-].
-    memory : float
-        Peak resident memory of the process [bytes] (the larger member's
-        factorisation; the members run one after the other).
-    seconds : float
-        Wall time on one core [s], both members, Python's imports excluded
-        (about 0.5 s more in a fresh process).
-    """
-
-    dofs: int
-    dofs_pinion: int
-    dofs_gear: int
-    memory: float
-    seconds: float
-
-
-def fe_resource_estimate(pair, settings=None):
-    """Degrees of freedom, peak memory and wall time of a compliance, before it runs.
-
-    For a configuration check: a mesh too fine for the machine (or for a
-    job's time limit) can be rejected before any job starts. The model
-    (:data:`RESOURCE_MODEL`) counts the elements of the segment's mesh as
-    the size field grades them (the loaded tooth, the fillets' tubes, the
-    rim) and scales time and memory from the DOFs as measured; it takes a few
-    milliseconds.
-
-    Parameters
-    ----------
-    pair : lsbg.gear.geometry.GearPair
-    settings : FEMeshSettings, optional
-        Default: ``FEMeshSettings()``.
-
-    Returns
-    -------
-    FEResources
-        E.g. the paper's pair at 35 deg with the default settings: about
-        85 000 DOFs, 0.7 GB, 8 s (measured: 84 705 DOFs, 0.66 GB, 7.6-8.4 s).
-
-    Raises
-    ------
-    ValueError
-        Naming ``tooth_size``, if it leaves fewer than three elements across
-        a member's teeth (:func:`mesh_sizes`).
-    """
-    from lsbg.solid.mass import quadrature_mass_properties
-
-    settings = settings or FEMeshSettings()
-    model = RESOURCE_MODEL
-    d = pair.design
-    normal_module = d.mean_module * math.cos(d.spiral_angle)
-    dofs = []
-    for member in (1, 2):
-        sizes = mesh_sizes(pair, member, settings)
-        band = d.face_width * (d.addendum + d.dedendum) * math.pi * normal_module
-        segment = min(settings.segment_teeth / d.teeth[member - 1], 1.0) \
-            * quadrature_mass_properties(pair, member).volume
-        dofs.append(model["dofs_tooth"] * band / sizes["tooth"] ** 3
-                    + model["dofs_fillet"] * d.face_width * (1 / sizes["fillet"]
-                                                             + 1 / sizes["coast_fillet"])
-                    + model["dofs_body"] * segment / sizes["body"] ** 3)
-    seconds = sum(model["seconds_base"] + model["seconds_scale"]
-                  * (n / 1e4) ** model["seconds_power"] for n in dofs)
-    memory = model["memory_base"] + model["memory_scale"] * (max(dofs) / 1e4) ** model[
-        "memory_power"]
-    return FEResources(dofs=int(round(sum(dofs))), dofs_pinion=int(round(dofs[0])),
-                       dofs_gear=int(round(dofs[1])), memory=float(memory), seconds=float(seconds))
-
-
 def member_compliance(pair, member, material, settings):
     """Influence coefficients and fillet stresses of one member by finite elements.
 
@@ -518,15 +380,16 @@ def member_compliance(pair, member, material, settings):
 
 def compliance_hash(design, material, settings):
     """Hash of a compliance's inputs: the design, the material, the mesh settings, lsbg's
-    tooth sources [hex]."""
+    tooth sources and the flank helpers its grid is built with [hex]."""
     from pathlib import Path
 
     digest = hashlib.sha256()
     digest.update(json.dumps({"design": design.to_config(), "material": asdict(material),
                               "settings": asdict(settings)}, sort_keys=True).encode())
     here = Path(__file__).parent
-    for name in ("segment.py", "elasticity.py", "compliance.py"):
-        digest.update((here / name).read_bytes())
+    for path in (here / "segment.py", here / "elasticity.py", here / "compliance.py",
+                 here.parent / "gear" / "flank.py"):
+        digest.update(path.read_bytes())
     return digest.hexdigest()[:16]
 
 

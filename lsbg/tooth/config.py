@@ -175,7 +175,7 @@ def tooth_problems(config, pairs, memory_limit, memory_source):
     list of str
         One line per problem, starting with the key and its value.
     """
-    from lsbg.tooth.compliance import fe_resource_estimate
+    from lsbg.tooth.resources import fe_resource_estimate
     from lsbg.tooth.outline import segment_sections
 
     try:

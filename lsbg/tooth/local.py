@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from lsbg.gear.flank import drive_flank, member_polar_angle
 from lsbg.tooth.reference import line_contact_approach, line_contact_half_width, reduced_modulus
 
 __all__ = ["normal_curvature_across", "relative_curvature", "local_approach", "peak_pressure",
@@ -50,8 +51,6 @@ def normal_curvature_across(pair, member, cone_distance, profile_angle, step=1e-
         Curvature, positive where the flank is convex (seen from outside the
         tooth) [1/m].
     """
-    from lsbg.tooth.compliance import drive_flank, member_polar_angle
-
     plane = pair.planes["drive"]
     rho = np.atleast_1d(np.asarray(cone_distance, float))
     psi = np.broadcast_to(np.asarray(profile_angle, float), rho.shape)

@@ -2,7 +2,7 @@
 
 At each mesh position the contact lines of the line model (the bands of the
 face width on every tooth pair whose line meets the field) are the contact
-points. Their loads F >= 0 and the mismatch eps solve the contact problem as
+points (:mod:`lsbg.tooth.contact_points`). Their loads F >= 0 and the mismatch eps solve the contact problem as
 what it is, a complementarity problem:
 
     gap_i = d_i(F) - (lever_i eps - s_i) >= 0,   F_i >= 0,   F_i gap_i = 0,
@@ -13,7 +13,8 @@ with the separation s of real flanks, :mod:`lsbg.tca.separation`) and
 d_i(F) = sum_j (C1 + C2)_ij F_j + delta_i(F_i / l_i) the deflection: the
 finite-element influence coefficients of both members
 (:mod:`lsbg.tooth.compliance`, interpolated bilinearly over the flank grid,
-coupled between neighbouring teeth, symmetrised) and the local Hertz approach
+coupled between neighbouring teeth, symmetrised:
+:class:`lsbg.tooth.contact_points.FECompliance`) and the local Hertz approach
 (:mod:`lsbg.tooth.local`). It is solved by an active-set method on the
 points in contact with Newton's method on the Hertz term (its derivative is
 analytic, :class:`lsbg.tooth.local.HertzLines`), each position started from
@@ -39,206 +40,15 @@ import math
 import numpy as np
 
 from lsbg.contact import kernels as k
+from lsbg.tooth.contact_points import FECompliance, contact_points
 from lsbg.tooth.field import active_field
 
-__all__ = ["ContactPoints", "contact_points", "solve_contact", "fe_loaded_tca"]
+__all__ = ["solve_contact", "fe_loaded_tca"]
 
 #: Relative change of the loads at which the Hertz fixed point stops [-].
 TOLERANCE = 1e-10
-#: Points of the exact relative curvature across the field [-].
-CURVATURE_POINTS = 121
 #: Most active-set and fixed-point iterations per solve [-].
 MAX_ITERATIONS = 200
-
-
-def _interpolation(axis, values):
-    """Linear interpolation weights of values on an axis, extrapolating at the ends.
-
-    Returns
-    -------
-    (index, weight) : numpy.ndarray, numpy.ndarray, shape (n,)
-        value = (1 - w) f[i] + w f[i + 1].
-    """
-    i = np.clip(np.searchsorted(axis, values) - 1, 0, axis.size - 2)
-    w = (values - axis[i]) / (axis[i + 1] - axis[i])
-    return i, w
-
-
-def _weights(compliance, rho, psi):
-    """Bilinear weights of points on the flank grid, shape (n, f * p)."""
-    f = compliance.sizes["face"]
-    p = compliance.sizes["profile"]
-    i, wi = _interpolation(compliance["cone_distance"].values, rho)
-    j, wj = _interpolation(compliance["profile_angle"].values, psi)
-    weights = np.zeros((rho.size, f, p))
-    n = np.arange(rho.size)
-    for di, a in ((0, 1 - wi), (1, wi)):
-        for dj, b in ((0, 1 - wj), (1, wj)):
-            weights[n, i + di, j + dj] += a * b
-    return weights.reshape(rho.size, f * p)
-
-
-class ContactPoints:
-    """The bands of every tooth pair's contact line inside the field at one position.
-
-    Attributes
-    ----------
-    pair : numpy.ndarray of int
-        Tooth pair of each point, counted in base pitches from the first line [-].
-    rho, psi : numpy.ndarray
-        Position in the plane of action [m, rad].
-    lever, length, separation : numpy.ndarray
-        Lever rho cos(beta_p) [m], band length [m], initial separation [m].
-    band : numpy.ndarray of int or None
-        Band of the line model's face width of each point [-].
-    turn : numpy.ndarray or None
-        Turn Psi of each point's contact line [rad]; the lines of one tooth
-        pair at two mesh positions differ by the change of the mismatch turn.
-    """
-
-    def __init__(self, pair, rho, psi, lever, length, separation, band=None, turn=None):
-        self.pair, self.rho, self.psi = pair, rho, psi
-        self.lever, self.length, self.separation = lever, length, separation
-        self.band, self.turn = band, turn
-
-
-def contact_points(contact, mismatch_turn, field=None):
-    """Contact points of the line model at a line turn of tooth pair 0.
-
-    Parameters
-    ----------
-    contact : lsbg.contact.MeshContact
-        Line model (its bands and, for real flanks, its separation field).
-    mismatch_turn : float
-        Turn Psi of the contact line of tooth 0 in the plane of action [rad].
-    field : (array_like, array_like), optional
-        Polar angles (psi_lo, psi_hi) bounding the field across the profile
-        [rad], scalars or one per band (:func:`active_field`), within the line
-        model's; by default the line model's.
-
-    Returns
-    -------
-    ContactPoints
-    """
-    sides, table = contact.arrays[1], contact.arrays[2]
-    first, last = sides[0, k.S_FIRST], sides[0, k.S_LAST]
-    psi_lo, psi_hi = sides[0, k.S_PSI_LO], sides[0, k.S_PSI_HI]
-    if field is not None:
-        psi_lo, psi_hi = np.maximum(psi_lo, field[0]), np.minimum(psi_hi, field[1])
-    bands = int(sides[0, k.S_ROWS])
-    band = table[0, :bands]
-    pitch = contact.pitch
-    turn = mismatch_turn + math.ceil((first - mismatch_turn) / pitch) * pitch
-    rows = []
-    n = 0
-    while turn <= last:
-        # as the line model's kernel does (lsbg.contact.kernels._line_side): a
-        # band cut by the field's edge acts at the middle of its inside part
-        a, b = turn + band[:, k.B_THETA_IN], turn + band[:, k.B_THETA_OUT]
-        lo, hi = np.minimum(a, b), np.maximum(a, b)
-        top, bottom = np.minimum(hi, psi_hi), np.maximum(lo, psi_lo)
-        inside = top > bottom
-        fraction = np.where(inside, (top - bottom) / np.where(hi > lo, hi - lo, 1.0), 0.0)
-        t = np.where(fraction < 1.0, 0.5 * (top + bottom - a - b) / (b - a), 0.0)
-        if np.any(inside):
-            rho = band[:, k.B_RHO] + t * band[:, k.B_D_RHO]
-            cos_t = band[:, k.B_COS] + t * band[:, k.B_D_COS]
-            sin_t = band[:, k.B_SIN] + t * band[:, k.B_D_SIN]
-            psi = turn + np.arctan2(sin_t, cos_t)
-            lever = band[:, k.B_LEVER] + t * band[:, k.B_D_LEVER]
-            length = fraction * band[:, k.B_LENGTH]
-            s = (contact.separation(np.full(rho.size, turn), rho)
-                 if contact.separation is not None else np.zeros(rho.size))
-            rows.append(tuple(np.asarray(v)[inside] for v in (
-                np.full(rho.size, n), rho, psi, lever, length, np.asarray(s, float),
-                np.arange(rho.size), np.full(rho.size, turn))))
-        turn += pitch
-        n += 1
-    if not rows:
-        raise ValueError("no contact line meets the field of contact")
-    return ContactPoints(*(np.concatenate(c) for c in zip(*rows)))
-
-
-class FECompliance:
-    """Compliance of the contact points of a design point, from its FE dataset.
-
-    Parameters
-    ----------
-    dataset : xarray.Dataset
-        :func:`lsbg.tooth.compliance.tooth_compliance`.
-    pair : lsbg.gear.geometry.GearPair
-    orientation : {-1, 1}
-        :attr:`lsbg.contact.MeshContact.orientation`.
-    band_rho : numpy.ndarray
-        Cone distances of the line model's bands [m].
-    field : (array_like, array_like), optional
-        The field across the profile the contact points lie in (psi_lo,
-        psi_hi) [rad], scalars or per band; by default lsbg's.
-    """
-
-    def __init__(self, dataset, pair, orientation, band_rho, field=None):
-        from lsbg.tooth.local import relative_curvature
-
-        self.dataset, self.pair = dataset, pair
-        # a line one base pitch further on is carried by the teeth one pitch
-        # away in the sense of MeshContact.orientation (tested)
-        self.orientation = int(orientation)
-        self.young = float(dataset.attrs["material_young_modulus"])
-        self.poisson = float(dataset.attrs["material_poisson_ratio"])
-        f, p = dataset.sizes["face"], dataset.sizes["profile"]
-        self.blocks = {}
-        for name in ("pinion", "gear"):
-            c = dataset[f"compliance_{name}"].values.reshape(3, f * p, f * p)
-            self.blocks[name] = c
-        # the relative curvature, exact on a fine grid of the whole field at the
-        # line model's band centres (it grows without bound towards a base cone,
-        # where the pinion's field of contact can end: no coarse grid follows it)
-        psi_lo, psi_hi = pair.planes["drive"].field[:2]
-        if field is not None:
-            psi_lo, psi_hi = float(np.min(field[0])), float(np.max(field[1]))
-        # an edge on a base cone's tangency line (lsbg's field where a mate's
-        # tip overshoots it) is where the involute's radius of curvature is
-        # zero: the table stops short of it by an inset, and points beyond
-        # take the curvature there; a form limit (active_field) is no such edge
-        inset = 0.005 * (psi_hi - psi_lo)
-        tangency = np.array(list(pair.planes["drive"].tangency_angle.values()))
-        self.curvature_psi = np.linspace(
-            psi_lo + (inset if np.any(np.abs(tangency - psi_lo) < inset) else 0.0),
-            psi_hi - (inset if np.any(np.abs(tangency - psi_hi) < inset) else 0.0),
-            CURVATURE_POINTS)
-        self.curvature_rho = np.asarray(band_rho, float)
-        rho, psi = np.meshgrid(self.curvature_rho, self.curvature_psi, indexing="ij")
-        self.radius = (1.0 / relative_curvature(pair, rho.ravel(), psi.ravel())).reshape(rho.shape)
-        self.depth = {name: dataset[f"half_thickness_{name}"].values.ravel()
-                      for name in ("pinion", "gear")}
-        self.stress = {name: dataset[f"fillet_stress_{name}"].values.reshape(
-            -1, 3, 3, f * p) for name in ("pinion", "gear")}
-
-    def weights(self, points):
-        """Bilinear weights of the points on the flank grid, shape (n, f * p)."""
-        return _weights(self.dataset, points.rho, points.psi)
-
-    def matrix(self, points, w):
-        """Symmetric compliance of contact points, both members [m/N]; ``w`` their
-        :meth:`weights`."""
-        offset = self.orientation * (points.pair[:, None] - points.pair[None, :])
-        out = np.zeros((points.rho.size, points.rho.size))
-        for o, tooth in enumerate((-1, 0, 1)):
-            mask = offset == tooth
-            if not mask.any():
-                continue
-            total = self.blocks["pinion"][o] + self.blocks["gear"][o]
-            out[mask] = (w @ total @ w.T)[mask]
-        return 0.5 * (out + out.T)
-
-    def point_values(self, points, w):
-        """Relative curvature [1/m] and both half thicknesses [m] at the points; ``w``
-        their :meth:`weights`."""
-        band = np.argmin(np.abs(points.rho[:, None] - self.curvature_rho[None]), axis=1)
-        # the radius of curvature runs nearly linearly along the profile
-        radius = np.array([np.interp(s, self.curvature_psi, self.radius[b])
-                           for b, s in zip(band, points.psi)])
-        return 1.0 / radius, w @ self.depth["pinion"], w @ self.depth["gear"]
 
 
 def solve_contact(compliance, points, torque, e2, local, tangent=None, start=None):
@@ -263,7 +73,7 @@ def solve_contact(compliance, points, torque, e2, local, tangent=None, start=Non
     ----------
     compliance : numpy.ndarray, shape (n, n)
         Symmetric influence coefficients of the points [m/N].
-    points : ContactPoints
+    points : lsbg.tooth.contact_points.ContactPoints
     torque : float
         Gear torque [N m], > 0.
     e2 : float
@@ -354,9 +164,9 @@ def _slice_records(points, nominal, loads, eps, bands):
 
     Parameters
     ----------
-    points : ContactPoints
+    points : lsbg.tooth.contact_points.ContactPoints
         The LTCA's points (within the generated flanks' field).
-    nominal : ContactPoints
+    nominal : lsbg.tooth.contact_points.ContactPoints
         The line model's points at the same position (its whole field).
     loads : numpy.ndarray
         Loads of ``points`` [N].
@@ -449,7 +259,8 @@ def fe_loaded_tca(contact, compliance, load_torque, phases=200, form_limit=True)
     import xarray as xr
 
     from lsbg.contact.mesh import MAX_PAIRS
-    from lsbg.tca.loaded import mesh_phase_pinion_angle, transmission_error_summary
+    from lsbg.gear.flank import mesh_phase_pinion_angle
+    from lsbg.tca.loaded import transmission_error_summary
     from lsbg.tooth.elasticity import largest_principal
     from lsbg.tooth.local import HertzLines, peak_pressure
     from lsbg.tooth.slices import slice_stiffness_grid
@@ -479,7 +290,7 @@ def fe_loaded_tca(contact, compliance, load_torque, phases=200, form_limit=True)
     e2 = contact.e2
     z1, z2 = design.teeth
     fraction = np.arange(int(phases)) / int(phases)
-    pinion = mesh_phase_pinion_angle(contact, fraction)
+    pinion = mesh_phase_pinion_angle(contact.pair, fraction)
     pattern_psi = np.linspace(psi_lo, psi_hi, 61)
     pattern = np.zeros((bands, pattern_psi.size))
     te = np.zeros(phases)

@@ -2,7 +2,7 @@
 
 The segment (:mod:`lsbg.tooth.segment`) is lofted through these outlines: on
 each sphere of the loft, the exact outline of lsbg's gear blank
-(:func:`lsbg.solid.solids.section_outline`) from the middle of the root of the gap
+(:func:`lsbg.solid.outline.section_outline`) from the middle of the root of the gap
 before its first tooth to that after its last, in smooth pieces.
 
 lsbg's gear blank has a sharp corner where each flank (or its radial
@@ -27,6 +27,8 @@ import math
 
 import numpy as np
 from scipy.interpolate import CubicSpline
+
+from lsbg.gear.flank import sphere_points
 
 __all__ = ["segment_sections", "tooth_zero_column", "fillet_corners", "distance_to_polyline",
            "round_corners", "ARC_POINTS"]
@@ -61,16 +63,14 @@ def fillet_corners(pair, member, samples=41, margin=0.0):
     numpy.ndarray, shape (2, samples, 3)
         Drive side, then coast side.
     """
-    from lsbg.solid.solids import _sphere_points
-
     d = pair.design
     start = pair.flank_polar_range(member)[0]
     rho = np.linspace(d.inner_cone_distance - margin, d.outer_cone_distance + margin, samples)
     lines = []
     for side in ("drive", "coast"):
         foot, _ = pair.flank(member, side, rho, np.full(samples, start))
-        lines.append(_sphere_points(pair, member, rho, d.root_angle(member),
-                                    pair.azimuth(member, foot)))
+        lines.append(sphere_points(pair, member, rho, d.root_angle(member),
+                                   pair.azimuth(member, foot)))
     return np.stack(lines)
 
 
@@ -257,7 +257,7 @@ def tooth_zero_column(pair, member, outline, section):
     ----------
     pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
-    outline : lsbg.solid.solids.SectionOutline
+    outline : lsbg.solid.outline.SectionOutline
     section : int
         Row of the outline to look on [-].
 
@@ -350,7 +350,6 @@ def segment_sections(pair, member, teeth, fillet_radius, sections=SEGMENT_SECTIO
     ValueError
         If a gap's root is too narrow for its two fillets.
     """
-    from lsbg.solid.solids import _sphere_points
     from lsbg.solid.step import loft_sections
 
     outline, n_top, n_root = loft_sections(pair, member, sections)
@@ -374,7 +373,7 @@ def segment_sections(pair, member, teeth, fillet_radius, sections=SEGMENT_SECTIO
         # the open outline's ends at the exact middles of the outer gaps' roots
         phi = outline.azimuth[k]
         middles = [phi[a] + 0.5 * ((phi[b] - phi[a]) % (2 * math.pi)) for a, b in gaps]
-        start, end = _sphere_points(pair, member, radii[k], root, np.array(middles))
+        start, end = sphere_points(pair, member, radii[k], root, np.array(middles))
         pieces = [points[run] for run in runs]
         pieces[0] = np.concatenate([[start], pieces[0][1:]])
         pieces[-1] = np.concatenate([pieces[-1][:-1], [end]])

@@ -4,10 +4,10 @@ The tooth's compliance comes from a segment of each member, not from the
 whole gear (:mod:`lsbg.tooth.compliance`): the tooth the contact loads (tooth
 0 of :meth:`lsbg.gear.geometry.GearPair.flank`), its neighbours on both sides, and
 the body under them down to the bore, as lsbg's gear blank defines it
-(:mod:`lsbg.solid.solids`: the spherical shell R_i <= |r| <= R_e, bored).
+(:mod:`lsbg.solid.outline`: the spherical shell R_i <= |r| <= R_e, bored).
 
 The solid is lofted through the exact section outlines of
-:func:`lsbg.solid.solids.section_outline` as the STEP solids are
+:func:`lsbg.solid.outline.section_outline` as the STEP solids are
 (:mod:`lsbg.solid.step`), cut in each gap beyond the outer teeth along the middle of
 the root (so the cut follows the spiral), the root corners of tooth 0's gaps
 rounded in every section with the tool edge radius rho_a0 = ``fillet_radius``

@@ -13,7 +13,7 @@ gmsh and scikit-fem are imported before the clock starts, about 0.5 s):
 
 Each figure is the median of ``--repeat`` runs (the machine may be shared),
 with the fastest and slowest beside it, and the compliance's degrees of
-freedom beside :func:`lsbg.tooth.compliance.fe_resource_estimate`'s.
+freedom beside :func:`lsbg.tooth.resources.fe_resource_estimate`'s.
 """
 
 import argparse
@@ -31,8 +31,8 @@ from bench_dynamics import figure  # noqa: E402
 from lsbg.contact import ContactParameters, MeshContact  # noqa: E402
 from lsbg.gear.design import GearPairDesign  # noqa: E402
 from lsbg.gear.geometry import GearPair  # noqa: E402
-from lsbg.tooth.compliance import (FEMeshSettings, fe_resource_estimate,  # noqa: E402
-                                   tooth_compliance)
+from lsbg.tooth.compliance import FEMeshSettings, tooth_compliance  # noqa: E402
+from lsbg.tooth.resources import fe_resource_estimate  # noqa: E402
 from lsbg.tooth.ltca import fe_loaded_tca  # noqa: E402
 
 COMPLIANCE_TARGET_S = 10.0

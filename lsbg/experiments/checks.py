@@ -1,0 +1,66 @@
+"""The ``sensitivity`` section checked before any job: its case names and settings.
+
+Each function takes the workflow configuration (the schema's defaults filled
+in) and returns one line per problem, starting with ``sensitivity.<key>[k]``
+and the factor the user wrote. Part of :func:`lsbg.study.checks.check_config`.
+"""
+
+from __future__ import annotations
+
+from lsbg.experiments.sensitivity import case_name, scaled_contact
+from lsbg.files import label_clashes
+
+__all__ = ["case_name_problems", "sensitivity_problems"]
+
+
+def case_name_problems(config):
+    """Factors of one sensitivity key that differ but give the same case (file) name.
+
+    Parameters
+    ----------
+    config : dict
+        The configuration: its ``sensitivity`` section (key -> factors, or
+        the values a switch takes).
+
+    Returns
+    -------
+    list of str
+    """
+    problems = []
+    for key, factors in config["sensitivity"].items():
+        problems += label_clashes(factors, f"sensitivity.{key}",
+                                  label=lambda factor, key=key: case_name(key, factor))
+    return problems
+
+
+def sensitivity_problems(config):
+    """Each sensitivity case's contact law, as its line-model run will read it.
+
+    A case scales or switches one contact setting
+    (:func:`lsbg.experiments.sensitivity.scaled_contact`); the scaled section
+    must still be a valid :class:`lsbg.contact.ContactParameters`.
+
+    Parameters
+    ----------
+    config : dict
+        The configuration: its ``sensitivity`` and ``contact`` sections.
+
+    Returns
+    -------
+    list of str
+        ``sensitivity.KEY[k] = factor: gives <the contact setting's problem>``.
+    """
+    from lsbg.contact import ContactParameters
+    from lsbg.dynamics.checks import settings_message
+
+    problems = []
+    for key, factors in config["sensitivity"].items():
+        for k, factor in enumerate(factors):
+            scaled = {**config["contact"], "model": "line",
+                      **scaled_contact(config["contact"], key, factor)}
+            try:
+                ContactParameters.from_config(scaled)
+            except ValueError as error:
+                problems.append(f"sensitivity.{key}[{k}] = {factor!r}: gives "
+                                f"{settings_message(error, {**config, 'contact': scaled})}")
+    return problems

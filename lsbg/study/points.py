@@ -1,0 +1,107 @@
+"""The study's design points and the names of the files made at them.
+
+:func:`design_points` lists every design point a configuration asks for
+(``(trace, spiral label)``, with the keys that ask for it); :data:`FILES`
+holds the file-name pattern of every stage, which :class:`lsbg.study.plan.Study`
+fills in for the rules. A point's label is its spiral angle as file names
+have it (:func:`lsbg.files.number_label`).
+"""
+
+from __future__ import annotations
+
+import math
+
+from lsbg.files import number_label
+
+__all__ = ["PAPER_TRACES", "CONTACT_MODELS", "REPORT_NAMES", "FILES", "design_points",
+           "map_steps", "speed_labels"]
+
+#: File name patterns of every stage (Snakemake wildcards in braces).
+FILES = {
+    "study_config": "results/config.yaml",
+    "geometry": "results/geometry/{trace}_beta{spiral}",
+    "mesh": "results/mesh/{trace}_beta{spiral}.nc",
+    "run": "results/runs/{trace}_beta{spiral}_{model}_{engine}.nc",
+    "sensitivity_run": "results/sensitivity/{trace}_beta{spiral}_{case}.nc",
+    "convergence": "results/verification/convergence_{trace}_{model}.csv",
+    "sweep": "results/sweep.nc",
+    "summary": "results/summary.csv",
+    "speed_run": "results/speed/{trace}_beta{spiral}_w{speed}.nc",
+    "speed_curve": "results/speed_curve.nc",
+    "tca": "results/tca/{trace}_beta{spiral}.nc",
+    "vh_map": "results/vh/{trace}_beta{spiral}.nc",
+    "compliance": "results/tooth/{trace}_beta{spiral}_compliance.nc",
+    "fe_ltca": "results/tooth/{trace}_beta{spiral}_ltca.nc",
+    "fe_envelope": "results/tooth/{trace}_beta{spiral}_envelope.nc",
+    "fe_case": "results/tooth/{trace}_beta{spiral}_{case}_ltca.nc",
+    "vh_case": "results/vh/{trace}_beta{spiral}_{case}.nc",
+    "rating": "results/rating/{trace}_beta{spiral}.nc",
+    "sweep_run": "results/sweeps/{name}/{trace}_beta{spiral}_{point}.nc",
+    "sweep_dataset": "results/sweeps/{name}.nc",
+    "sweep_table": "results/sweeps/{name}.csv",
+    "report": "reports/{name}.html",
+}
+
+#: Both traces run at the paper's design point (the paper compares them).
+PAPER_TRACES = ("logarithmic", "circular")
+CONTACT_MODELS = ("point", "line")
+REPORT_NAMES = ("paper", "sweep", "verification")
+
+
+def design_points(config):
+    """Every design point of a study and the keys of the configuration that ask for it.
+
+    Parameters
+    ----------
+    config : dict
+        Validated by the schema, its defaults filled in.
+
+    Returns
+    -------
+    dict
+        ``(trace, spiral label)`` -> key paths of the spiral angles that give the
+        point, e.g. ``("circular", "35") -> ["paper_spiral_angle_deg",
+        "sweep.spiral_angles_deg[1]"]``; sorted by trace, then angle. The label
+        is the angle [deg] as file names and the jobs have it
+        (:func:`lsbg.files.number_label`).
+    """
+    asked = [(trace, number_label(angle), f"sweep.spiral_angles_deg[{k}]")
+             for trace in config["sweep"]["traces"]
+             for k, angle in enumerate(config["sweep"]["spiral_angles_deg"])]
+    asked += [(trace, number_label(config["paper_spiral_angle_deg"]), "paper_spiral_angle_deg")
+              for trace in PAPER_TRACES]
+    speed = config.get("speed_sweep")
+    if speed:
+        key = "speed_sweep.spiral_angle_deg" if "spiral_angle_deg" in speed \
+            else "paper_spiral_angle_deg"
+        angle = speed.get("spiral_angle_deg", config["paper_spiral_angle_deg"])
+        asked += [(trace, number_label(angle), key)
+                  for trace in speed.get("traces", PAPER_TRACES)]
+    points = {}
+    for trace, spiral, key in sorted(asked, key=lambda a: (a[0], float(a[1]), a[2])):
+        keys = points.setdefault((trace, spiral), [])
+        if key not in keys:
+            keys.append(key)
+    return points
+
+
+def speed_labels(grid):
+    """The speed sweep's pinion speeds [rad/s] and their file-name labels [deg/s, to 1e-3].
+
+    Parameters
+    ----------
+    grid : dict
+        ``speed_sweep.pinion_speeds_deg_s``: ``start``, ``stop`` [deg/s], ``count``.
+    """
+    from lsbg.experiments.speed import speed_grid
+
+    speeds = speed_grid(math.radians(grid["start"]), math.radians(grid["stop"]), grid["count"])
+    return speeds, [number_label(round(math.degrees(v), 3)) for v in speeds]
+
+
+def map_steps(config, spiral):
+    """Values per axis of the V-H map at a design point's spiral angle (its file-name
+    label): ``misalignment_map.steps`` at the paper's, else ``sweep_steps``."""
+    section = config["misalignment_map"]
+    paper = number_label(config["paper_spiral_angle_deg"])
+    return section["steps"] if number_label(spiral) == paper else section["sweep_steps"]

@@ -1,0 +1,222 @@
+"""The FE LTCA's contact points at one mesh position, and their compliance.
+
+The loaded TCA with the tooth's own compliance (:mod:`lsbg.tooth.ltca`)
+solves, at each mesh position, for the loads of a set of points. They are the
+line model's (:class:`lsbg.contact.MeshContact`): the bands of the face width
+on every tooth pair whose contact line meets the field of contact, each at
+the middle of its part inside the field (:func:`contact_points`), with its
+lever, its length and the initial separation of real flanks there
+(:class:`ContactPoints`).
+
+Their compliance comes from the design point's FE dataset
+(:func:`lsbg.tooth.compliance.tooth_compliance`): its influence coefficients
+interpolated bilinearly from the flank grid to the points, coupled between
+neighbouring teeth and symmetrised, with the flanks' exact relative
+curvature and half thicknesses at the points for the local Hertz term
+(:class:`FECompliance`).
+
+SI units.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from lsbg.contact import kernels as k
+
+__all__ = ["ContactPoints", "contact_points", "FECompliance"]
+
+#: Points of the exact relative curvature across the field [-].
+CURVATURE_POINTS = 121
+
+
+def _interpolation(axis, values):
+    """Linear interpolation weights of values on an axis, extrapolating at the ends.
+
+    Returns
+    -------
+    (index, weight) : numpy.ndarray, numpy.ndarray, shape (n,)
+        value = (1 - w) f[i] + w f[i + 1].
+    """
+    i = np.clip(np.searchsorted(axis, values) - 1, 0, axis.size - 2)
+    w = (values - axis[i]) / (axis[i + 1] - axis[i])
+    return i, w
+
+
+def _weights(compliance, rho, psi):
+    """Bilinear weights of points on the flank grid, shape (n, f * p)."""
+    f = compliance.sizes["face"]
+    p = compliance.sizes["profile"]
+    i, wi = _interpolation(compliance["cone_distance"].values, rho)
+    j, wj = _interpolation(compliance["profile_angle"].values, psi)
+    weights = np.zeros((rho.size, f, p))
+    n = np.arange(rho.size)
+    for di, a in ((0, 1 - wi), (1, wi)):
+        for dj, b in ((0, 1 - wj), (1, wj)):
+            weights[n, i + di, j + dj] += a * b
+    return weights.reshape(rho.size, f * p)
+
+
+class ContactPoints:
+    """The bands of every tooth pair's contact line inside the field at one position.
+
+    Attributes
+    ----------
+    pair : numpy.ndarray of int
+        Tooth pair of each point, counted in base pitches from the first line [-].
+    rho, psi : numpy.ndarray
+        Position in the plane of action [m, rad].
+    lever, length, separation : numpy.ndarray
+        Lever rho cos(beta_p) [m], band length [m], initial separation [m].
+    band : numpy.ndarray of int or None
+        Band of the line model's face width of each point [-].
+    turn : numpy.ndarray or None
+        Turn Psi of each point's contact line [rad]; the lines of one tooth
+        pair at two mesh positions differ by the change of the mismatch turn.
+    """
+
+    def __init__(self, pair, rho, psi, lever, length, separation, band=None, turn=None):
+        self.pair, self.rho, self.psi = pair, rho, psi
+        self.lever, self.length, self.separation = lever, length, separation
+        self.band, self.turn = band, turn
+
+
+def contact_points(contact, mismatch_turn, field=None):
+    """Contact points of the line model at a line turn of tooth pair 0.
+
+    Parameters
+    ----------
+    contact : lsbg.contact.MeshContact
+        Line model (its bands and, for real flanks, its separation field).
+    mismatch_turn : float
+        Turn Psi of the contact line of tooth 0 in the plane of action [rad].
+    field : (array_like, array_like), optional
+        Polar angles (psi_lo, psi_hi) bounding the field across the profile
+        [rad], scalars or one per band (:func:`active_field`), within the line
+        model's; by default the line model's.
+
+    Returns
+    -------
+    ContactPoints
+    """
+    sides, table = contact.arrays[1], contact.arrays[2]
+    first, last = sides[0, k.S_FIRST], sides[0, k.S_LAST]
+    psi_lo, psi_hi = sides[0, k.S_PSI_LO], sides[0, k.S_PSI_HI]
+    if field is not None:
+        psi_lo, psi_hi = np.maximum(psi_lo, field[0]), np.minimum(psi_hi, field[1])
+    bands = int(sides[0, k.S_ROWS])
+    band = table[0, :bands]
+    pitch = contact.pitch
+    turn = mismatch_turn + math.ceil((first - mismatch_turn) / pitch) * pitch
+    rows = []
+    n = 0
+    while turn <= last:
+        # as the line model's kernel does (lsbg.contact.kernels._line_side): a
+        # band cut by the field's edge acts at the middle of its inside part
+        a, b = turn + band[:, k.B_THETA_IN], turn + band[:, k.B_THETA_OUT]
+        lo, hi = np.minimum(a, b), np.maximum(a, b)
+        top, bottom = np.minimum(hi, psi_hi), np.maximum(lo, psi_lo)
+        inside = top > bottom
+        fraction = np.where(inside, (top - bottom) / np.where(hi > lo, hi - lo, 1.0), 0.0)
+        t = np.where(fraction < 1.0, 0.5 * (top + bottom - a - b) / (b - a), 0.0)
+        if np.any(inside):
+            rho = band[:, k.B_RHO] + t * band[:, k.B_D_RHO]
+            cos_t = band[:, k.B_COS] + t * band[:, k.B_D_COS]
+            sin_t = band[:, k.B_SIN] + t * band[:, k.B_D_SIN]
+            psi = turn + np.arctan2(sin_t, cos_t)
+            lever = band[:, k.B_LEVER] + t * band[:, k.B_D_LEVER]
+            length = fraction * band[:, k.B_LENGTH]
+            s = (contact.separation(np.full(rho.size, turn), rho)
+                 if contact.separation is not None else np.zeros(rho.size))
+            rows.append(tuple(np.asarray(v)[inside] for v in (
+                np.full(rho.size, n), rho, psi, lever, length, np.asarray(s, float),
+                np.arange(rho.size), np.full(rho.size, turn))))
+        turn += pitch
+        n += 1
+    if not rows:
+        raise ValueError("no contact line meets the field of contact")
+    return ContactPoints(*(np.concatenate(c) for c in zip(*rows)))
+
+
+class FECompliance:
+    """Compliance of the contact points of a design point, from its FE dataset.
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        :func:`lsbg.tooth.compliance.tooth_compliance`.
+    pair : lsbg.gear.geometry.GearPair
+    orientation : {-1, 1}
+        :attr:`lsbg.contact.MeshContact.orientation`.
+    band_rho : numpy.ndarray
+        Cone distances of the line model's bands [m].
+    field : (array_like, array_like), optional
+        The field across the profile the contact points lie in (psi_lo,
+        psi_hi) [rad], scalars or per band; by default lsbg's.
+    """
+
+    def __init__(self, dataset, pair, orientation, band_rho, field=None):
+        from lsbg.tooth.local import relative_curvature
+
+        self.dataset, self.pair = dataset, pair
+        # a line one base pitch further on is carried by the teeth one pitch
+        # away in the sense of MeshContact.orientation (tested)
+        self.orientation = int(orientation)
+        self.young = float(dataset.attrs["material_young_modulus"])
+        self.poisson = float(dataset.attrs["material_poisson_ratio"])
+        f, p = dataset.sizes["face"], dataset.sizes["profile"]
+        self.blocks = {}
+        for name in ("pinion", "gear"):
+            c = dataset[f"compliance_{name}"].values.reshape(3, f * p, f * p)
+            self.blocks[name] = c
+        # the relative curvature, exact on a fine grid of the whole field at the
+        # line model's band centres (it grows without bound towards a base cone,
+        # where the pinion's field of contact can end: no coarse grid follows it)
+        psi_lo, psi_hi = pair.planes["drive"].field[:2]
+        if field is not None:
+            psi_lo, psi_hi = float(np.min(field[0])), float(np.max(field[1]))
+        # an edge on a base cone's tangency line (lsbg's field where a mate's
+        # tip overshoots it) is where the involute's radius of curvature is
+        # zero: the table stops short of it by an inset, and points beyond
+        # take the curvature there; a form limit (active_field) is no such edge
+        inset = 0.005 * (psi_hi - psi_lo)
+        tangency = np.array(list(pair.planes["drive"].tangency_angle.values()))
+        self.curvature_psi = np.linspace(
+            psi_lo + (inset if np.any(np.abs(tangency - psi_lo) < inset) else 0.0),
+            psi_hi - (inset if np.any(np.abs(tangency - psi_hi) < inset) else 0.0),
+            CURVATURE_POINTS)
+        self.curvature_rho = np.asarray(band_rho, float)
+        rho, psi = np.meshgrid(self.curvature_rho, self.curvature_psi, indexing="ij")
+        self.radius = (1.0 / relative_curvature(pair, rho.ravel(), psi.ravel())).reshape(rho.shape)
+        self.depth = {name: dataset[f"half_thickness_{name}"].values.ravel()
+                      for name in ("pinion", "gear")}
+        self.stress = {name: dataset[f"fillet_stress_{name}"].values.reshape(
+            -1, 3, 3, f * p) for name in ("pinion", "gear")}
+
+    def weights(self, points):
+        """Bilinear weights of the points on the flank grid, shape (n, f * p)."""
+        return _weights(self.dataset, points.rho, points.psi)
+
+    def matrix(self, points, w):
+        """Symmetric compliance of contact points, both members [m/N]; ``w`` their
+        :meth:`weights`."""
+        offset = self.orientation * (points.pair[:, None] - points.pair[None, :])
+        out = np.zeros((points.rho.size, points.rho.size))
+        for o, tooth in enumerate((-1, 0, 1)):
+            mask = offset == tooth
+            if not mask.any():
+                continue
+            total = self.blocks["pinion"][o] + self.blocks["gear"][o]
+            out[mask] = (w @ total @ w.T)[mask]
+        return 0.5 * (out + out.T)
+
+    def point_values(self, points, w):
+        """Relative curvature [1/m] and both half thicknesses [m] at the points; ``w``
+        their :meth:`weights`."""
+        band = np.argmin(np.abs(points.rho[:, None] - self.curvature_rho[None]), axis=1)
+        # the radius of curvature runs nearly linearly along the profile
+        radius = np.array([np.interp(s, self.curvature_psi, self.radius[b])
+                           for b, s in zip(band, points.psi)])
+        return 1.0 / radius, w @ self.depth["pinion"], w @ self.depth["gear"]
