@@ -101,3 +101,20 @@ def test_unknown_or_non_numeric_config_keys_are_named():
 def test_config_round_trip_is_exact_for_awkward_angles(angle):
     design = GearPairDesign.from_config({"spiral_angle_deg": angle, "normal_pressure_angle_deg": 22.3})
     assert GearPairDesign.from_config(design.to_config()) == design
+
+
+@pytest.mark.parametrize("field, value, hint", [
+    ("module", 4.5, "4.5 mm is 0.0045 m"), ("face_width", 25, "from_units(face_width_mm=25)"),
+    ("cutter_radius", 76.2, "0.0762 m"), ("density", 7.85, "kg/m^3"),
+    ("spiral_angle", 35, "math.radians(35)"), ("normal_pressure_angle", 20, "radians")])
+def test_values_in_paper_units_are_refused_with_the_conversion(field, value, hint):
+    """SI inside: GearPairDesign(module=4.5) is a 4.5-metre module, refused with its cure."""
+    with pytest.raises(DesignError, match=rf"^{field} = {value}: ") as error:
+        GearPairDesign(**{field: value})
+    assert hint in str(error.value)
+
+
+def test_from_units_takes_the_paper_units():
+    assert GearPairDesign.from_units(module_mm=4.5, spiral_angle_deg=35) == GearPairDesign()
+    design = GearPairDesign.from_units(face_width_mm=30, trace="circular")
+    assert design.face_width == pytest.approx(0.030) and design.trace == "circular"

@@ -36,6 +36,22 @@ class DesignError(ValueError):
     """
 
 
+#: Plausible ranges of the SI fields: ``(low, high, unit)``. A value outside is almost
+#: surely in other units (mm for m): refused with the conversion.
+PLAUSIBLE = {"module": (1e-4, 0.1, "m"), "face_width": (1e-4, 1.0, "m"),
+             "addendum": (1e-5, 0.2, "m"), "dedendum": (1e-5, 0.2, "m"),
+             "cutter_radius": (1e-3, 5.0, "m"), "pinion_bore": (1e-4, 2.0, "m"),
+             "gear_bore": (1e-4, 5.0, "m"), "density": (500.0, 30000.0, "kg/m^3")}
+
+
+def _hint(name, value):
+    """How to give ``value`` of field ``name`` that was (probably) in the paper's units."""
+    if name == "density":
+        return f"{value:g} kg/m^3 is outside what gears are made of"
+    return (f"{value:g} mm is {value * 1e-3:g} m (GearPairDesign.from_units({name}_mm="
+            f"{value:g}))")
+
+
 @dataclass(frozen=True)
 class GearPairDesign:
     """Design parameters of a spiral bevel gear pair (pinion = member 1).
@@ -116,6 +132,18 @@ class GearPairDesign:
             v = getattr(self, name)
             if not (np.isfinite(v) and v > 0):
                 fail(name, v, "must be a positive, finite number")
+        # SI inside: a length given in mm (a module of 4.5 "m") is refused here, not meshed
+        for name, (low, high, unit) in PLAUSIBLE.items():
+            v = getattr(self, name)
+            if not low <= v <= high:
+                fail(name, v, f"is not a plausible {name.replace('_', ' ')} in {unit} "
+                              f"({low:g}-{high:g} {unit}); lsbg takes SI units: "
+                              f"{_hint(name, v)}")
+        for name in ("shaft_angle", "spiral_angle", "normal_pressure_angle"):
+            if abs(getattr(self, name)) > math.pi:
+                fail(name, getattr(self, name), f"is not an angle in radians; lsbg takes SI "
+                     f"units: math.radians({getattr(self, name):g}), or "
+                     f"GearPairDesign.from_units({name}_deg={getattr(self, name):g})")
         if not (0 < self.shaft_angle < math.pi):
             fail("shaft_angle", math.degrees(self.shaft_angle), "must lie in (0, 180) deg")
         if not (0 < self.spiral_angle < math.radians(60)):
@@ -156,6 +184,20 @@ class GearPairDesign:
             if s_max >= 0.98:
                 fail("cutter_radius", self.cutter_radius,
                      "is too small: the cutter arc turns nearly radial within the face width")
+
+    @classmethod
+    def from_units(cls, **keys) -> "GearPairDesign":
+        """A design from keyword arguments in the paper's units, the unit in each name.
+
+        ``GearPairDesign.from_units(module_mm=4.5, spiral_angle_deg=30, trace="circular")``;
+        the keys of :data:`CONFIG_KEYS` (as in the configuration's ``design``
+        section), the others the paper's Table 1.
+
+        Returns
+        -------
+        GearPairDesign
+        """
+        return cls.from_config(keys)
 
     @classmethod
     def from_config(cls, config: dict) -> "GearPairDesign":
