@@ -32,6 +32,7 @@ include: "workflow/rules/rating.smk"
 include: "workflow/rules/contact_state.smk"
 include: "workflow/rules/simulate.smk"
 include: "workflow/rules/aggregate.smk"
+include: "workflow/rules/checks.smk"
 include: "workflow/rules/reports.smk"
 
 
@@ -49,7 +50,7 @@ if STUDY.sweeps:
 
 for extension in config["extensions"]:
 
-    include: f"workflow/extensions/{extension}.smk"
+    include: extension_file(extension)
 
 
 # results/config.yaml (the settings lsbg reads) follows the configuration of
@@ -65,3 +66,7 @@ rule all:
     input:
         STUDY.targets,
         EXTENSION_TARGETS,
+
+
+# Every rule's priority from the rule graph, now that all are defined (lsbg.study.job_order).
+plan.assign_priorities(workflow.rules, STUDY.sample_wildcards)

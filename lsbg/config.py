@@ -24,9 +24,10 @@ import math
 import re
 from pathlib import Path
 
-__all__ = ["SCHEMA_PATH", "ConfigError", "load_schema", "key_path", "nonfinite_problems",
-           "schema_problems", "fill_defaults", "merge_config", "parse_override",
-           "apply_override", "resolve_config", "config_key", "section_objects"]
+__all__ = ["SCHEMA_PATH", "ConfigError", "load_schema", "key_path", "section_values",
+           "nonfinite_problems", "schema_problems", "fill_defaults", "section_keys", "merge_config",
+           "parse_override", "apply_override", "resolve_config", "config_key",
+           "section_objects"]
 
 #: The schema of the study configuration (beside the workflow that reads it).
 SCHEMA_PATH = Path(__file__).resolve().parents[1] / "workflow" / "schemas" / "config.schema.yaml"
@@ -41,7 +42,8 @@ def _schema(path):
     import yaml
 
     with open(path, encoding="utf-8") as handle:
-        return yaml.safe_load(handle)
+        # libyaml's loader where PyYAML has it: every lsbg command reads the schema
+        return yaml.load(handle, Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
 
 
 def load_schema(path=SCHEMA_PATH):
@@ -68,6 +70,14 @@ def key_path(parts):
     for part in parts:
         text += f"[{part}]" if isinstance(part, int) else (f".{part}" if text else str(part))
     return text or "(top level)"
+
+
+def section_values(config, section):
+    """Every key the user set in a section, with its value (``design (design.x = 1, ...)``):
+    the key part of a problem no single key is at fault for (lsbg cannot compute the
+    numbers together)."""
+    values = ", ".join(f"{section}.{key} = {value!r}" for key, value in config[section].items())
+    return f"{section} ({values})"
 
 
 def nonfinite_problems(config, where=()):
@@ -154,6 +164,24 @@ def fill_defaults(config, schema):
             fill_defaults(config[key], subschema)
 
 
+def section_keys(schema, section):
+    """``[(key, description, default)]`` of a section of the schema, in its order.
+
+    Parameters
+    ----------
+    schema : dict
+    section : str
+
+    Returns
+    -------
+    list of tuple
+        The default is the schema's, or None where it has none.
+    """
+    properties = schema.get("properties", {}).get(section, {}).get("properties", {})
+    return [(key, " ".join(str(spec.get("description", "")).split()), spec.get("default"))
+            for key, spec in properties.items()]
+
+
 def merge_config(base, update):
     """``update`` merged into ``base`` key by key, as Snakemake merges config files.
 
@@ -234,9 +262,6 @@ def parse_override(text, schema):
         value = raw
     if isinstance(value, str) and _NUMBER_TEXT.match(value) and _accepts(subschema, "number"):
         value = float(value)
-    if isinstance(value, int) and not isinstance(value, bool) and not _accepts(
-            subschema, "integer") and _accepts(subschema, "number"):
-        value = float(value)
     return parts, value
 
 
@@ -287,13 +312,26 @@ def resolve_config(files=(), overrides=(), schema=None, read=None):
     for text in overrides:
         parts, value = parse_override(text, schema)
         apply_override(config, parts, value)
-    # the sections a command reads need not be the workflow's required ones
-    checked = {**schema, "required": []}
+    # a command reads sections, not a study: no key is required of it
+    checked = _without_required(schema)
     problems = nonfinite_problems(config) + schema_problems(config, checked)
     if problems:
         raise ConfigError("; ".join(problems))
+    # every section a command may read, its keys' defaults filled in
+    for key, subschema in schema.get("properties", {}).items():
+        if "properties" in subschema:
+            config.setdefault(key, {})
     fill_defaults(config, schema)
     return config
+
+
+def _without_required(schema):
+    """The schema without its ``required`` lists (at every level)."""
+    if isinstance(schema, dict):
+        return {k: _without_required(v) for k, v in schema.items() if k != "required"}
+    if isinstance(schema, list):
+        return [_without_required(v) for v in schema]
+    return schema
 
 
 def config_key(keys, target, field):

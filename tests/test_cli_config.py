@@ -29,3 +29,27 @@ def test_invalid_value_is_named_by_its_key_and_valid_configs_pass(tmp_path, caps
     test_config = REPO / "workflow" / "config-test.yaml"
     assert cli.main(["check-config", str(test_config)]) == 0
     assert "valid: 2 design points" in capsys.readouterr().out
+
+
+def test_a_commands_config_reads_the_files_check_config_reads(tmp_path, capsys):
+    """``lsbg <command> --config FILE`` reads a study configuration as check-config does:
+    the workflow's files are accepted, merged in order; a YAML error names the file, line
+    and column in one line, exit code 2, before any work."""
+    from lsbg.cli.options import settings_of
+
+    files = [REPO / "workflow" / "config.yaml", REPO / "workflow" / "config-test.yaml"]
+    args = cli.build_parser().parse_args(
+        ["summary", "--runs", "r.nc", "--out", str(tmp_path / "s.csv"),
+         *[w for path in files for w in ("--config", str(path))]])
+    settings = settings_of(args)
+    expected = merge_config(*[yaml.safe_load(path.read_text()) for path in files])
+    assert settings["statistics"] == {**settings["statistics"], **expected["statistics"]}
+    assert settings["sweep"] == expected["sweep"]
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("statistics:\n  subgroup_size: 4\n  control_chart_window_s: [0.8\n")
+    assert cli.main(["summary", "--runs", "r.nc", "--config", str(bad),
+                     "--out", str(tmp_path / "s.csv")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"lsbg summary: error: --config {bad}: not valid YAML (line 4, "
+                          f"column 1") and err.count("\n") == 1, err
+    assert not (tmp_path / "s.csv").exists()

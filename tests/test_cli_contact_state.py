@@ -1,8 +1,8 @@
 """The contact state on the command line and in the dynamics.
 
 ``lsbg tca`` and ``lsbg misalignment-map`` write what the library computes;
-``--config``'s ``flank_modification`` and ``misalignment`` sections (and the
-``--modification`` / ``--misalignment`` options) reach every line-model
+``--config``'s ``flank_modification`` and ``misalignment`` sections (and ``--set
+flank_modification.KEY=VALUE`` / ``--set misalignment.KEY=VALUE``) reach every line-model
 command; without them every command gives today's conjugate numbers, bit for
 bit; bad input is named, exit code 2, nothing written.
 """
@@ -62,8 +62,9 @@ def test_tca_command_writes_what_the_library_computes(world, capsys):
 def test_options_override_the_config(world):
     out = world["root"] / "tca_options.nc"
     assert run(["tca", "--geometry", world["geometry"], "--config", world["config"],
-                "--misalignment", "P=0", "--modification", "profile_crowning_um=0",
-                "--positions", "24", "--out", out]) == 0
+                "--set", "misalignment.pinion_axial_P_mm=0",
+                "--set", "flank_modification.profile_crowning_um=0",
+                "--set", "tca.positions=24", "--out", out]) == 0
     ds = xr.open_dataset(out)
     assert ds.sizes["mesh_phase"] == 24
     assert ds.attrs["misalignment_pinion_axial_P_mm"] == 0
@@ -74,7 +75,8 @@ def test_options_override_the_config(world):
 def test_misalignment_map_command_and_its_tca(world):
     out, tca = world["root"] / "vh.nc", world["root"] / "vh_tca.nc"
     assert run(["misalignment-map", "--geometry", world["geometry"], "--config", world["config"],
-                "--axes", "P", "G", "--range", "0.05", "--out", out, "--tca-out", tca]) == 0
+                "--set", "misalignment_map.axes=[P, G]", "--set", "misalignment_map.range=0.05",
+                "--out", out, "--tca-out", tca]) == 0
     vh = xr.open_dataset(out)
     assert vh["transmission_error_unloaded_pp"].dims == ("P", "G")
     np.testing.assert_allclose(vh["P"], [-0.05, 0.0, 0.05])
@@ -95,11 +97,12 @@ def test_sensitivity_cases_of_the_map_and_the_loaded_tca_are_the_options_they_st
     base, doubled = root / "vh_base.nc", root / "vh_doubled.nc"
     assert run(["misalignment-map", "--geometry", world["geometry"], "--config", world["config"],
                 "--out", base, "--case", "crowning=1", "--case", "crowning=2",
+                "--set", "misalignment_map.sweep_steps=3",   # the cases' grid: the base map's
                 "--case", "line_stiffness_N_per_mm_um=2",
                 "--case-out", root / "vh_{case}.nc"]) == 0
     assert run(["misalignment-map", "--geometry", world["geometry"], "--config", world["config"],
-                "--modification", "lengthwise_crowning_um=50",
-                "--modification", "profile_crowning_um=10", "--out", doubled]) == 0
+                "--set", "flank_modification.lengthwise_crowning_um=50",
+                "--set", "flank_modification.profile_crowning_um=10", "--out", doubled]) == 0
     one, two = xr.open_dataset(root / "vh_crowning_x1.nc"), xr.open_dataset(root / "vh_crowning_x2.nc")
     assert one.attrs["sensitivity_case"] == "crowning_x1"
     xr.testing.assert_equal(one.drop_attrs(), xr.open_dataset(base).drop_attrs())
@@ -109,24 +112,34 @@ def test_sensitivity_cases_of_the_map_and_the_loaded_tca_are_the_options_they_st
     assert not np.allclose(stiff["transmission_error_loaded_pp"], one["transmission_error_loaded_pp"])
     # the loaded TCA's case: the command with the doubled ease-off
     assert run(["ltca", "--geometry", world["geometry"], "--config", world["config"],
-                "--phases", "16", "--out", root / "ltca.nc", "--case", "crowning=2",
+                "--set", "tca.loaded_positions=16", "--out", root / "ltca.nc",
+                "--case", "crowning=2",
                 "--case-out", root / "ltca_{case}.nc"]) == 0
     assert run(["ltca", "--geometry", world["geometry"], "--config", world["config"],
-                "--phases", "16", "--modification", "lengthwise_crowning_um=50",
-                "--modification", "profile_crowning_um=10", "--out", root / "ltca2.nc"]) == 0
+                "--set", "tca.loaded_positions=16",
+                "--set", "flank_modification.lengthwise_crowning_um=50",
+                "--set", "flank_modification.profile_crowning_um=10",
+                "--out", root / "ltca2.nc"]) == 0
     case, direct = xr.open_dataset(root / "ltca_crowning_x2.nc"), xr.open_dataset(root / "ltca2.nc")
     np.testing.assert_array_equal(case["transmission_error"], direct["transmission_error"])
     assert case.attrs["sensitivity_case"] == "crowning_x2"
 
 
 @pytest.mark.parametrize("argv, message", [
-    (["tca", "--misalignment", "X=1"], "misalignment.X = 1: unknown key"),
-    (["tca", "--modification", "lengthwise_crowning_um=-3"],
-     "flank_modification.lengthwise_crowning_um = -3: must be a number >= 0"),
-    (["tca", "--misalignment", "G=-0.5"], "the members interfere"),
-    (["tca", "--positions", "4"], "positions = 4"),
-    (["misalignment-map", "--steps", "4"], "misalignment_map.steps = 4"),
-    (["ltca", "--modification", "bias"], "--modification 'bias': must be KEY=VALUE"),
+    (["tca", "--set", "misalignment.X=1"],
+     "--set 'misalignment.X=1': misalignment.X: unknown key (known: gear_axial_G_mm, "
+     "offset_E_mm, pinion_axial_P_mm, shaft_angle_error_deg)"),
+    # the letter shortcut is gone: the letter is no key
+    (["tca", "--set", "misalignment.P=0.05"], "misalignment.P: unknown key"),
+    (["tca", "--set", "flank_modification.lengthwise_crowning_um=-3"],
+     "flank_modification.lengthwise_crowning_um: -3 is less than the minimum of 0"),
+    (["tca", "--set", "misalignment.gear_axial_G_mm=-0.5"],
+     "gear_axial_G_mm = -0.5: the members interfere"),
+    (["tca", "--set", "tca.positions=4"], "tca.positions: 4 is less than the minimum of 8"),
+    (["misalignment-map", "--set", "misalignment_map.steps=4"],
+     "misalignment_map.steps = 4: must be an odd whole number >= 3"),
+    (["ltca", "--set", "flank_modification.bias"],
+     "--set 'flank_modification.bias': must be section.key=value"),
 ])
 def test_bad_input_is_named_and_nothing_written(world, capsys, argv, message):
     out = world["root"] / "never.nc"
@@ -173,8 +186,10 @@ def test_dynamics_on_crowned_flanks_carries_their_excitation(world):
 def test_config_sections_reach_the_line_model_commands(world):
     out = world["root"] / "mesh.nc"
     assert run(["ltca", "--geometry", world["geometry"], "--config", world["config"],
-                "--phases", "16", "--load-torque", "100", "--out", out]) == 0
+                "--set", "tca.loaded_positions=16", "--set", "simulation.load_torque_N_m=100",
+                "--out", out]) == 0
     ds = xr.open_dataset(out)
+    assert ds.attrs["load_torque_N_m"] == 100 and ds.sizes["mesh_phase"] == 16
     assert ds.attrs["flank_modification_profile_crowning_um"] == pytest.approx(5)
     assert ds.attrs["misalignment_pinion_axial_P_mm"] == pytest.approx(0.05)
     assert ds.attrs["loaded_pattern_length_per_face_width"] < 1.0

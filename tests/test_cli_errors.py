@@ -48,6 +48,8 @@ def world(tmp_path_factory):
     w["garbage_yaml"].write_text("design: [unclosed\n")
     w["duplicated"] = root / "duplicated.yaml"
     w["duplicated"].write_text("contact:\n  slices: 10\n  slices: 30\n")
+    w["bare_design"] = root / "bare_design.yaml"            # the former --design FILE
+    w["bare_design"].write_text("module_mm: 5\nspiral_angle_deg: 30\n")
     w["out"] = root / "out.nc"                              # never written by a bad command
     return w
 
@@ -68,8 +70,8 @@ TABLE = {
     "ltca edited design.json": ("ltca --geometry {edited} --out {out}", "edited"),
     "ltca empty geometry": ("ltca --geometry {empty} --out {out}", "empty"),
     "mesh-mode corrupt manifest": ("mesh-mode --geometry {bad_manifest}", "bad_manifest"),
-    "speed-run file as geometry": ("speed-run --geometry {file} --pinion-speed 2000 "
-                                   "--out {out}", "file"),
+    "speed-run file as geometry": ("speed-run --geometry {file} "
+                                   "--set simulation.pinion_speed_deg_s=2000 --out {out}", "file"),
     "sensitivity missing geometry": ("sensitivity --geometry {missing} --case slices=2 "
                                      "--out {root}/s_{{case}}.nc", "missing"),
     # run files: missing, truncated, not NetCDF, a directory, not a run
@@ -82,11 +84,12 @@ TABLE = {
     "speed-curve truncated run": ("speed-curve --runs {truncated} --out {out}", "truncated"),
     "convergence truncated known run": ("convergence --geometry {geo} --known {truncated} "
                                         "--out {root}/c.csv", "truncated"),
-    # configuration and design files
+    # configuration files (the design's too: a file with a design section)
     "simulate missing config": ("simulate --geometry {geo} --config {missing} --out {out}",
                                 "missing"),
-    "geometry garbage design file": ("geometry --design {garbage_yaml} --out {root}/g",
+    "geometry garbage config file": ("geometry --config {garbage_yaml} --out {root}/g",
                                      "garbage_yaml"),
+    "geometry missing config": ("geometry --config {missing} --out {root}/g", "missing"),
     # outputs, checked before the work: a directory for a file, below a file
     "simulate out is a directory": ("simulate --geometry {geo} --out {empty}", "empty"),
     "simulate out below a file": ("simulate --geometry {geo} --out {file}/run.nc", "file"),
@@ -97,8 +100,9 @@ TABLE = {
     "convergence out below a file": ("convergence --geometry {geo} --out {file}/c.csv", "file"),
     "sensitivity out below a file": ("sensitivity --geometry {geo} --case slices=2 "
                                      "--out {file}/s_{{case}}.nc", "file"),
-    "speed-run out is a directory": ("speed-run --geometry {geo} --pinion-speed 2000 "
-                                     "--out {empty}", "empty"),
+    "speed-run out is a directory": ("speed-run --geometry {geo} "
+                                     "--set simulation.pinion_speed_deg_s=2000 --out {empty}",
+                                     "empty"),
     "combine out below a file": ("combine --runs {missing_nc} --out {file}/sweep.nc", "file"),
     "summary out is a directory": ("summary --runs {truncated} --out {empty}", "empty"),
     "speed-curve out below a file": ("speed-curve --runs {truncated} --out {file}/curve.nc",
@@ -184,7 +188,7 @@ CASE_ERRORS = {
                        "change this analysis"),
     "ltca case without a template": (
         "ltca --geometry {geo} --case crowning=2 --out {out}",
-        "--case: needs --case-out, a file template with {case}"),
+        "--case: needs --case-out, a file template with {{case}}"),
     "sensitivity negative crowning": (
         "sensitivity --geometry {geo} --case crowning=-1 --out {root}/s_{{case}}.nc",
         "sensitivity.crowning factor -1: must be a number >= 0"),
@@ -195,13 +199,18 @@ CASE_ERRORS = {
         "sensitivity --geometry {geo} --case crowning=0.5 --case crowning=2 --out {root}/s.nc",
         "the cases would write the same file"),
     "misalignment-map even case steps": (
-        "misalignment-map --geometry {geo} --case crowning=2 --case-steps 4 "
-        "--case-out {root}/v_{{case}}.nc --out {root}/vh.nc", "--case-steps 4"),
+        "misalignment-map --geometry {geo} --case crowning=2 "
+        "--set misalignment_map.sweep_steps=4 --case-out {root}/v_{{case}}.nc "
+        "--out {root}/vh.nc", "= 4: must be an odd whole number >= 3"),
+    "a bare mapping of design keys": (
+        "geometry --config {bare_design} --out {root}/g",
+        "module_mm: unknown key (known: contact, design,"),
     "a configuration file with a key twice": (
         "simulate --geometry {geo} --config {duplicated} --out {out}",
         "line 3: key 'contact.slices' again (first at line 2)"),
     "rate case run without a name": (
-        "rate --geometry {geo} --case-run {out} --out {root}/r.nc", "must be CASE=RUN.nc"),
+        "rate --geometry {geo} --case-run {out} --out {root}/r.nc",
+        "--case-run '{out}': must be NAME=VALUE"),
 }
 
 
@@ -209,7 +218,16 @@ CASE_ERRORS = {
 def test_bad_sensitivity_cases_are_one_line_exit_2(world, case, capsys, no_work):
     line, message = CASE_ERRORS[case]
     err = one_line_exit_2(world, line, capsys)
-    assert message in err, err
+    assert message.format(**world) in err, err
+
+
+def test_even_case_steps_name_the_sweep_steps_key(world, capsys, no_work):
+    """The cases' maps take misalignment_map.sweep_steps (the former --case-steps): its
+    bad value is named by its own key."""
+    err = one_line_exit_2(world, "misalignment-map --geometry {geo} --case crowning=2 "
+                                 "--set misalignment_map.sweep_steps=4 "
+                                 "--case-out {root}/v_{{case}}.nc --out {root}/vh.nc", capsys)
+    assert "misalignment_map.sweep_steps = 4" in err, err
 
 
 @pytest.mark.parametrize("line", [

@@ -25,7 +25,8 @@ def world(tmp_path_factory):
     config = root / "config.yaml"
     config.write_text(yaml.safe_dump(SHORT))
     runs = [root / f"mu{k}.nc" for k in range(3)]
-    argv = ["sweep-run", "--geometry", geometry, "--config", config, "--sweep", "friction"]
+    argv = ["sweep-run", "--geometry", geometry, "--config", config, "--set", "contact.model=line",
+            "--sweep", "friction"]
     for path, mu in zip(runs, (0.0, 0.05, 0.15)):
         argv += ["--point", path, f"contact.dynamic_friction={mu}"]
     assert cli.main([str(a) for a in argv]) == 0
@@ -35,8 +36,8 @@ def world(tmp_path_factory):
 def test_a_swept_run_is_the_single_run_with_its_settings(world):
     single = world["root"] / "single.nc"
     assert cli.main([str(a) for a in ["simulate", "--geometry", world["geometry"], "--engine",
-                                      "compiled", "--contact-model", "line", "--config",
-                                      world["config"], "--set-contact", "dynamic_friction=0.05",
+                                      "compiled", "--set", "contact.model=line", "--config",
+                                      world["config"], "--set", "contact.dynamic_friction=0.05",
                                       "--out", single]]) == 0
     with xr.open_dataset(world["runs"][1]) as swept, xr.open_dataset(single) as direct:
         for name in ("gear_speed", "tangential_force", "gear_speed_full"):
@@ -44,6 +45,7 @@ def test_a_swept_run_is_the_single_run_with_its_settings(world):
         assert swept.attrs["sweep_contact_dynamic_friction"] == 0.05
         assert swept.attrs["sweep_name"] == "friction"
         assert swept.attrs["contact_dynamic_friction_coefficient"] == pytest.approx(0.05)
+        assert swept.attrs["contact_model"] == direct.attrs["contact_model"] == "line"
     # and friction does change the run
     with xr.open_dataset(world["runs"][0]) as a, xr.open_dataset(world["runs"][2]) as b:
         assert not np.array_equal(a["gear_speed_full"], b["gear_speed_full"])
@@ -72,12 +74,14 @@ def test_the_combined_dataset_holds_each_runs_statistics(world):
 def test_a_design_point_of_its_own_and_bad_points(world, capsys):
     wide = world["root"] / "wide.nc"
     assert cli.main([str(a) for a in ["sweep-run", "--geometry", world["geometry"], "--config",
-                                      world["config"], "--sweep", "width", "--point", wide,
+                                      world["config"], "--set", "contact.model=line",
+                                      "--sweep", "width", "--point", wide,
                                       "design.face_width_mm=20"]]) == 0
     with xr.open_dataset(wide) as ds:
         assert ds.attrs["design_face_width_mm"] == pytest.approx(20)
         assert ds.attrs["design_trace"] == "logarithmic"
         assert ds.attrs["design_spiral_angle_deg"] == pytest.approx(35)
+        assert ds.attrs["contact_model"] == "line"
     capsys.readouterr()
     for point, message in ((["x.nc", "statistics.subgroup_size=4"], "must be SECTION.KEY=VALUE"),
                            (["x.nc", "contact.dynamic_friction=-1"], "dynamic_friction"),
@@ -91,3 +95,22 @@ def test_a_design_point_of_its_own_and_bad_points(world, capsys):
     assert cli.main(["sweep-combine", "--runs", str(world["root"] / "wide.nc"),
                      str(world["runs"][0]), "--out", str(world["root"] / "mixed.nc")]) == 2
     assert "runs of several sweeps: friction, width" in capsys.readouterr().err
+
+
+def test_the_contact_model_is_a_setting(world, capsys):
+    """``--set contact.model=...`` (the former --contact-model) sets the model of a batch;
+    the former option is refused by argparse."""
+    out = world["root"] / "point.nc"
+    assert cli.main([str(a) for a in ["sweep-run", "--geometry", world["geometry"], "--config",
+                                      world["config"], "--set", "contact.model=point",
+                                      "--sweep", "model", "--point", out,
+                                      "contact.dynamic_friction=0.05"]]) == 0
+    with xr.open_dataset(out) as ds:
+        assert ds.attrs["contact_model"] == "point"
+    with pytest.raises(SystemExit) as exit_:
+        cli.main([str(a) for a in ["sweep-run", "--geometry", world["geometry"],
+                                   "--contact-model", "line", "--sweep", "s", "--point",
+                                   world["root"] / "y.nc", "contact.slices=4"]])
+    assert exit_.value.code == 2
+    assert "unrecognized arguments: --contact-model line" in capsys.readouterr().err
+    assert not (world["root"] / "y.nc").exists()

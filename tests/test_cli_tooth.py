@@ -1,5 +1,6 @@
 """The tooth's own compliance through the command line and the configuration: `lsbg
-compliance` (computed once, kept), `lsbg ltca --compliance fe` (the line model on the slice
+compliance` (computed once, kept), `lsbg ltca --set contact.compliance=fe` (the line model on
+the slice
 stiffness reproduces the complementarity LTCA), a line-model run on it, `compliance:
 uniform` leaving today's LTCA as it was, and bad input named before any work."""
 
@@ -18,8 +19,10 @@ from lsbg.tooth.config import tooth_from_config
 
 REPO = Path(__file__).resolve().parents[1]
 #: A coarse FE model: the suite's budget (the default mesh is checked in tests/test_tooth.py).
-COARSE = ["--set-tooth", "element_size_module=0.52", "--set-tooth", "rim_element_factor=10",
-          "--set-tooth", "face_points=5", "--set-tooth", "profile_points=5"]
+COARSE = ["--set", "tooth.element_size_module=0.52", "--set", "tooth.rim_element_factor=10",
+          "--set", "tooth.face_points=5", "--set", "tooth.profile_points=5"]
+#: The FE loaded TCA: the tooth's own compliance, at 48 mesh positions.
+FE = ["--set", "contact.compliance=fe", "--set", "tooth.ltca_positions=48"]
 
 
 @pytest.fixture(scope="module")
@@ -35,8 +38,8 @@ def point(tmp_path_factory):
              "fe": root / "fe.nc"}
     assert cli.main(["compliance", "--geometry", str(geo), *COARSE,
                      "--out", str(files["compliance"])]) == 0
-    assert cli.main(["ltca", "--geometry", str(geo), "--config", str(config), "--compliance", "fe",
-                     "--compliance-file", str(files["compliance"]), *COARSE, "--phases", "48",
+    assert cli.main(["ltca", "--geometry", str(geo), "--config", str(config), *FE,
+                     "--compliance-file", str(files["compliance"]), *COARSE,
                      "--out", str(files["fe"])]) == 0
     return files
 
@@ -53,7 +56,7 @@ def test_the_compliance_is_computed_once_and_kept(point, capsys):
     with xr.open_dataset(point["compliance"]) as first:
         hash_ = first.attrs["inputs_hash"]
     assert cli.main(["compliance", "--geometry", str(point["geo"]), *COARSE,
-                     "--set-tooth", "young_modulus_GPa=103", "--out", str(other)]) == 0
+                     "--set", "tooth.young_modulus_GPa=103", "--out", str(other)]) == 0
     with xr.open_dataset(other) as second, xr.open_dataset(point["compliance"]) as first:
         assert second.attrs["inputs_hash"] != hash_
         # half the modulus: twice the compliance (linear elasticity, same mesh and nu)
@@ -66,6 +69,7 @@ def test_the_fe_ltca_carries_stresses_and_a_slice_stiffness_that_reproduces_it(p
     with xr.open_dataset(point["fe"]) as ds:
         ds = ds.load()
     assert ds.attrs["compliance"] == "fe" and ds.attrs["contact_compliance"] == "fe"
+    assert ds.sizes["mesh_phase"] == 48                       # tooth.ltca_positions
     for name, unit in {"transmission_error": "urad", "mesh_stiffness": "N/um",
                        "max_contact_pressure": "MPa", "root_stress_pinion": "MPa",
                        "root_stress_gear": "MPa", "contact_pattern": "N/mm",
@@ -84,9 +88,11 @@ def test_the_fe_ltca_carries_stresses_and_a_slice_stiffness_that_reproduces_it(p
 def test_a_line_model_run_takes_the_slice_stiffness(point):
     run = point["root"] / "run.nc"
     common = ["simulate", "--geometry", str(point["geo"]), "--config", str(point["config"]),
-              "--engine", "compiled", "--contact-model", "line", "--duration", "0.03",
-              "--samples", "30", "--ramp-time", "0.01", "--full-rate", "2000"]
-    assert cli.main([*common, "--compliance", "fe", "--fe-ltca", str(point["fe"]),
+              "--engine", "compiled", "--set", "contact.model=line",
+              "--set", "simulation.duration_s=0.03", "--set", "simulation.samples=30",
+              "--set", "simulation.ramp_time_s=0.01", "--set", "simulation.full_rate_hz=2000",
+              "--set", "simulation.full_rate_after_s=0.01"]
+    assert cli.main([*common, "--set", "contact.compliance=fe", "--fe-ltca", str(point["fe"]),
                      "--out", str(run)]) == 0
     with xr.open_dataset(run) as ds, xr.open_dataset(point["fe"]) as fe:
         assert ds.attrs["contact_compliance"] == "fe"
@@ -104,20 +110,27 @@ def test_compliance_uniform_leaves_todays_ltca(point, tmp_path):
     a, b = tmp_path / "a.nc", tmp_path / "b.nc"
     for cfg, out in ((point["config"], a), (uniform, b)):
         assert cli.main(["ltca", "--geometry", str(point["geo"]), "--config", str(cfg),
-                         "--phases", "32", "--out", str(out)]) == 0
+                         "--set", "tca.loaded_positions=32", "--out", str(out)]) == 0
     with xr.open_dataset(a) as da, xr.open_dataset(b) as db:
         for name in ("transmission_error", "mesh_stiffness", "contact_pattern", "pair_load"):
             np.testing.assert_allclose(db[name].values, da[name].values, rtol=1e-6, atol=0)
 
 
 @pytest.mark.parametrize("argv, message", [
-    (["ltca", "--compliance", "fe"], "needs --compliance-file"),
-    (["simulate", "--contact-model", "line", "--compliance", "fe"], "needs --fe-ltca"),
-    (["compliance", "--set-tooth", "poisson_ratio=0.5"], "tooth.poisson_ratio = 0.5"),
-    (["compliance", "--set-tooth", "young_modulus_GPa=5000"], "tooth.young_modulus_GPa = 5000"),
-    (["compliance", "--set-tooth", "element_size_module=0.8"], "tooth.element_size_module = 0.8"),
-    (["compliance", "--set-tooth", "face_points=4.5"], "tooth.face_points = 4.5"),
-    (["compliance", "--set-tooth", "rim_size=3"], "tooth.rim_size = 3: unknown key"),
+    (["ltca", "--set", "contact.compliance=fe"],
+     "contact.compliance = 'fe' needs --compliance-file"),
+    (["simulate", "--set", "contact.model=line", "--set", "contact.compliance=fe"],
+     "contact.compliance = 'fe': a line-model run needs --fe-ltca"),
+    (["compliance", "--set", "tooth.poisson_ratio=0.5"],
+     "tooth.poisson_ratio: 0.5 is greater than or equal to the maximum of 0.5"),
+    (["compliance", "--set", "tooth.young_modulus_GPa=5000"],
+     "tooth.young_modulus_GPa: 5000 is greater than the maximum of 1000"),
+    (["compliance", "--set", "tooth.element_size_module=0.8"],
+     "tooth.element_size_module: 0.8 is greater than the maximum of"),
+    (["compliance", "--set", "tooth.face_points=4.5"],
+     "tooth.face_points: 4.5 is not of type 'integer'"),
+    (["compliance", "--set", "tooth.rim_size=3"],
+     "--set 'tooth.rim_size=3': tooth.rim_size: unknown key (known: element_size_module,"),
 ])
 def test_bad_input_is_named_before_any_work(point, capsys, argv, message):
     out = point["root"] / "never.nc"
@@ -129,9 +142,9 @@ def test_bad_input_is_named_before_any_work(point, capsys, argv, message):
 
 def test_a_slice_stiffness_of_another_load_is_refused(point, capsys):
     out = point["root"] / "never.nc"
-    code = cli.main(["simulate", "--geometry", str(point["geo"]), "--contact-model", "line",
-                     "--compliance", "fe", "--fe-ltca", str(point["fe"]), "--load-torque", "1000",
-                     "--out", str(out)])
+    code = cli.main(["simulate", "--geometry", str(point["geo"]), "--set", "contact.model=line",
+                     "--set", "contact.compliance=fe", "--fe-ltca", str(point["fe"]),
+                     "--set", "simulation.load_torque_N_m=1000", "--out", str(out)])
     assert code == 2 and "secant at its own load" in capsys.readouterr().err
     assert not out.exists()
 
@@ -196,14 +209,14 @@ def test_points_under_compliance_fe_reuse_the_compliance_and_run_on_it(point, tm
         **yaml.safe_load(point["config"].read_text()),
         "contact": {"compliance": "fe"},
         "simulation": {"duration_s": 0.02, "samples": 20, "ramp_time_s": 0.01,
-                       "full_rate_hz": 2000},
+                       "full_rate_hz": 2000, "full_rate_after_s": 0.01},
         "tooth": {"element_size_module": 0.52, "rim_element_factor": 10, "face_points": 5,
                   "profile_points": 5, "ltca_positions": 48}}))
     compliance = tmp_path / "logarithmic_beta{spiral}_compliance.nc"
     (tmp_path / "logarithmic_beta35_compliance.nc").write_bytes(point["compliance"].read_bytes())
     before = (tmp_path / "logarithmic_beta35_compliance.nc").stat().st_mtime_ns
-    assert cli.main(["points", "--trace", "logarithmic", "--spiral-angles", "35", "--config",
-                     str(config), "--geometry-out", str(tmp_path / "geo{spiral}"),
+    assert cli.main(["points", "--set", "design.trace=logarithmic", "--spiral-angles", "35",
+                     "--config", str(config), "--geometry-out", str(tmp_path / "geo{spiral}"),
                      "--mesh-out", str(tmp_path / "mesh{spiral}.nc"),
                      "--compliance-out", str(compliance),
                      "--run", f"line={tmp_path / 'line{spiral}.nc'}"]) == 0
@@ -211,7 +224,7 @@ def test_points_under_compliance_fe_reuse_the_compliance_and_run_on_it(point, tm
     with xr.open_dataset(tmp_path / "mesh35.nc") as mesh, \
             xr.open_dataset(tmp_path / "line35.nc") as run, xr.open_dataset(point["fe"]) as fe:
         assert mesh.attrs["compliance"] == "fe" and "slice_stiffness" in mesh
-        # the same design point, flanks and FE model as `lsbg ltca --compliance fe`
+        # the same design point, flanks and FE model as `lsbg ltca` under compliance fe
         np.testing.assert_allclose(mesh["transmission_error"].values,
                                    fe["transmission_error"].values, rtol=1e-9)
         assert run.attrs["slice_stiffness_compliance_inputs_hash"] == mesh.attrs[
@@ -221,8 +234,8 @@ def test_points_under_compliance_fe_reuse_the_compliance_and_run_on_it(point, tm
 def test_points_under_compliance_fe_need_the_compliance_template(point, tmp_path, capsys):
     config = tmp_path / "fe.yaml"
     config.write_text(yaml.safe_dump({"contact": {"compliance": "fe"}}))
-    code = cli.main(["points", "--trace", "logarithmic", "--spiral-angles", "35", "--config",
-                     str(config), "--geometry-out", str(tmp_path / "geo{spiral}"),
+    code = cli.main(["points", "--set", "design.trace=logarithmic", "--spiral-angles", "35",
+                     "--config", str(config), "--geometry-out", str(tmp_path / "geo{spiral}"),
                      "--mesh-out", str(tmp_path / "mesh{spiral}.nc")])
     assert code == 2 and "needs --compliance-out" in capsys.readouterr().err
     assert not (tmp_path / "geo35").exists()
@@ -235,8 +248,8 @@ def test_the_envelope_and_the_rating_beside_the_fe_stresses(point, tmp_path, cap
     both beside ISO 10300."""
     envelope = tmp_path / "envelope.nc"
     assert cli.main(["ltca", "--geometry", str(point["geo"]), "--config", str(point["config"]),
-                     "--compliance", "fe", "--compliance-file", str(point["compliance"]),
-                     *COARSE, "--phases", "48", "--envelope", "--out", str(envelope)]) == 0
+                     *FE, "--compliance-file", str(point["compliance"]),
+                     *COARSE, "--envelope", "--out", str(envelope)]) == 0
     with xr.open_dataset(envelope) as env, xr.open_dataset(point["fe"]) as aligned:
         assert list(env["corner"].values) == ["E+0.1 P+0.1", "E+0.1 P-0.1", "E-0.1 P+0.1",
                                               "E-0.1 P-0.1"]
@@ -277,9 +290,10 @@ def test_a_case_run_rates_the_pair_with_its_own_dynamic_factor(point, tmp_path):
     for name, damping in (("base", 0.05), ("mesh_damping_ratio_x0.2", 0.01)):
         runs[name] = tmp_path / f"{name}.nc"
         assert cli.main(["simulate", "--geometry", str(point["geo"]), "--engine", "compiled",
-                         "--contact-model", "line", "--duration", "0.06", "--ramp-time", "0.01",
-                         "--samples", "30", "--full-rate-after", "0.02",
-                         "--set-contact", f"mesh_damping_ratio={damping}",
+                         "--set", "contact.model=line", "--set", "simulation.duration_s=0.06",
+                         "--set", "simulation.ramp_time_s=0.01", "--set", "simulation.samples=30",
+                         "--set", "simulation.full_rate_after_s=0.02",
+                         "--set", f"contact.mesh_damping_ratio={damping}",
                          "--out", str(runs[name])]) == 0
     rating = tmp_path / "rating.nc"
     # the study's steady state (0.2 s) is beyond these short runs: said, not a traceback
@@ -295,8 +309,8 @@ def test_a_case_run_rates_the_pair_with_its_own_dynamic_factor(point, tmp_path):
     with xr.open_dataset(runs["mesh_damping_ratio_x0.2"]) as run:
         kv = max(run_dynamic_factor(run, 0.02), 1.0)
     given = tmp_path / "given.nc"
-    assert cli.main(["rate", "--geometry", str(point["geo"]), "--set-rating",
-                     f"dynamic_factor={kv!r}", "--out", str(given)]) == 0
+    assert cli.main(["rate", "--geometry", str(point["geo"]), "--set",
+                     f"rating.dynamic_factor={kv!r}", "--out", str(given)]) == 0
     with xr.open_dataset(rating) as ds, xr.open_dataset(given) as direct:
         case = ds.sel(case="mesh_damping_ratio_x0.2")
         assert float(case["case_dynamic_factor"]) == pytest.approx(kv, rel=1e-12)

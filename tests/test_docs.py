@@ -1,4 +1,5 @@
-"""Every ``lsbg`` command and option the README and docs/ name exists."""
+"""Every ``lsbg`` command and option the README and docs/ name exists, and every
+``--set section.key=value`` they name is a key of the configuration's schema."""
 
 import re
 from pathlib import Path
@@ -65,7 +66,40 @@ def test_the_docs_name_the_options_a_sweep_and_an_extension_need():
     named = {(cmd, opt) for path in DOCS
              for cmd, options in named_commands(path.read_text(encoding="utf-8"))
              for opt in options}
-    for needed in [("simulate", "--set-contact"), ("simulate", "--modification"),
+    for needed in [("simulate", "--set"), ("simulate", "--config"),
                    ("sweep-run", "--point"), ("sweep-combine", "--csv"),
                    ("sensitivity", "--case"), ("mesh-mode", "--out")]:
         assert needed in named, needed
+
+
+def named_settings(text):
+    """The ``section.key`` of each ``--set section.key=value`` in ``text`` (placeholders in
+    capitals, ``contact.KEY=VALUE``, left out)."""
+    keys = re.findall(r"--set\s+['\"]?([A-Za-z_]+(?:\.[A-Za-z_0-9]+)+)=", text)
+    return [key for key in keys if not any(re.fullmatch(r"[A-Z_]+", part)
+                                           for part in key.split("."))]
+
+
+@pytest.mark.parametrize("path", DOCS, ids=[p.name for p in DOCS])
+def test_every_named_setting_is_a_key_of_the_schema(path):
+    from lsbg.config import ConfigError, load_schema, parse_override
+
+    schema = load_schema()
+    unknown = []
+    for key in named_settings(path.read_text(encoding="utf-8")):
+        try:
+            parse_override(f"{key}=null", schema)
+        except ConfigError as err:
+            unknown.append(str(err))
+    assert not unknown, f"{path.name}: {unknown}"
+
+
+def test_the_old_per_key_options_are_named_nowhere():
+    """Issue 35: one override grammar; the per-key options are gone from the docs too."""
+    old = {"--contact-model", "--compliance", "--set-contact", "--set-tooth", "--set-rating",
+           "--modification", "--misalignment", "--load-torque", "--pinion-speed", "--duration",
+           "--trace", "--spiral-angle", "--design", "--phases", "--axes", "--case-steps"}
+    named = [(path.name, cmd, opt) for path in DOCS
+             for cmd, options in named_commands(path.read_text(encoding="utf-8"))
+             for opt in options if opt in old]
+    assert not named, named

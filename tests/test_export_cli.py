@@ -27,8 +27,8 @@ def geometry(tmp_path_factory):
     out = {}
     for trace in ("logarithmic", "circular"):
         out[trace] = root / trace
-        assert cli.main(["geometry", "--trace", trace, "--spiral-angle", "35",
-                         "--out", str(out[trace])]) == 0
+        assert cli.main(["geometry", "--set", f"design.trace={trace}",
+                         "--set", "design.spiral_angle_deg=35", "--out", str(out[trace])]) == 0
     return out
 
 
@@ -145,57 +145,82 @@ def test_flanks_netcdf_is_cf_and_matches_the_geometry(geometry):
         np.testing.assert_allclose(ds["normal"].sel(**sel).values[5], normals, atol=1e-12)
 
 
-def test_design_file_and_overrides(tmp_path):
+def test_design_file_and_overrides(tmp_path, capsys):
+    """A configuration file's design section, a key of it set over it; a bare mapping of
+    design keys (the former --design FILE) is refused, naming the key."""
     design_file = tmp_path / "design.yaml"
-    design_file.write_text("trace: circular\nspiral_angle_deg: 30\nface_width_mm: 22\n")
+    design_file.write_text("design:\n  trace: circular\n  spiral_angle_deg: 30\n"
+                           "  face_width_mm: 22\n")
     out = tmp_path / "point"
-    assert cli.main(["geometry", "--design", str(design_file), "--face-width-mm", "24",
-                     "--out", str(out)]) == 0
+    assert cli.main(["geometry", "--config", str(design_file),
+                     "--set", "design.face_width_mm=24", "--out", str(out)]) == 0
     design = export.read_design(out)
     assert design == GearPairDesign.from_config(
         {"trace": "circular", "spiral_angle_deg": 30, "face_width_mm": 24})
+    assert capsys.readouterr().out.startswith("lsbg geometry: circular, spiral angle 30 deg -> ")
+    bare = tmp_path / "bare.yaml"
+    bare.write_text("trace: circular\nspiral_angle_deg: 30\n")
+    assert cli.main(["geometry", "--config", str(bare), "--out", str(tmp_path / "bad")]) == 2
+    assert "spiral_angle_deg: unknown key (known: contact, design," in capsys.readouterr().err
+    with pytest.raises(SystemExit) as exit_:
+        cli.main(["geometry", "--design", str(design_file), "--out", str(tmp_path / "bad")])
+    assert exit_.value.code == 2
+    assert not (tmp_path / "bad").exists()
 
 
-def test_every_design_key_has_an_option(capsys):
+def test_every_design_key_can_be_set(capsys):
+    """Every design key is a key of the schema's design section: ``--set design.KEY=VALUE``
+    in the paper's units, YAML-typed (the former per-key options are gone)."""
+    from lsbg.cli.options import design_of, settings_of
+    from lsbg.config import load_schema
+
+    assert set(CONFIG_KEYS) == set(load_schema()["properties"]["design"]["properties"])
+    other = GearPairDesign.from_config({"trace": "circular", "spiral_angle_deg": 30,
+                                        "module_mm": 5, "face_width_mm": 24,
+                                        "pinion_hand": "right", "backlash_mm": 0.07})
     parser = cli.build_parser()
     args = parser.parse_args(["geometry", "--out", "x"] + [
-        arg for key, value in GearPairDesign().to_config().items()
-        for arg in ("--" + key.replace("_", "-"), str(value))])
-    assert cli.design_from_args(args) == GearPairDesign.from_config(
-        {k: v for k, v in GearPairDesign().to_config().items()})
+        arg for key, value in other.to_config().items()
+        for arg in ("--set", f"design.{key}={value}")])
+    assert design_of(settings_of(args)) == other
     with pytest.raises(SystemExit) as exit_:
         cli.main(["geometry", "--help"])
     assert exit_.value.code == 0
     help_text = " ".join(capsys.readouterr().out.split())
-    for key in CONFIG_KEYS:
-        assert "--" + key.replace("_", "-") in help_text
-    assert "--spiral-angle DEG" in help_text
-    assert "mean spiral angle on the pitch cone [deg] (default: 35)" in help_text
-    assert "outer transverse module m [mm] (default: 4.5)" in help_text
+    for option in ("--config FILE.yaml", "--set SECTION.KEY=VALUE", "--relieved", "--no-step"):
+        assert option in help_text, option
+    assert "reads its sections design, flank_modification" in help_text
+    assert "workflow/schemas/config.schema.yaml" in help_text
+    for old in ("--spiral-angle", "--module-mm", "--trace", "--design"):
+        assert old not in help_text, old
 
 
 def test_bad_spiral_angle_exits_2_and_writes_nothing(tmp_path, capsys):
     out = tmp_path / "bad"
-    assert cli.main(["geometry", "--trace", "logarithmic", "--spiral-angle", "75",
-                     "--out", str(out)]) == 2
-    assert "spiral_angle" in capsys.readouterr().err
+    assert cli.main(["geometry", "--set", "design.trace=logarithmic",
+                     "--set", "design.spiral_angle_deg=75", "--out", str(out)]) == 2
+    assert ("design.spiral_angle_deg: 75 is greater than or equal to the maximum of 60"
+            in capsys.readouterr().err)
     assert not out.exists()
     assert list(tmp_path.iterdir()) == []
 
 
 def test_pointed_teeth_exit_2(tmp_path, capsys):
     out = tmp_path / "bad"
-    assert cli.main(["geometry", "--base-cone-rule", "paper", "--out", str(out)]) == 2
-    assert "base_cone_rule" in capsys.readouterr().err
+    assert cli.main(["geometry", "--set", "design.base_cone_rule=paper", "--out", str(out)]) == 2
+    assert "base_cone_rule = 'paper': the pinion teeth come out pointed" in capsys.readouterr().err
     assert not out.exists()
 
 
 def test_unknown_yaml_key_exits_2(tmp_path, capsys):
     design_file = tmp_path / "design.yaml"
-    design_file.write_text("spiral_angle_deg: 30\nhelix_angle_deg: 12\n")
+    design_file.write_text("design:\n  spiral_angle_deg: 30\n  helix_angle_deg: 12\n")
     out = tmp_path / "bad"
-    assert cli.main(["geometry", "--design", str(design_file), "--out", str(out)]) == 2
-    assert "helix_angle_deg" in capsys.readouterr().err
+    assert cli.main(["geometry", "--config", str(design_file), "--out", str(out)]) == 2
+    assert "design.helix_angle_deg: unknown key (known: addendum_mm," in capsys.readouterr().err
+    assert cli.main(["geometry", "--set", "design.helix_angle_deg=12", "--out", str(out)]) == 2
+    assert ("--set 'design.helix_angle_deg=12': design.helix_angle_deg: unknown key"
+            in capsys.readouterr().err)
     assert not out.exists()
 
 
@@ -235,28 +260,42 @@ def test_urdf_of_the_stage_loads_in_pybullet(geometry):
         p.disconnect(client)
 
 
-def test_spiral_angle_option_is_degrees():
-    args = cli.build_parser().parse_args(["geometry", "--spiral-angle", "30", "--out", "x"])
-    assert math.degrees(cli.design_from_args(args).spiral_angle) == pytest.approx(30)
+def test_spiral_angle_setting_is_degrees():
+    from lsbg.cli.options import design_of, settings_of
+
+    args = cli.build_parser().parse_args(["geometry", "--set", "design.spiral_angle_deg=30",
+                                          "--out", "x"])
+    assert math.degrees(design_of(settings_of(args)).spiral_angle) == pytest.approx(30)
 
 
-def test_subcommands_can_be_registered_by_name(monkeypatch):
-    """Another module adds a subcommand with one entry in cli.PARSERS."""
+def test_subcommands_can_be_registered_by_name(monkeypatch, capsys):
+    """Another module adds a subcommand with one entry in cli.PARSERS (as lsbg.cli's
+    docstring shows): its configuration resolved before its handler, its line printed."""
     import sys
     import types
 
+    from lsbg.cli.options import add_config_options, design_of
+
     module = types.ModuleType("lsbg_fake_subcommand")
+
+    def hello(args):
+        teeth = design_of(args.settings).pinion_teeth
+        return 7 if teeth == 11 else f"{teeth} pinion teeth"
 
     def add_hello_parser(subparsers):
         parser = subparsers.add_parser("hello")
-        cli.add_design_options(parser)
-        parser.set_defaults(handler=lambda args: 7 if cli.design_from_args(args).pinion_teeth == 11
-                            else 1)
+        add_config_options(parser, ("design",))
+        parser.set_defaults(handler=hello)
 
     module.add_hello_parser = add_hello_parser
     monkeypatch.setitem(sys.modules, module.__name__, module)
     monkeypatch.setattr(cli, "PARSERS", cli.PARSERS + [f"{module.__name__}:add_hello_parser"])
-    assert cli.main(["hello", "--pinion-teeth", "11"]) == 7
+    assert cli.main(["hello", "--set", "design.pinion_teeth=11"]) == 7
+    assert cli.main(["hello", "--set", "design.pinion_teeth=13"]) == 0
+    assert capsys.readouterr().out == "lsbg hello: 13 pinion teeth\n"
+    assert cli.main(["hello", "--set", "design.pinion_teeth=x"]) == 2
+    assert capsys.readouterr().err == ("lsbg hello: error: design.pinion_teeth: 'x' is not of "
+                                       "type 'integer'\n")
 
 
 # ---------------------------------------------------------------- simulate
@@ -265,23 +304,29 @@ def test_simulate_writes_a_run_and_rejects_bad_settings(tmp_path, capsys):
     import xarray as xr
 
     geo = tmp_path / "geo"
-    assert main(["geometry", "--trace", "logarithmic", "--spiral-angle", "35", "--out", str(geo)]) == 0
+    assert main(["geometry", "--set", "design.trace=logarithmic",
+                 "--set", "design.spiral_angle_deg=35", "--out", str(geo)]) == 0
     out = tmp_path / "run.nc"
-    assert main(["simulate", "--geometry", str(geo), "--engine", "scipy", "--duration", "0.02",
-                 "--samples", "10", "--ramp-time", "0.01", "--out", str(out)]) == 0
+    assert main(["simulate", "--geometry", str(geo), "--engine", "scipy",
+                 "--set", "simulation.duration_s=0.02", "--set", "simulation.samples=10",
+                 "--set", "simulation.ramp_time_s=0.01",
+                 "--set", "simulation.full_rate_after_s=0.01", "--out", str(out)]) == 0
     ds = xr.open_dataset(out)
     assert ds.time.size == 11 and ds.gear_speed.attrs["units"] == "deg/s"
     ds.close()
     bad = tmp_path / "bad.nc"
-    assert main(["simulate", "--geometry", str(geo), "--duration", "-1", "--out", str(bad)]) == 2
-    assert "simulation.duration_s = -1" in capsys.readouterr().err
+    assert main(["simulate", "--geometry", str(geo), "--set", "simulation.duration_s=-1",
+                 "--out", str(bad)]) == 2
+    assert ("simulation.duration_s: -1 is less than or equal to the minimum of 0"
+            in capsys.readouterr().err)
     config = tmp_path / "study.yaml"
     config.write_text("contact:\n  static_friction: 3\n")
     assert main(["simulate", "--geometry", str(geo), "--config", str(config), "--out", str(bad)]) == 2
-    assert "contact.static_friction = 3" in capsys.readouterr().err
+    assert "contact.static_friction: 3 is greater than the maximum of 1" in capsys.readouterr().err
     # a blow-up (time step far too coarse) stops with exit code 3 and leaves no file
-    assert main(["simulate", "--geometry", str(geo), "--duration", "0.01", "--samples", "5",
-                 "--ramp-time", "0.005", "--dt", "1e-4", "--full-rate", "5000",
-                 "--out", str(bad)]) == 3
+    assert main(["simulate", "--geometry", str(geo), "--set", "simulation.duration_s=0.01",
+                 "--set", "simulation.samples=5", "--set", "simulation.ramp_time_s=0.005",
+                 "--set", "simulation.time_step_s=1e-4", "--set", "simulation.full_rate_hz=5000",
+                 "--set", "simulation.full_rate_after_s=0.004", "--out", str(bad)]) == 3
     assert "simulation stopped" in capsys.readouterr().err
     assert not bad.exists() and not list(tmp_path.glob("*.part"))

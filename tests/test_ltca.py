@@ -183,17 +183,17 @@ def test_slow_dynamic_run_reproduces_the_quasi_static_transmission_error(geometr
 
 def test_cli_writes_the_analysis_and_refuses_bad_input(geometry, tmp_path, capsys):
     out = tmp_path / "mesh" / "point.nc"
-    assert cli.main(["ltca", "--geometry", str(geometry), "--phases", "64", "--load-torque",
-                     "1000", "--out", str(out)]) == 0
+    assert cli.main(["ltca", "--geometry", str(geometry), "--set", "tca.loaded_positions=64",
+                     "--set", "simulation.load_torque_N_m=1000", "--out", str(out)]) == 0
     assert "urad peak to peak" in capsys.readouterr().out
     with xr.open_dataset(out) as ds:
         assert ds.sizes["mesh_phase"] == 64 and ds.attrs["load_torque_N_m"] == 1000.0
         assert ds.attrs["contact_model"] == "line"
     bad = tmp_path / "bad.nc"
-    assert cli.main(["ltca", "--geometry", str(geometry), "--phases", "3", "--out",
-                     str(bad)]) == 2
-    assert "phases = 3" in capsys.readouterr().err
-    assert cli.main(["ltca", "--geometry", str(geometry), "--set-contact", "slices=1",
+    assert cli.main(["ltca", "--geometry", str(geometry), "--set", "tca.loaded_positions=3",
                      "--out", str(bad)]) == 2
-    assert "contact.slices = 1" in capsys.readouterr().err
+    assert "tca.loaded_positions: 3 is less than the minimum of 8" in capsys.readouterr().err
+    assert cli.main(["ltca", "--geometry", str(geometry), "--set", "contact.slices=1",
+                     "--out", str(bad)]) == 2
+    assert "contact.slices: 1 is less than the minimum of 2" in capsys.readouterr().err
     assert not bad.exists()

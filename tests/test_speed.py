@@ -8,6 +8,7 @@ import pytest
 import xarray as xr
 
 from lsbg import cli
+from lsbg.cli.options import settings_of
 from lsbg.tca import loaded as ltca
 from lsbg.experiments import speed
 from lsbg.tables import line_model
@@ -97,6 +98,19 @@ def test_the_response_is_quasi_static_below_resonant_at_fn_and_isolated_above(ge
     assert at["mesh_frequency"] == pytest.approx(natural, rel=1e-9)
 
 
+#: The speed sweep of these runs: its speeds (a section that sets any of its keys needs
+#: them, workflow/schemas/config.schema.yaml) and a short steady window.
+SWEEP = ["--set", "speed_sweep.pinion_speeds_deg_s={start: 40000, stop: 80000, count: 2}",
+         "--set", "speed_sweep.mesh_cycles=20", "--set", "speed_sweep.min_window_s=0.01",
+         "--set", "speed_sweep.settle_time_s=0.02", "--set", "speed_sweep.ramp_time_s=0.02"]
+
+
+def speed_run(path, omega, out, *extra):
+    return cli.main(["speed-run", "--geometry", str(path), "--engine", "compiled",
+                     "--set", f"simulation.pinion_speed_deg_s={omega}", *SWEEP, *extra,
+                     "--out", str(out)])
+
+
 @pytest.fixture(scope="module")
 def curve_file(geometry, tmp_path_factory):
     root = tmp_path_factory.mktemp("speed_runs")
@@ -104,10 +118,7 @@ def curve_file(geometry, tmp_path_factory):
     for trace, path in geometry.items():
         for omega in (40000, 80000):
             out = root / f"{trace}_w{omega}.nc"
-            assert cli.main(["speed-run", "--geometry", str(path), "--engine", "compiled",
-                             "--pinion-speed", str(omega), "--mesh-cycles", "20",
-                             "--min-window", "0.01", "--settle-time", "0.02",
-                             "--ramp-time", "0.02", "--out", str(out)]) == 0
+            assert speed_run(path, omega, out) == 0
             runs.append(out)
     out = root / "speed_curve.nc"
     assert cli.main(["speed-curve", "--runs", *map(str, runs), "--out", str(out)]) == 0
@@ -142,15 +153,39 @@ def test_cli_writes_the_curve_with_units_and_the_natural_frequency(curve_file, g
     assert f"{natural:10.4g} Hz" in capsys.readouterr().out
 
 
-def test_speed_commands_refuse_what_the_sweep_sets(geometry, tmp_path, capsys):
+def test_the_sweep_sets_what_the_simulation_section_would(curve_file, geometry, tmp_path,
+                                                          capsys):
+    """The speed sweep sets a run's duration, samples and the start of its full-rate record:
+    the simulation section's keys for them are ignored by speed-run (still checked by the
+    schema), the run is the same; the pinion speed is the simulation section's (the
+    schema's default without --set); the former options are refused by argparse."""
     out = tmp_path / "run.nc"
-    assert cli.main(["speed-run", "--geometry", str(geometry["logarithmic"]),
-                     "--out", str(out)]) == 2
-    assert "--pinion-speed: required" in capsys.readouterr().err
-    assert cli.main(["speed-run", "--geometry", str(geometry["logarithmic"]), "--pinion-speed",
-                     "40000", "--duration", "1", "--out", str(out)]) == 2
-    assert "--duration: set by the speed sweep" in capsys.readouterr().err
-    assert not out.exists()
+    assert speed_run(geometry["logarithmic"], 40000, out, "--set", "simulation.duration_s=2",
+                     "--set", "simulation.samples=1000",
+                     "--set", "simulation.full_rate_after_s=0.5") == 0
+    with xr.open_dataset(out) as run, \
+            xr.open_dataset(curve_file.parent / "logarithmic_w40000.nc") as swept:
+        assert run.attrs["solver_duration_s"] == swept.attrs["solver_duration_s"] < 1
+        assert run.attrs["solver_samples"] == swept.attrs["solver_samples"] < 1000
+        for name in ("gear_speed", "transmission_error", "gear_speed_full"):
+            np.testing.assert_array_equal(run[name], swept[name])
+    args = cli.build_parser().parse_args(["speed-run", "--geometry",
+                                          str(geometry["logarithmic"]), "--out", str(out)])
+    assert settings_of(args)["simulation"]["pinion_speed_deg_s"] == 7703
+    for old in (["--pinion-speed", "40000"], ["--duration", "1"], ["--mesh-cycles", "20"]):
+        with pytest.raises(SystemExit) as exit_:
+            cli.main(["speed-run", "--geometry", str(geometry["logarithmic"]), *old,
+                      "--out", str(tmp_path / "never.nc")])
+        assert exit_.value.code == 2
+        assert f"unrecognized arguments: {old[0]}" in capsys.readouterr().err
+    assert not (tmp_path / "never.nc").exists()
+
+
+def test_one_speed_sweep_key_is_enough(geometry):
+    args = cli.build_parser().parse_args(["speed-run", "--geometry",
+                                          str(geometry["logarithmic"]), "--set",
+                                          "speed_sweep.mesh_cycles=20", "--out", "x.nc"])
+    assert settings_of(args)["speed_sweep"]["mesh_cycles"] == 20
 
 
 def test_curve_refuses_mixed_runs_and_point_model_runs(curve_file, geometry, tmp_path):

@@ -5,8 +5,9 @@ faces); its volume agrees with the quadrature of the exact solid
 (lsbg.solid.mass.quadrature_mass_properties) within 0.5 %; the exact flanks lie
 within 1 µm of its surface at 200 random points per side; a rerun writes the
 same bytes; and `lsbg geometry` lists the files in its manifest, which then
-guards them like the others. With a flank modification the pinion's solid is
-the relieved flank, within 1 µm, and the gear's is unchanged.
+guards them like the others. With a flank modification and `--relieved` the
+pinion's solid is the relieved flank, within 1 µm, and the gear's is unchanged;
+without `--relieved` both are the conjugate solids whatever the section says.
 """
 
 import hashlib
@@ -88,9 +89,11 @@ def test_geometry_relieves_the_pinion_step_solid_by_the_modification(geometry, t
     from lsbg.tca.modification import FlankModification, pinion_relief
 
     out = tmp_path / "logarithmic_beta35"
-    assert cli.main(["geometry", "--trace", "logarithmic", "--spiral-angle", "35",
-                     "--modification", "lengthwise_crowning_um=25",
-                     "--modification", "profile_crowning_um=5", "--out", str(out)]) == 0
+    crowned = ["geometry", "--set", "design.trace=logarithmic",
+               "--set", "design.spiral_angle_deg=35",
+               "--set", "flank_modification.lengthwise_crowning_um=25",
+               "--set", "flank_modification.profile_crowning_um=5"]
+    assert cli.main([*crowned, "--relieved", "--out", str(out)]) == 0
     pair = GearPair(read_design(out))
     modification = FlankModification(25e-6, 5e-6)
 
@@ -104,3 +107,8 @@ def test_geometry_relieves_the_pinion_step_solid_by_the_modification(geometry, t
     # corners); coast points: on it
     assert 20e-6 < conjugate[:100].max() < 31e-6 and conjugate[100:].max() < 1e-6
     assert (out / "gear.step").read_bytes() == (geometry / "gear.step").read_bytes()
+    # without --relieved the section is read by nothing: the conjugate solids
+    plain = tmp_path / "plain" / "logarithmic_beta35"
+    assert cli.main([*crowned, "--out", str(plain)]) == 0
+    for name in ("pinion.step", "gear.step"):
+        assert (plain / name).read_bytes() == (geometry / name).read_bytes(), name

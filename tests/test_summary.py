@@ -113,12 +113,18 @@ def test_cli_summary_reads_the_statistics_section(pybullet_runs, tmp_path, windo
     pd.testing.assert_frame_equal(written, expected, check_exact=False, rtol=1e-12,
                                   check_dtype=False)
     assert [p.name for p in out.parent.iterdir()] == ["summary.csv"]
-    # options override the configuration
+    # --set overrides the configuration
     out2 = tmp_path / "summary2.csv"
     assert cli.main(["summary", "--runs", str(pybullet_runs[0]), "--config", str(config),
-                     "--subgroup-size", "4", "--window", "0.018", "0.05",
+                     "--set", "statistics.subgroup_size=4",
+                     "--set", "statistics.control_chart_window_s=[0.018, 0.05]",
                      "--out", str(out2)]) == 0
-    assert len(pd.read_csv(out2)) == len(SUMMARY_QUANTITIES)
+    written = pd.read_csv(out2)
+    assert len(written) == len(SUMMARY_QUANTITIES)
+    expected = summary_table(pybullet_runs[:1], steady_state_after=0.01, window=(0.018, 0.05),
+                             subgroup_size=4)
+    pd.testing.assert_frame_equal(written, expected, check_exact=False, rtol=1e-12,
+                                  check_dtype=False)
 
 
 def test_cli_summary_bad_statistics_key_exit_2(pybullet_runs, tmp_path, capsys):
@@ -191,8 +197,9 @@ def test_contact_state_rows_of_tcas_and_maps(runs, tmp_path, windows):
     assert set(state.run) == {"circular_beta35"} and state.contact_model.isna().all()
     out = tmp_path / "summary.csv"
     assert cli.main(["summary", "--runs", str(runs["sbg35_line"]), "--tca", str(files[0]),
-                     "--vh", str(files[1]), "--steady-state-after", "0.01", "--window", "0.01",
-                     "0.05", "--subgroup-size", "5", "--out", str(out)]) == 0
+                     "--vh", str(files[1]), "--set", "statistics.steady_state_after_s=0.01",
+                     "--set", "statistics.control_chart_window_s=[0.01, 0.05]",
+                     "--set", "statistics.subgroup_size=5", "--out", str(out)]) == 0
     written = pd.read_csv(out)
     assert list(written.columns) == list(SUMMARY_COLUMNS)
     assert (written.engine == "tca").sum() == len(state)

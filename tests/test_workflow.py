@@ -30,13 +30,6 @@ REPO = Path(__file__).resolve().parents[1]
 SNAKEFILE = REPO / "Snakefile"
 TEST_CONFIG = "workflow/config-test.yaml"
 
-# Rule -> the stage of lsbg.study.stages whose source files it lists as inputs.
-RULE_STAGES = {"paper_geometry": "geometry", "paper_ltca": "ltca", "sweep_points": "points", "simulate": "simulate",
-               "sensitivity": "simulate", "convergence_point": "convergence",
-               "convergence_line": "convergence", "combine": "aggregate",
-               "summary": "aggregate", "report_paper": "report", "report_sweep": "report",
-               "report_verification": "report", "contact_state": "contact_state"}
-
 
 def snakemake(*args, cwd, env=None, check=None):
     """Run ``python -m snakemake ARGS`` in ``cwd``; return the completed process (text).
@@ -133,39 +126,64 @@ def test_default_and_test_configs_are_valid_and_plan_the_study(tmp_path):
     assert written["misalignment_map"]["sweep_steps"] == config["misalignment_map"]["sweep_steps"]
 
 
-def test_job_order_knows_the_studys_rule_graph(tmp_path):
-    """lsbg.study.job_order.WAITING is the default study's rule graph (without the gates and
-    'all'), so that the priorities follow the real chains of jobs."""
+def test_priorities_follow_the_studys_rule_graph(tmp_path):
+    """Each rule's priority (lsbg.study.job_order, from the rules once defined) is its own
+    measured seconds plus the longest chain of the rules that wait for it, in Snakemake's
+    own rule graph."""
     proc = snakemake("--rulegraph", "--snakefile", SNAKEFILE, cwd=tmp_path, check=True)
     labels = dict(re.findall(r"^\s*(\d+)\[label = \"(\w+)\"", proc.stdout, re.M))
     edges = {(labels[a], labels[b]) for a, b in re.findall(r"^\s*(\d+) -> (\d+)$",
                                                             proc.stdout, re.M)}
-    graph = {(a, b) for a, b in edges if b != "all" and a not in job_order.GATE_RULES}
-    assert graph == {(a, b) for a, later in job_order.WAITING.items() for b in later}
-    assert set(labels.values()) - {"all"} == set(job_order.JOB_SECONDS)
+    priorities = {rule: int(p) for rule, p in re.findall(
+        r"^(?:local)?rule (\w+):\n(?:    .*\n)*?    priority: (\d+)", snakemake(
+            "-n", "--snakefile", SNAKEFILE, cwd=tmp_path, check=True).output, re.M)}
+    assert set(priorities) == set(labels.values()) - {"all"}
+    for rule, priority in priorities.items():
+        waiting = [priorities[b] for a, b in edges if a == rule and b != "all"]
+        own = round(10 * job_order.JOB_SECONDS.get(rule, 0.0))
+        assert abs(priority - own - max(waiting, default=0)) <= 1, (rule, priority, waiting)
+    # the paper point's geometry opens the longest chain (every paper job waits for it)
+    assert priorities["paper_geometry"] > max(priorities[r] for r in priorities
+                                              if r not in ("paper_geometry", "sweep_points"))
+
+
+_COMMAND = re.compile(r"lsbg -v (report \w+|[\w-]+) ")
 
 
 def test_rules_list_the_lsbg_files_they_run(tmp_path):
-    proc = snakemake("-n", "--snakefile", SNAKEFILE, cwd=tmp_path, check=True)
+    """A rule's source inputs are the files its command's handler reaches (and a report's
+    notebook's imports): derived from the imports (lsbg.study.stages), checked here against
+    the command each job runs."""
+    from lsbg.cli import handler_of
+    from lsbg.study.stages import PACKAGE, closure_files, function_closure, notebook_closure
+
+    proc = snakemake("-n", "-p", "--snakefile", SNAKEFILE, cwd=tmp_path, check=True)
     inputs = job_inputs(proc.output)
-    # `simulate` makes single runs asked for by name (the study's come from other rules)
-    single = snakemake("-n", "--snakefile", SNAKEFILE, "results/runs/circular_beta30_point_pybullet.nc",
-                       cwd=tmp_path, check=True)
-    inputs["simulate"] = job_inputs(single.output)["simulate"]
-    from lsbg.study.stages import PACKAGE, stage_sources
+    commands = {}
+    for block in re.split(r"\n(?=\[|localrule |rule )", proc.output):
+        rule = re.match(r"(?:local)?rule (\w+):", block)
+        command = _COMMAND.search(block)
+        if rule and command:
+            commands.setdefault(rule.group(1), command.group(1))
+    assert set(commands) == set(inputs) - {"all"}
 
     def in_package(name):
         # by location, not by name: the checkout itself may sit in a folder called lsbg
         return (tmp_path / name).resolve().is_relative_to(PACKAGE)
 
-    for rule, stage in RULE_STAGES.items():
+    for rule, command in commands.items():
+        name, _, notebook = command.partition(" ")
+        handler = handler_of(name)
+        modules = function_closure(handler.__module__.removeprefix("lsbg."), handler.__name__)
+        if notebook:
+            modules |= notebook_closure(REPO / "workflow" / "notebooks" / f"{notebook}.ipynb")
         listed = set(filter(in_package, inputs[rule]))
-        expected = set(stage_sources(stage, root=tmp_path))
-        assert listed == expected, f"{rule}: {sorted(listed ^ expected)}"
-    assert not any(f.endswith("verification.py") for f in inputs["paper_geometry"])
-    assert not any(f.endswith("summary.py") for f in inputs["paper_geometry"])
-    # (lsbg.cli.options reads the flanks: every stage lists lsbg/tca and lsbg/tca/loaded.py)
+        assert listed == set(closure_files(modules, root=tmp_path)), rule
+    # precise: the geometry does not rerun for the dynamics or the statistics
+    assert not any(f.endswith(("verification.py", "summary.py", "pybullet_engine.py"))
+                   for f in inputs["paper_geometry"])
     assert any(f.endswith("tca/vh_map.py") for f in inputs["contact_state"])
+    assert not any(f.endswith("tca/vh_map.py") for f in inputs["convergence_line"])
     for name in ("paper", "sweep", "verification"):
         assert any(f.endswith(f"workflow/notebooks/{name}.ipynb")
                    for f in inputs[f"report_{name}"])

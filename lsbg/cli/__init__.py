@@ -5,54 +5,72 @@ One module per group of subcommands, in the order the data flows:
 (``simulate``, ``sensitivity``, ``convergence``), :mod:`lsbg.cli.speed`
 (``mesh-mode``, ``speed-run``, ``speed-curve``), :mod:`lsbg.cli.analysis`
 (``ltca``, ``combine``, ``summary``, ``report``), :mod:`lsbg.cli.contact_state`
-(``tca``, ``misalignment-map``), :mod:`lsbg.cli.tooth` (``compliance``, and the
-options of the tooth's own compliance); the options they share are in
-:mod:`lsbg.cli.options`.
+(``tca``, ``misalignment-map``), :mod:`lsbg.cli.tooth` (``compliance``),
+:mod:`lsbg.cli.rating` (``rate``), :mod:`lsbg.cli.sweep` (``sweep-run``,
+``sweep-combine``), :mod:`lsbg.cli.config` (``check-config``); what they share
+is in :mod:`lsbg.cli.options`.
+
+Every value of the study is set one way: ``--config FILE`` and ``--set
+section.key=value`` (:func:`lsbg.cli.options.add_config_options`), checked by
+the configuration's schema before any work; a command's own options are only
+its inputs, its outputs and what it runs.
 
 Every subcommand is a function ``add_<name>_parser(subparsers)`` that adds its
-parser and sets ``handler=<function(args) -> exit code>`` as a default. They
-are listed in :data:`PARSERS` as ``"module:function"`` strings, imported when
-the parser is built. To add a subcommand, write, in its own module::
+parser and sets ``handler=<function(args)>`` as a default. They are listed in
+:data:`PARSERS` as ``"module:function"`` strings, imported when the parser is
+built. To add a subcommand, write, in its own module::
 
-    from lsbg.cli.options import add_design_options
+    from lsbg.cli.options import add_config_options, add_output, settings_of
 
     def add_wear_parser(subparsers):
         parser = subparsers.add_parser("wear", help="...")
-        add_design_options(parser)       # the same design options as geometry
+        add_config_options(parser, ("design", "contact"))
+        add_output(parser)
         parser.set_defaults(handler=run_wear)
 
-and add ``"lsbg.<module>:add_wear_parser"`` to :data:`PARSERS`. Keep heavy
-imports inside the handler, so that ``lsbg --help`` stays fast. Handlers
-check their outputs before the work starts
-(:func:`lsbg.cli.options.check_output`). A user's mistake is one of
-:data:`USER_ERRORS`: a bad design value (:class:`lsbg.gear.design.DesignError`), a
-bad option (:class:`CommandError`), a missing, wrong, corrupt or changed input
-file (:class:`lsbg.files.InputError`, raised by lsbg.files and lsbg.dynamics.dataset);
-:func:`main` prints its one-line message on stderr, without a traceback, and
-returns exit code 2. Any other exception is a bug and keeps its traceback.
+    def run_wear(args):
+        from lsbg.wear import wear_dataset      # the stage, imported by the handler
+        ...
+        return f"wear {...} -> {args.out}"
 
-Exit codes: 0 success; 2 bad input (argparse usage errors raise
-``SystemExit(2)``, the errors of :data:`USER_ERRORS` return 2); 3 a
-simulation blew up.
+and add ``"lsbg.<module>:add_wear_parser"`` to :data:`PARSERS`. Keep the
+stage's imports inside the handler: the workflow reruns a command's jobs when a
+source its handler reaches changes (:func:`lsbg.study.stages.function_closure`
+from :func:`handler_of`), and ``lsbg --help`` stays fast.
+
+:func:`main` runs every handler the same way: the configuration resolved and
+checked, the outputs of :func:`lsbg.cli.options.add_output` checked, then the
+handler; what it returns (a line, or lines) is printed. A user's mistake is one
+of :data:`USER_ERRORS`: a bad configuration key or value
+(:class:`lsbg.config.ConfigError`), a bad design value
+(:class:`lsbg.gear.design.DesignError`), a bad option
+(:class:`~lsbg.cli.options.CommandError`), a missing, wrong, corrupt or changed
+input file (:class:`lsbg.files.InputError`); its one-line message goes to
+stderr without a traceback, exit code 2. A simulation that blows up
+(:class:`lsbg.dynamics.SimulationError`) is exit code 3 with its diagnostic;
+any other exception is a bug and keeps its traceback.
+
+Exit codes: 0 success; 2 bad input; 3 a simulation blew up.
 """
 
 from __future__ import annotations
 
 import argparse
+import functools
 import importlib
 import logging
 import sys
 
 from lsbg import __version__
-from lsbg.cli.options import CommandError, add_design_options, design_from_args
-from lsbg.gear.design import DesignError
+from lsbg.cli.options import CommandError, check_outputs, settings_of
+from lsbg.config import ConfigError
 from lsbg.files import InputError
+from lsbg.gear.design import DesignError
 
-__all__ = ["main", "build_parser", "add_design_options", "design_from_args", "CommandError",
-           "PARSERS", "USER_ERRORS"]
+__all__ = ["main", "build_parser", "handler_of", "CommandError", "PARSERS", "USER_ERRORS"]
 
 #: Exceptions that are a user's mistake: exit code 2 with the message, no traceback.
-USER_ERRORS = (DesignError, CommandError, InputError)
+USER_ERRORS = (ConfigError, DesignError, CommandError, InputError)
 
 #: One ``add_<name>_parser(subparsers)`` per subcommand, as ``"module:function"``.
 PARSERS = [
@@ -75,13 +93,17 @@ PARSERS = [
     "lsbg.cli.analysis:add_combine_parser",
     "lsbg.cli.analysis:add_summary_parser",
     "lsbg.cli.analysis:add_report_parser",
+    "lsbg.cli.checks:add_checks_parser",
+    "lsbg.cli.checks:add_rate_sweep_parser",
 ]
 
 
 def build_parser():
     """The ``lsbg`` argument parser with every subcommand of :data:`PARSERS`."""
+    # (no abbreviations: an old option's prefix must not pass as another, --compliance
+    # for --compliance-file)
     parser = argparse.ArgumentParser(
-        prog="lsbg", description="Logarithmic spiral bevel gears: geometry, meshing dynamics "
+        prog="lsbg", allow_abbrev=False, description="Logarithmic spiral bevel gears: geometry, meshing dynamics "
                                  "and statistics (SI inside, paper units at the edges).")
     parser.add_argument("--version", action="version", version=f"lsbg {__version__}")
     parser.add_argument("-v", "--verbose", action="store_true", help="log progress on stderr")
@@ -92,10 +114,59 @@ def build_parser():
             add = getattr(importlib.import_module(module), name)
         add(subparsers)
     for sub in subparsers.choices.values():
+        sub.allow_abbrev = False
         # Also accept -v after the subcommand (SUPPRESS keeps the global value).
         sub.add_argument("-v", "--verbose", action="store_true", default=argparse.SUPPRESS,
                          help="log progress on stderr")
     return parser
+
+
+@functools.lru_cache(maxsize=None)
+def _commands():
+    parser = build_parser()
+    return next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction)).choices
+
+
+def handler_of(command):
+    """The function ``lsbg <command>`` runs (its stage's entry point).
+
+    Parameters
+    ----------
+    command : str
+        A subcommand (``"ltca"``).
+
+    Returns
+    -------
+    callable
+
+    Raises
+    ------
+    ValueError
+        Naming the known subcommands.
+    """
+    choices = _commands()
+    if command not in choices:
+        raise ValueError(f"lsbg {command}: no such subcommand (known: {', '.join(choices)})")
+    return choices[command].get_default("handler")
+
+
+def run_handler(args):
+    """Run a parsed command: configuration and outputs checked first, then the handler.
+
+    Returns
+    -------
+    int
+        The exit code (0; the handler may return another).
+    """
+    if hasattr(args, "overrides"):
+        settings_of(args)
+    check_outputs(args)
+    result = args.handler(args)
+    if isinstance(result, int):
+        return result
+    for line in [result] if isinstance(result, str) else (result or ()):
+        print(f"lsbg {args.command}: {line}")
+    return 0
 
 
 def main(argv=None):
@@ -109,17 +180,24 @@ def main(argv=None):
     -------
     int
         Exit code: 0 on success, 2 on bad input (one line on stderr, nothing
-        written), or the handler's (3: a simulation blew up). Usage errors
-        found by argparse raise ``SystemExit(2)``.
+        written), 3 when a simulation blew up. Usage errors found by argparse
+        raise ``SystemExit(2)``.
     """
     args = build_parser().parse_args(argv)
     if args.verbose:
         logging.basicConfig(level=logging.INFO, format="%(name)s: %(message)s")
     try:
-        return args.handler(args)
+        return run_handler(args)
     except USER_ERRORS as error:
         print(f"lsbg {args.command}: error: {error}", file=sys.stderr)
         return 2
+    except Exception as error:
+        # a blow-up: the dynamics' own error (never imported, never raised)
+        settings = sys.modules.get("lsbg.dynamics.settings")
+        if settings is None or not isinstance(error, settings.SimulationError):
+            raise
+        print(f"lsbg {args.command}: simulation stopped: {error}", file=sys.stderr)
+        return 3
 
 
 if __name__ == "__main__":

@@ -2,10 +2,9 @@
 
 from __future__ import annotations
 
-import sys
-
-from lsbg.cli.options import (CommandError, add_case_options, add_contact_options, check_output,
-                              contact_from_args, flanks_from_args, read_study_sections)
+from lsbg.cli.options import (CommandError, add_case_options, add_config_options,
+                              add_geometry_input, add_output, checked, command_line, contact_of,
+                              flank_sections_of, flanks_of, load_torque_of)
 
 __all__ = ["add_ltca_parser", "add_combine_parser", "add_summary_parser", "add_report_parser"]
 
@@ -13,135 +12,132 @@ __all__ = ["add_ltca_parser", "add_combine_parser", "add_summary_parser", "add_r
 # ------------------------------------------------------------------- ltca
 def add_ltca_parser(subparsers):
     """``lsbg ltca``: quasi-static loaded tooth contact analysis of the line model."""
-    from lsbg.cli.tooth import add_tooth_options
-
     parser = subparsers.add_parser(
         "ltca", help="loaded tooth contact analysis (line model) of one design point",
-        description="Solve the static equilibrium of the line contact model under the load at "
-                    "--phases mesh positions over one base pitch and write the transmission "
-                    "error, mesh stiffness, contact length, tooth-pair loads and contact "
-                    "pattern to --out (NetCDF, CF-1.11). The line model's stiffness and slices "
-                    "come from the 'contact' section of --config; the flank modification and "
-                    "the assembly displacements from its 'flank_modification' and "
-                    "'misalignment' sections (without them: the conjugate, aligned pair). Under "
-                    "contact.compliance: fe (or --compliance fe) the teeth's own compliance "
-                    "replaces the uniform bed: the contact problem is solved with the FE "
-                    "influence coefficients of --compliance-file and Hertz's local contact, and "
-                    "--out gains the contact pressure, the root stresses and the slice "
-                    "stiffness that line-model runs take (--fe-ltca).")
-    parser.add_argument("--geometry", required=True, metavar="DIR",
-                        help="geometry directory written by 'lsbg geometry'")
-    add_contact_options(parser, model=False)
-    parser.add_argument("--load-torque", type=float, metavar="N_M",
-                        help="torque on the gear [N m] (default: simulation.load_torque_N_m of "
-                             "--config, else the paper's 1964.99)")
-    parser.add_argument("--phases", type=int, metavar="N",
-                        help="mesh positions over one base pitch (default 256; with the FE "
-                             "compliance tooth.ltca_positions of --config, else 200)")
-    add_tooth_options(parser)
+        description="Solve the static equilibrium of the line contact model under "
+                    "simulation.load_torque_N_m at tca.loaded_positions mesh positions over one "
+                    "base pitch and write the transmission error, mesh stiffness, contact "
+                    "length, tooth-pair loads and contact pattern to --out (NetCDF, CF-1.11). "
+                    "The line model's stiffness and slices come from the 'contact' section; "
+                    "the flank modification and the assembly displacements from the "
+                    "'flank_modification' and 'misalignment' sections (without them: the "
+                    "conjugate, aligned pair). Under contact.compliance: fe the teeth's own "
+                    "compliance replaces the uniform bed: the contact problem is solved at "
+                    "tooth.ltca_positions with the FE influence coefficients of "
+                    "--compliance-file and Hertz's local contact, and --out gains the contact "
+                    "pressure, the root stresses and the slice stiffness that line-model runs "
+                    "take (--fe-ltca).")
+    add_geometry_input(parser)
+    add_config_options(parser, ("simulation", "contact", "flank_modification", "misalignment",
+                                "tca", "tooth", "misalignment_map"))
+    parser.add_argument("--compliance-file", metavar="COMPLIANCE.nc",
+                        help="the design point's FE compliance (lsbg compliance): read if it "
+                             "holds these inputs, else computed and written there; needed "
+                             "under contact.compliance: fe")
     parser.add_argument("--envelope", action="store_true",
                         help="with the FE compliance: solve the contact at each corner of the "
                              "assembly's displacement envelope instead (misalignment_map.axes "
-                             "of --config at +-misalignment_map.range, added to its "
-                             "misalignment section) and write the largest contact pressure and "
-                             "root stresses at each corner and mesh position to --out")
+                             "at +-misalignment_map.range, added to the misalignment section) "
+                             "at half of tooth.ltca_positions, and write the largest contact "
+                             "pressure and root stresses at each corner and mesh position")
     add_case_options(parser, "fe_ltca")
-    parser.add_argument("--out", required=True, metavar="MESH.nc", help="output NetCDF file")
-    parser.set_defaults(handler=run_ltca, contact_model="line")
+    add_output(parser, metavar="MESH.nc")
+    parser.set_defaults(handler=run_ltca)
 
 
 def run_ltca(args):
-    """Handler of ``lsbg ltca`` [exit code]."""
-    from lsbg.cli.cases import cases_from_args
-    from lsbg.dynamics import SimulationSettings
+    """Handler of ``lsbg ltca``: its summary lines."""
+    from lsbg.cli.cases import sensitivity_cases
 
-    check_output(args.out, "--out")
-    (simulation,) = read_study_sections(args.config, "simulation")
-    load = args.load_torque
-    if load is None:
-        try:
-            load = SimulationSettings.from_config(simulation).load_torque
-        except ValueError as err:
-            raise CommandError(str(err)) from None
-    params = contact_from_args(args)
-    flanks = flanks_from_args(args)  # checks the flank sections before any work
-    cases = cases_from_args(args, "fe_ltca", args.case_out)
-    compliance = positions = None
+    settings = args.settings
+    load = load_torque_of(settings)
+    params = contact_of(settings, model="line")
+    flanks = flanks_of(settings)  # checks the flank sections before any work
+    cases = sensitivity_cases(args, "fe_ltca", args.case_out)
+    compliance, positions = None, settings["tca"]["loaded_positions"]
     if params.compliance == "fe":
-        from lsbg.cli.tooth import compliance_from_args
-        from lsbg.solid.directory import read_design
-        from lsbg.gear.geometry import GearPair
+        compliance, positions = _compliance(args)
+    if args.envelope:  # (its cases at the envelope's positions too: one job, one resolution)
+        from lsbg.tooth.analysis import envelope_positions
 
-        pair = GearPair(read_design(args.geometry))
-        compliance, positions = compliance_from_args(args, pair, args.compliance_file)
-    if args.envelope:
-        _run_envelope(args, params, load, compliance, positions)
+        positions = envelope_positions(positions)
+        lines = [_run_envelope(args, params, load, compliance, positions)]
     else:
-        _write_ltca(args, params, load, flanks, compliance, positions, args.out)
+        lines = _write_ltca(args, params, load, flanks, compliance, positions, args.out)
     for name, case_params, case_flanks, path in cases:
-        print(f"lsbg ltca: case {name}")
-        _write_ltca(args, case_params.replace(compliance=params.compliance), load, case_flanks,
-                    compliance, positions, path, case=name)
-    return 0
+        lines.append(f"case {name}")
+        lines += _write_ltca(args, case_params.replace(compliance=params.compliance), load,
+                             case_flanks, compliance, positions, path, case=name)
+    return lines
+
+
+def _compliance(args):
+    """The FE compliance of ``--compliance-file`` (reused or computed) and its LTCA positions."""
+    from lsbg.gear.geometry import GearPair
+    from lsbg.solid.directory import read_design
+    from lsbg.tooth.config import compliance_for_design, tooth_from_config
+
+    material, mesh, positions = checked(lambda: tooth_from_config(args.settings["tooth"]))
+    if not args.compliance_file:
+        raise CommandError("contact.compliance = 'fe' needs --compliance-file (where the "
+                           "design point's FE compliance is, or goes)")
+    pair = GearPair(read_design(args.geometry))
+    compliance, _ = compliance_for_design(pair, material, mesh, args.compliance_file)
+    return compliance, positions
 
 
 def _write_ltca(args, params, load, flanks, compliance, positions, path, case=None):
     """One loaded TCA of ``lsbg ltca`` (uniform bed, or the FE ``compliance``) -> ``path``
-    (``case``: the sensitivity case's name, recorded)."""
-    from lsbg.tca.loaded import ltca_for_geometry
+    (``case``: the sensitivity case's name, recorded); its summary lines."""
     from lsbg.files import write_dataset
+    from lsbg.tca.loaded import ltca_for_geometry
 
-    try:
-        if compliance is not None:
-            from lsbg.tooth.analysis import fe_ltca_for_geometry
+    if compliance is not None:
+        from lsbg.tooth.analysis import fe_ltca_for_geometry
 
-            ds = fe_ltca_for_geometry(args.geometry, load, params, compliance,
-                                      phases=args.phases or positions, flanks=flanks)
-        else:
-            ds = ltca_for_geometry(args.geometry, load, params, phases=args.phases or 256,
-                                   flanks=flanks)
-    except ValueError as err:
-        raise CommandError(str(err)) from None
-    ds.attrs["history"] += f"; {' '.join(['lsbg', *sys.argv[1:]])}"
+        ds = checked(lambda: fe_ltca_for_geometry(args.geometry, load, params, compliance,
+                                                  phases=positions, flanks=flanks))
+    else:
+        ds = checked(lambda: ltca_for_geometry(args.geometry, load, params, phases=positions,
+                                               flanks=flanks))
+    ds.attrs["history"] += f"; {command_line()}"
     if case:
         ds.attrs["sensitivity_case"] = case
     write_dataset(ds, path)
+    lines = []
     if compliance is not None:
-        print(f"lsbg ltca: FE compliance, max contact pressure "
-              f"{ds.attrs['max_contact_pressure_MPa']:.4g} MPa, max root stress pinion / gear "
-              f"{ds.attrs['max_root_stress_pinion_MPa']:.4g} / "
-              f"{ds.attrs['max_root_stress_gear_MPa']:.4g} MPa")
-    print(f"lsbg ltca: {ds.attrs['phases']} phases, transmission error "
-          f"{ds.attrs['transmission_error_peak_to_peak_urad']:.4g} urad peak to peak, mesh "
-          f"stiffness {ds.attrs['mesh_stiffness_per_face_width_N_per_mm_um']:.4g} N/(mm um) "
-          f"-> {path}")
+        lines.append(f"FE compliance, max contact pressure "
+                     f"{ds.attrs['max_contact_pressure_MPa']:.4g} MPa, max root stress pinion / "
+                     f"gear {ds.attrs['max_root_stress_pinion_MPa']:.4g} / "
+                     f"{ds.attrs['max_root_stress_gear_MPa']:.4g} MPa")
+    lines.append(f"{ds.attrs['phases']} phases, transmission error "
+                 f"{ds.attrs['transmission_error_peak_to_peak_urad']:.4g} urad peak to peak, "
+                 f"mesh stiffness {ds.attrs['mesh_stiffness_per_face_width_N_per_mm_um']:.4g} "
+                 f"N/(mm um) -> {path}")
+    return lines
 
 
 def _run_envelope(args, params, load, compliance, positions):
     """``lsbg ltca --envelope``: the FE loaded TCA at the envelope's corners -> ``--out``."""
-    from lsbg.cli.options import flank_sections_from_args
-    from lsbg.solid.directory import read_design
-    from lsbg.gear.geometry import GearPair
     from lsbg.files import write_dataset
+    from lsbg.gear.geometry import GearPair
+    from lsbg.solid.directory import read_design
     from lsbg.tooth.analysis import fe_envelope
 
     if compliance is None:
-        raise CommandError("--envelope: needs the FE compliance (--compliance fe)")
-    modification, misalignment = flank_sections_from_args(args)
-    (vh,) = read_study_sections(args.config, "misalignment_map")
-    axes, half_range = vh.get("axes") or ["E", "P"], vh.get("range") or 0.1
+        raise CommandError("--envelope: needs the FE compliance (--set contact.compliance=fe)")
+    modification, misalignment = flank_sections_of(args.settings)
+    section = args.settings["misalignment_map"]
+    axes, half_range = section["axes"], section["range"]
     pair = GearPair(read_design(args.geometry))
-    try:
-        ds = fe_envelope(pair, params, compliance, load, args.phases or positions, modification,
-                         misalignment, axes, half_range)
-    except ValueError as err:
-        raise CommandError(str(err)) from None
-    ds.attrs["history"] = " ".join(["lsbg", *sys.argv[1:]])
+    ds = checked(lambda: fe_envelope(pair, params, compliance, load, positions, modification,
+                                     misalignment, axes, half_range))
+    ds.attrs["history"] = command_line()
     write_dataset(ds, args.out)
     worst = ds["max_contact_pressure"].max("mesh_phase")
-    print(f"lsbg ltca --envelope: {ds.sizes['corner']} corners of {', '.join(axes)} at "
-          f"+-{half_range:g}; largest contact pressure {float(worst.max()):.4g} MPa at "
-          f"{str(worst.idxmax().values)} -> {args.out}")
+    return (f"envelope: {ds.sizes['corner']} corners of {', '.join(axes)} at "
+            f"+-{half_range:g}; largest contact pressure {float(worst.max()):.4g} MPa at "
+            f"{str(worst.idxmax().values)} -> {args.out}")
 
 
 # ---------------------------------------------------------------- combine
@@ -168,25 +164,23 @@ def add_combine_parser(subparsers):
     parser.add_argument("--vh", nargs="+", default=[], metavar="MAP.nc",
                         help="V-H maps (lsbg misalignment-map) on one pair of axes, one per "
                              "design point")
-    parser.add_argument("--out", required=True, metavar="SWEEP.nc", help="output NetCDF file")
+    add_output(parser, metavar="SWEEP.nc")
     parser.set_defaults(handler=run_combine)
 
 
 def run_combine(args):
-    """Handler of ``lsbg combine`` [exit code]."""
-    from lsbg.files import write_dataset
+    """Handler of ``lsbg combine``: its summary line."""
     from lsbg.aggregate.combine import combine_runs
+    from lsbg.files import write_dataset
 
-    check_output(args.out, "--out")
     try:
         ds = combine_runs(args.runs, meshes=args.meshes, tca=args.tca, vh_maps=args.vh)
     except (OSError, ValueError) as err:
         raise CommandError(f"--runs: {err}") from None
     write_dataset(ds, args.out)
-    print(f"lsbg combine: {len(args.runs)} runs ({ds.attrs['solver_engine']}), traces "
-          f"{', '.join(map(str, ds.trace.values))}, spiral angles "
-          f"{', '.join(f'{a:g}' for a in ds.spiral_angle.values)} deg -> {args.out}")
-    return 0
+    return (f"{len(args.runs)} runs ({ds.attrs['solver_engine']}), traces "
+            f"{', '.join(map(str, ds.trace.values))}, spiral angles "
+            f"{', '.join(f'{a:g}' for a in ds.spiral_angle.values)} deg -> {args.out}")
 
 
 # ---------------------------------------------------------------- summary
@@ -204,8 +198,8 @@ def add_summary_parser(subparsers):
                     "harmonics) and the mesh stiffness; for every unloaded TCA its "
                     "transmission error (engine 'tca'), and for every V-H map the pattern's "
                     "movement toe-heel and root-tip and the change of the unloaded and loaded "
-                    "transmission error per 0.1 mm (0.1 deg) of each axis. Settings from the "
-                    "'statistics' section of --config, overridden by the options.")
+                    "transmission error per 0.1 mm (0.1 deg) of each axis. Windows and "
+                    "subgroups from the 'statistics' section.")
     parser.add_argument("--runs", nargs="+", required=True, metavar="RUN.nc", help="run files")
     parser.add_argument("--meshes", nargs="+", default=[], metavar="MESH.nc",
                         help="loaded-TCA files (lsbg ltca): two rows each, the static "
@@ -216,43 +210,24 @@ def add_summary_parser(subparsers):
     parser.add_argument("--vh", nargs="+", default=[], metavar="MAP.nc",
                         help="V-H maps (lsbg misalignment-map): four rows per axis, the "
                              "sensitivities per 0.1 mm (0.1 deg)")
-    parser.add_argument("--config", metavar="FILE.yaml",
-                        help="study configuration; its 'statistics' section is used "
-                             "(steady_state_after_s, control_chart_window_s, subgroup_size)")
-    parser.add_argument("--steady-state-after", type=float, metavar="S",
-                        help="end of the transient [s] (default 0.2)")
-    parser.add_argument("--window", type=float, nargs=2, metavar=("START", "STOP"),
-                        help="Xbar-R window [s] (default 0.8 1.0)")
-    parser.add_argument("--subgroup-size", type=int, metavar="N",
-                        help="Xbar-R subgroup size (default 4)")
-    parser.add_argument("--out", required=True, metavar="SUMMARY.csv", help="output CSV file")
+    add_config_options(parser, ("statistics",))
+    add_output(parser, metavar="SUMMARY.csv", help="output CSV file")
     parser.set_defaults(handler=run_summary)
 
 
 def run_summary(args):
-    """Handler of ``lsbg summary`` [exit code]."""
-    from lsbg.files import write_atomically
+    """Handler of ``lsbg summary``: its summary line."""
     from lsbg.aggregate.summary import statistics_options, summary_table
+    from lsbg.files import write_atomically
 
-    check_output(args.out, "--out")
-    (section,) = read_study_sections(args.config, "statistics")
-    try:
-        options = statistics_options(section)
-    except ValueError as err:
-        raise CommandError(f"--config {args.config}: {err}") from None
-    for option, key in (("steady_state_after", "steady_state_after"), ("window", "window"),
-                        ("subgroup_size", "subgroup_size")):
-        value = getattr(args, option, None)
-        if value is not None:
-            options[key] = tuple(value) if option == "window" else value
+    options = checked(lambda: statistics_options(args.settings["statistics"]))
     try:
         table = summary_table(args.runs, meshes=args.meshes, tca=args.tca, vh_maps=args.vh,
                               **options)
     except (OSError, ValueError) as err:
         raise CommandError(f"--runs: {err}") from None
     write_atomically(args.out, lambda tmp: table.to_csv(tmp, index=False))
-    print(f"lsbg summary: {len(args.runs)} runs, {len(table)} rows -> {args.out}")
-    return 0
+    return f"{len(args.runs)} runs, {len(table)} rows -> {args.out}"
 
 
 # ----------------------------------------------------------------- report
@@ -266,7 +241,7 @@ def add_report_parser(subparsers):
                     "embedded. Exit code 1 if the notebook fails (nothing written), 2 on bad "
                     "input.")
     parser.add_argument("name", metavar="NAME", help="report name: paper, sweep, verification")
-    parser.add_argument("--out", required=True, metavar="REPORT.html", help="output HTML file")
+    add_output(parser, metavar="REPORT.html", help="output HTML file")
     parser.add_argument("--param", action="extend", nargs="+", default=[], metavar="KEY=VALUE",
                         help="notebook parameter; VALUE is read as YAML ([a.nc, b.nc] is a "
                              "list, an empty VALUE is the empty string)")
@@ -278,25 +253,14 @@ def add_report_parser(subparsers):
 
 
 def run_report(args):
-    """Handler of ``lsbg report`` [exit code]."""
+    """Handler of ``lsbg report``: its summary line."""
     from lsbg.reports import ReportError, parse_parameter, render_report
 
-    check_output(args.out, "--out")
-    parameters = {}
-    for text in args.param:
-        try:
-            key, value = parse_parameter(text)
-        except ValueError as err:
-            raise CommandError(str(err)) from None
-        parameters[key] = value
+    parameters = dict(checked(lambda: parse_parameter(text)) for text in args.param)
     try:
-        out = render_report(args.name, args.out, parameters, notebook_dir=args.notebook_dir,
-                            timeout=args.timeout)
-    except ValueError as err:
-        raise CommandError(str(err)) from None
+        out = checked(lambda: render_report(args.name, args.out, parameters,
+                                            notebook_dir=args.notebook_dir,
+                                            timeout=args.timeout))
     except ReportError as err:  # the failing cell and its error, in one line: exit 2
         raise CommandError(str(err).splitlines()[0] if str(err) else repr(err)) from None
-    print(f"lsbg report: {args.name} -> {out}")
-    return 0
-
-
+    return f"{args.name} -> {out}"

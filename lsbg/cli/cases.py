@@ -1,26 +1,24 @@
-"""The sensitivity cases of a command (``--case``), read over the study's sections.
+"""The sensitivity cases of a command (``--case``), read over the configuration's sections.
 
-Apart from :mod:`lsbg.cli.options` (which every command imports to build its
-parser) so that only the commands that compute cases depend on
-:mod:`lsbg.experiments.sensitivity` (:mod:`lsbg.study.stages`); their handlers import it.
+Apart from :mod:`lsbg.cli.options` so that only the commands that compute
+cases depend on :mod:`lsbg.experiments.sensitivity` (their handlers call
+:func:`sensitivity_cases`; :func:`lsbg.study.stages.function_closure`).
 """
 
 from __future__ import annotations
 
-from lsbg.cli.options import (CommandError, check_output, contact_from_args,
-                              flank_sections_from_args, read_study_sections)
+from lsbg.cli.options import CommandError, check_output, contact_of, flank_sections_of
 
-__all__ = ["cases_from_args"]
+__all__ = ["sensitivity_cases"]
 
 
-def cases_from_args(args, stage, template, option="--case-out"):
-    """The sensitivity cases of ``--case`` over ``--config``'s sections, checked before
-    any work.
+def sensitivity_cases(args, stage, template, option="--case-out", model="line"):
+    """The sensitivity cases of ``--case`` over the configuration, checked before any work.
 
     Parameters
     ----------
     args : argparse.Namespace
-        With ``case``, ``config`` and the contact and flank options.
+        With ``case`` and the resolved ``settings``.
     stage : str
         ``"dynamics"``, ``"contact_state"`` or ``"fe_ltca"``: a case whose key
         does not reach it is an error.
@@ -28,6 +26,8 @@ def cases_from_args(args, stage, template, option="--case-out"):
         The output template with ``{case}``.
     option : str
         The option that gave it (``--case-out``; ``lsbg sensitivity``: ``--out``).
+    model : str
+        The contact model of the cases (the line model).
 
     Returns
     -------
@@ -42,17 +42,16 @@ def cases_from_args(args, stage, template, option="--case-out"):
     import yaml
 
     from lsbg.contact import ContactParameters
-    from lsbg.files import fill_template
     from lsbg.experiments.sensitivity import CASE_STAGES, case_sections, study_cases
+    from lsbg.files import fill_template
     from lsbg.tca.separation import RealFlanks
 
     if not args.case:
         return []
     if not template:
         raise CommandError(f"--case: needs {option}, a file template with {{case}}")
-    base = contact_from_args(args).to_config()
-    modification, misalignment = flank_sections_from_args(args)
-    (vh,) = read_study_sections(getattr(args, "config", None), "misalignment_map")
+    base = contact_of(args.settings, model=model).to_config()
+    modification, misalignment = flank_sections_of(args.settings)
     cases = []
     for text in args.case:
         key, sep, value = text.partition("=")
@@ -60,7 +59,8 @@ def cases_from_args(args, stage, template, option="--case-out"):
         try:
             if key in CASE_STAGES and stage not in CASE_STAGES[key]:
                 raise ValueError(f"a {key} case does not change this analysis")
-            expanded = study_cases({key: [yaml.safe_load(value) if sep else None]}, vh)
+            expanded = study_cases({key: [yaml.safe_load(value) if sep else None]},
+                                   args.settings["misalignment_map"])
             for name, (key, factor) in expanded.items():
                 contact, flank_mod, flank_mis = case_sections(key, factor, base, modification,
                                                               misalignment)

@@ -1,37 +1,47 @@
-"""Options shared by the subcommands: the design, the study configuration's
-sections, the contact and simulation settings; :class:`CommandError`.
+"""What every subcommand shares: the configuration, its inputs and outputs, CommandError.
 
-Every option is in the paper's units (mm, deg, deg/s, N m) as in the
-workflow's configuration; the handlers convert to SI through
-:class:`lsbg.gear.design.GearPairDesign`, :class:`lsbg.contact.ContactParameters`
-and :class:`lsbg.dynamics.SimulationSettings`.
+One grammar sets every value: ``--config FILE`` (a study configuration, the
+workflow's sections; repeatable, merged in order) and ``--set
+section.key=value`` (repeatable), typed and checked by the configuration's
+schema before any work (:mod:`lsbg.config`); keys a command does not read are
+refused by nothing but ignored by it. The schema holds every default. What is
+left on a command line is what a command reads and writes (``--geometry``,
+``--out``, ...) and what it runs (``--engine``, ``--case``, the design points
+of ``--spiral-angles``).
+
+:func:`settings_of` resolves the configuration once per command;
+:func:`design_of`, :func:`contact_of`, :func:`simulation_of` and
+:func:`flanks_of` build lsbg's objects from its sections, in SI, their errors
+naming the user's key. Outputs declared with :func:`add_output` are checked
+before the handler runs (:func:`check_outputs`, called by
+:func:`lsbg.cli.main`).
 """
 
 from __future__ import annotations
 
+import argparse
 import math
 import os
+import sys
 from pathlib import Path
 
-from lsbg.files import read_yaml_file
-from lsbg.gear.design import BASE_CONE_RULES, CONFIG_KEYS, HANDS, TRACES, GearPairDesign
-
-__all__ = ["CommandError", "check_output", "add_design_options", "design_from_args",
-           "read_study_sections", "add_contact_options", "contact_from_args",
-           "add_simulation_options", "simulation_from_args", "SIMULATION_OPTIONS",
-           "add_fe_ltca_option", "slice_stiffness_from_args"]
+__all__ = ["CommandError", "check_output", "check_outputs", "add_config_options", "settings_of",
+           "add_output", "add_geometry_input", "add_engine_option", "command_line", "design_of",
+           "contact_of", "simulation_of", "flanks_of", "flank_sections_of", "load_torque_of",
+           "add_fe_ltca_option", "slice_stiffness_of", "add_case_options", "parse_pairs",
+           "checked"]
 
 
 class CommandError(ValueError):
-    """Bad command-line input that is not a design parameter (exit code 2)."""
+    """Bad command-line input that is not a configuration key (exit code 2)."""
 
 
 def check_output(path, option, directory=False):
     """Fail before the work starts if lsbg could not write ``path`` at its end.
 
     The writers (:func:`lsbg.files.write_atomically`,
-    :func:`lsbg.solid.export.write_geometry`) create missing folders, so the nearest
-    existing folder above ``path`` must be a writable directory.
+    :func:`lsbg.solid.export.write_geometry`) create missing folders, so the
+    nearest existing folder above ``path`` must be a writable directory.
 
     Parameters
     ----------
@@ -74,250 +84,207 @@ def check_output(path, option, directory=False):
     os.unlink(probe)
 
 
-# What each design key means; the unit comes from the key's suffix.
-_DESCRIPTIONS = {
-    "pinion_teeth": "number of pinion teeth z1",
-    "gear_teeth": "number of gear teeth z2",
-    "module_mm": "outer transverse module m",
-    "shaft_angle_deg": "shaft angle Sigma",
-    "normal_pressure_angle_deg": "normal pressure angle at the mean point",
-    "spiral_angle_deg": "mean spiral angle on the pitch cone",
-    "pinion_hand": "hand of spiral of the pinion",
-    "addendum_mm": "outer addendum",
-    "dedendum_mm": "outer dedendum",
-    "trace": "tooth trace: logarithmic (LSBG) or circular (SBG)",
-    "face_width_mm": "face width along the pitch cone generator",
-    "cutter_radius_mm": "radius of the circular cutter arc (SBG)",
-    "base_cone_rule": "base cone rule: involute (20 deg normal pressure angle) or paper (Eq. 6)",
-    "backlash_mm": "circumferential backlash on the mean pitch circle",
-    "density_kg_m3": "density of both gears",
-    "pinion_bore_mm": "pinion bore diameter",
-    "gear_bore_mm": "gear bore diameter",
-}
-_UNITS = {"_mm": "mm", "_deg": "deg", "_kg_m3": "kg/m^3"}
-_CHOICES = {"trace": TRACES, "base_cone_rule": BASE_CONE_RULES, "pinion_hand": HANDS}
-# Short spellings used in the paper's workflow, besides --<key>.
-_ALIASES = {"spiral_angle_deg": ("--spiral-angle",)}
-
-
-def _unit(key):
-    for suffix, unit in _UNITS.items():
-        if key.endswith(suffix):
-            return unit
-    return None
-
-
-def add_design_options(parser):
-    """Add ``--design FILE.yaml`` and one option per design parameter.
-
-    Options are generated from :data:`lsbg.gear.design.CONFIG_KEYS` (``module_mm``
-    -> ``--module-mm``), in the paper's units; each defaults to ``None`` so
-    that :func:`design_from_args` can tell what was given.
+def add_output(parser, option="--out", metavar="FILE.nc", help="output NetCDF file",
+               directory=False, required=True):
+    """Add an output option whose path :func:`check_outputs` checks before the handler runs.
 
     Parameters
     ----------
     parser : argparse.ArgumentParser
+    option : str
+        ``--out``, ``--csv``, ...
+    metavar, help : str
+    directory : bool
+        The output is a directory (``lsbg geometry``).
+    required : bool
     """
-    paper = GearPairDesign().to_config()
-    group = parser.add_argument_group(
-        "design parameters (paper units; they override --design; defaults: the paper's "
-        "Table 1 and lsbg.gear.design.GearPairDesign)")
-    group.add_argument("--design", metavar="FILE.yaml",
-                       help="YAML file with design keys as in lsbg.gear.design.CONFIG_KEYS, or a study "
-                       "configuration with them under 'design:'")
-    for key in CONFIG_KEYS:
-        unit = _unit(key)
-        value = paper[key]
-        shown = f"{value:g}" if isinstance(value, float) else value
-        description = _DESCRIPTIONS.get(key, key.replace("_", " "))
-        units = f" [{unit}]" if unit else ""
-        kwargs = dict(dest=key, default=None, help=f"{description}{units} (default: {shown})")
-        if key in _CHOICES:
-            kwargs["choices"] = _CHOICES[key]
-        elif isinstance(value, int) and not isinstance(value, bool):
-            kwargs["type"] = int
-            kwargs["metavar"] = "N"
-        elif isinstance(value, float):
-            kwargs["type"] = float
-        if unit:
-            kwargs["metavar"] = unit.upper().replace("/", "_").replace("^", "")
-        flags = _ALIASES.get(key, ()) + ("--" + key.replace("_", "-"),)
-        group.add_argument(*flags, **kwargs)
+    dest = option.lstrip("-").replace("-", "_")
+    parser.add_argument(option, dest=dest, required=required, metavar=metavar, help=help)
+    declared = parser.get_default("outputs") or ()
+    parser.set_defaults(outputs=(*declared, (dest, option, directory)))
 
 
-def design_from_args(args) -> GearPairDesign:
-    """The design from ``--design`` (if any) overridden by the design options.
+def check_outputs(args):
+    """:func:`check_output` for every output of :func:`add_output` that was given."""
+    for dest, option, directory in getattr(args, "outputs", ()):
+        if getattr(args, dest, None):
+            check_output(getattr(args, dest), option, directory=directory)
+
+
+def add_geometry_input(parser):
+    """Add ``--geometry DIR``: a design point's geometry directory (``lsbg geometry``)."""
+    parser.add_argument("--geometry", required=True, metavar="DIR",
+                        help="geometry directory written by 'lsbg geometry'")
+
+
+def add_engine_option(parser, default="pybullet"):
+    """Add ``--engine``: the integrator of a command's runs."""
+    parser.add_argument("--engine", choices=("pybullet", "scipy", "compiled"), default=default,
+                        help=f"integrator: pybullet (multibody, fixed step), scipy (solve_ivp) or "
+                             f"compiled (embedded Runge-Kutta compiled with numba) "
+                             f"(default: {default})")
+
+
+# ------------------------------------------------------------- configuration
+def add_config_options(parser, sections):
+    """Add ``--config FILE`` and ``--set SECTION.KEY=VALUE``.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+    sections : sequence of str
+        The configuration's sections the command reads (named in its help and
+        kept as the parser's default ``sections``: the workflow reruns the
+        command's jobs when one of them changes).
+    """
+    parser.add_argument("--config", dest="config_files", action="append", default=[],
+                        metavar="FILE.yaml",
+                        help=f"a study configuration as workflow/config.yaml (this command reads "
+                             f"its sections {', '.join(sections)}); repeatable, merged in order")
+    parser.add_argument("--set", dest="overrides", action="append", default=[],
+                        metavar="SECTION.KEY=VALUE",
+                        help="set one key over --config in the configuration's units, e.g. "
+                             "contact.model=line or design.spiral_angle_deg=30; repeatable. "
+                             "Keys, units and defaults: workflow/schemas/config.schema.yaml")
+    parser.set_defaults(sections=tuple(sections))
+    parser.formatter_class = argparse.RawDescriptionHelpFormatter
+    parser.epilog = settings_help(sections)
+
+
+def settings_help(sections):
+    """The keys of the configuration's ``sections`` with their defaults, from the schema
+    (the design's from :class:`lsbg.gear.design.GearPairDesign`: the paper's Table 1)."""
+    from lsbg.config import load_schema, section_keys
+    from lsbg.gear.design import GearPairDesign
+
+    table1 = GearPairDesign().to_config()
+    schema, lines = load_schema(), ["settings (--set SECTION.KEY=VALUE; default in brackets):"]
+    for section in sections:
+        for key, text, default in section_keys(schema, section):
+            default = table1.get(key, default) if section == "design" else default
+            shown = "" if default is None else f" [{default}]"
+            lines.append(f"  {section}.{key}{shown}")
+            if text:
+                lines.append(f"      {text[:150]}{'...' if len(text) > 150 else ''}")
+    return "\n".join(lines)
+
+
+def settings_of(args):
+    """The command's configuration: the schema's defaults, ``--config``, then ``--set``.
+
+    Resolved once per command and kept as ``args.settings``.
 
     Parameters
     ----------
     args : argparse.Namespace
-        Parsed by a parser with :func:`add_design_options`.
+        Parsed by a parser with :func:`add_config_options`.
 
     Returns
     -------
-    GearPairDesign
+    dict
+        Every section of the schema (:func:`lsbg.config.resolve_config`).
 
     Raises
     ------
-    DesignError
-        Unknown key in the YAML file or an invalid value; the message names the key.
-    CommandError
-        The YAML file cannot be read.
+    lsbg.config.ConfigError
+        One line naming each bad key and value (exit code 2).
     """
-    config = read_yaml_file(args.design, "--design") if getattr(args, "design", None) else {}
-    if isinstance(config.get("design"), dict):
-        # a study configuration (workflow/config.yaml, results/config.yaml)
-        config = dict(config["design"])
-    for key in CONFIG_KEYS:
-        value = getattr(args, key, None)
-        if value is not None:
-            config[key] = value
-    return GearPairDesign.from_config(config)
+    if getattr(args, "settings", None) is None:
+        from lsbg.config import resolve_config
+        from lsbg.files import read_yaml_file
+
+        args.settings = resolve_config(getattr(args, "config_files", ()),
+                                       getattr(args, "overrides", ()), read=read_yaml_file)
+    return args.settings
 
 
-def read_study_sections(path, *sections):
-    """The named sections of a study configuration file (``{}`` if no file)."""
-    if path is None:
-        return [{} for _ in sections]
-    config = read_yaml_file(path, "--config")
-    return [config.get(section) or {} for section in sections]
+def command_line():
+    """This command as typed (the provenance attribute of what it writes)."""
+    return " ".join(["lsbg", *sys.argv[1:]])
 
 
-#: Command-line options of ``lsbg simulate`` -> key of the ``simulation`` section.
-SIMULATION_OPTIONS = {
-    "duration": ("duration_s", float, "simulated time [s] (paper: 1)"),
-    "samples": ("samples", int, "output intervals; samples+1 instants (paper: 500)"),
-    "dt": ("time_step_s", float, "fixed time step of the pybullet engine [s] (1e-6)"),
-    "rtol": ("rtol", float, "relative tolerance of the scipy engine (1e-8)"),
-    "method": ("method", str, "method of the scipy engine (LSODA, or a solve_ivp method)"),
-    "pinion_speed": ("pinion_speed_deg_s", float, "final pinion speed [deg/s] (paper: 7703)"),
-    "ramp_time": ("ramp_time_s", float, "STEP ramp time of the pinion speed [s] (paper: 0.2)"),
-    "load_torque": ("load_torque_N_m", float, "resisting torque on the gear [N m] (paper: 1964.99)"),
-    "full_rate": ("full_rate_hz", float, "rate of the full-rate record [1/s] (50000)"),
-    "full_rate_after": ("full_rate_after_s", float,
-                        "start of the full-rate record [s] (default: the end of the ramp)"),
-}
-
-
-def add_contact_options(parser, model=True):
-    """Add ``--config`` (its ``contact`` section), ``--set-contact`` and, with
-    ``model``, ``--contact-model``."""
-    parser.add_argument("--config", metavar="FILE.yaml",
-                        help="study configuration; its 'simulation' and 'contact' sections are used")
-    if model:
-        parser.add_argument("--contact-model", choices=("point", "line"),
-                            help="contact model: point (the paper's IMPACT law, one incident "
-                                 "per tooth pair) or line (sliced contact lines) (default: "
-                                 "contact.model of --config, else point)")
-    parser.add_argument("--set-contact", action="append", default=[], metavar="KEY=VALUE",
-                        help="override a key of the contact section (paper units), e.g. "
-                             "mesh_damping_ratio=0.1; repeatable")
-    parser.add_argument("--compliance", choices=("uniform", "fe"),
-                        help="line model's tooth compliance: the uniform bed of springs or the "
-                             "tooth's own from finite elements (default: contact.compliance of "
-                             "--config, else uniform)")
-    add_flank_options(parser)
-
-
-def add_flank_options(parser):
-    """Add ``--modification`` and ``--misalignment`` (over the sections of ``--config``)."""
-    parser.add_argument("--modification", action="append", default=[], metavar="KEY=VALUE",
-                        help="set a key of the flank_modification section (um), e.g. "
-                             "lengthwise_crowning_um=25; repeatable. Without --config and "
-                             "these, the flanks are the conjugate ones")
-    parser.add_argument("--misalignment", action="append", default=[], metavar="KEY=VALUE",
-                        help="set an assembly displacement: a key of the misalignment section "
-                             "or its letter, E, P, G [mm] or Sigma [deg], e.g. P=0.05; "
-                             "repeatable (default: the aligned pair)")
-
-
-def _assignments(texts, option):
-    """{key: value} of KEY=VALUE option texts (values read as YAML)."""
-    import yaml
-
-    out = {}
-    for text in texts:
-        key, sep, value = text.partition("=")
-        if not sep or not key.strip():
-            raise CommandError(f"{option} {text!r}: must be KEY=VALUE")
-        out[key.strip()] = yaml.safe_load(value)
-    return out
-
-
-def flank_sections_from_args(args):
-    """``--config``'s ``flank_modification`` and ``misalignment`` sections with the
-    options' keys set (``--misalignment`` letters as their keys), in config units."""
-    from lsbg.tca.misalignment import DISPLACEMENTS
-
-    modification, misalignment = read_study_sections(getattr(args, "config", None),
-                                                     "flank_modification", "misalignment")
-    modification = {**modification, **_assignments(args.modification, "--modification")}
-    given = _assignments(args.misalignment, "--misalignment")
-    misalignment = {**misalignment, **{DISPLACEMENTS[k][1] if k in DISPLACEMENTS else k: v
-                                       for k, v in given.items()}}
-    return modification, misalignment
-
-
-def flanks_from_args(args):
-    """The real flanks (:class:`lsbg.tca.separation.RealFlanks`) of ``--config``'s
-    ``flank_modification`` and ``misalignment`` sections and the options."""
-    from lsbg.tca.separation import RealFlanks
-
-    modification, misalignment = flank_sections_from_args(args)
+def checked(build):
+    """``build()``, its ValueError (whose message names the user's key) as a CommandError."""
     try:
-        return RealFlanks.from_config(modification, misalignment)
+        return build()
     except ValueError as err:
         raise CommandError(str(err)) from None
 
 
-def contact_from_args(args):
-    """Contact parameters from the ``contact`` section of ``--config``, ``--set-contact``
-    and ``--contact-model``."""
+def design_of(settings):
+    """The design of the ``design`` section (:class:`lsbg.gear.design.GearPairDesign`), its
+    errors under the user's key and units (``design.face_width_mm = 500: ...``)."""
+    from lsbg.gear.checks import user_message
+    from lsbg.gear.design import DesignError, GearPairDesign
+
+    section = {k: v for k, v in settings.get("design", {}).items() if v is not None}
+    try:
+        return GearPairDesign.from_config(section)
+    except DesignError as err:
+        where, why = user_message(err, settings, ("design.spiral_angle_deg",))
+        raise DesignError(f"{where}: {why}") from None
+
+
+def contact_of(settings, **changes):
+    """The contact parameters of the ``contact`` section, with ``changes`` to its keys."""
     from lsbg.contact import ContactParameters
 
-    (contact,) = read_study_sections(args.config, "contact")
-    contact = {**contact, **_assignments(getattr(args, "set_contact", []), "--set-contact")}
-    if args.contact_model is not None:
-        contact["model"] = args.contact_model
-    if getattr(args, "compliance", None) is not None:
-        contact["compliance"] = args.compliance
-    try:
-        return ContactParameters.from_config(contact)
-    except ValueError as err:
-        raise CommandError(str(err)) from None
+    return checked(lambda: ContactParameters.from_config({**settings["contact"], **changes}))
 
 
-def add_simulation_options(parser, contact_model=True):
-    """Add ``--geometry``, ``--engine``, the contact options (``--contact-model`` with
-    ``contact_model``) and the simulation settings."""
-    parser.add_argument("--geometry", required=True, metavar="DIR",
-                        help="geometry directory written by 'lsbg geometry'")
-    parser.add_argument("--engine", choices=("pybullet", "scipy", "compiled"), default="pybullet",
-                        help="integrator: pybullet (multibody, fixed step), scipy (scipy's LSODA) or "
-                             "compiled (embedded Runge-Kutta compiled with numba) "
-                             "(default: pybullet)")
-    add_contact_options(parser, model=contact_model)
-    for option, (key, kind, text) in SIMULATION_OPTIONS.items():
-        parser.add_argument(f"--{option.replace('_', '-')}", dest=option, type=kind, help=text)
-
-
-def simulation_from_args(args):
-    """(settings, contact parameters) from ``--config`` and the options."""
+def simulation_of(settings, engine):
+    """The simulation settings of the ``simulation`` section for ``engine``."""
     from lsbg.dynamics import SimulationSettings
 
-    (simulation,) = read_study_sections(args.config, "simulation")
-    simulation = dict(simulation)
-    for option, (key, _, _) in SIMULATION_OPTIONS.items():
-        value = getattr(args, option, None)
-        if value is not None:
-            simulation[key] = value
-    try:
-        settings = SimulationSettings.from_config(simulation, engine=args.engine)
-    except ValueError as err:
-        raise CommandError(str(err)) from None
-    return settings, contact_from_args(args)
+    return checked(lambda: SimulationSettings.from_config(settings["simulation"], engine=engine))
 
 
+def load_torque_of(settings):
+    """The load on the gear [N m] of the ``simulation`` section, checked."""
+    return simulation_of(settings, "compiled").load_torque
+
+
+def flank_sections_of(settings):
+    """The ``flank_modification`` and ``misalignment`` sections (configuration units)."""
+    return dict(settings["flank_modification"]), dict(settings["misalignment"])
+
+
+def flanks_of(settings):
+    """The real flanks (:class:`lsbg.tca.separation.RealFlanks`) of the ``flank_modification``
+    and ``misalignment`` sections (without them: the conjugate, aligned pair)."""
+    from lsbg.tca.separation import RealFlanks
+
+    return checked(lambda: RealFlanks.from_config(*flank_sections_of(settings)))
+
+
+def parse_pairs(texts, option, keys=None):
+    """``{name: value}`` of ``NAME=VALUE`` texts (``--run line=RUN.nc``), checked.
+
+    Parameters
+    ----------
+    texts : sequence of str
+    option : str
+        The option, for the message.
+    keys : sequence of str, optional
+        The names allowed.
+
+    Raises
+    ------
+    CommandError
+        Naming the text: no ``=``, an empty part, or a name not in ``keys``.
+    """
+    pairs = {}
+    for text in texts:
+        name, sep, value = text.partition("=")
+        name, value = name.strip(), value.strip()
+        if not sep or not name or not value or (keys is not None and name not in keys):
+            allowed = f" with NAME one of {list(keys)}" if keys is not None else ""
+            raise CommandError(f"{option} {text!r}: must be NAME=VALUE{allowed}")
+        pairs[name] = value
+    return pairs
+
+
+# ------------------------------------------------- the tooth's slice stiffness
 def add_fe_ltca_option(parser):
     """Add ``--fe-ltca``: the slice stiffness of a line-model run under compliance fe."""
     parser.add_argument("--fe-ltca", metavar="MESH.nc",
@@ -327,31 +294,37 @@ def add_fe_ltca_option(parser):
                              "compliance fe")
 
 
-def slice_stiffness_from_args(args, params, geometry_dir, load_torque):
+def slice_stiffness_of(path, params, geometry_dir, load_torque):
     """The slice stiffness of ``--fe-ltca`` for a run with ``params``, or None.
+
+    Parameters
+    ----------
+    path : str or None
+        ``--fe-ltca``.
+    params : lsbg.contact.ContactParameters
+    geometry_dir : str
+    load_torque : float
+        The run's load [N m].
 
     Raises
     ------
     CommandError
-        ``--fe-ltca`` missing under compliance fe (line model), given otherwise,
-        or of another design point or load.
+        ``--fe-ltca`` missing under compliance fe (line model), or of another
+        design point or load.
     """
     import xarray as xr
 
     from lsbg.contact.slices import SliceStiffness
     from lsbg.solid.directory import read_design
 
-    path = getattr(args, "fe_ltca", None)
-    wanted = params.model == "line" and params.compliance == "fe"
-    if not wanted:
+    if not (params.model == "line" and params.compliance == "fe"):
         return None
     if not path:
         raise CommandError("contact.compliance = 'fe': a line-model run needs --fe-ltca (the "
                            "design point's loaded TCA with the FE compliance)")
     with xr.open_dataset(path) as ds:
         ds = ds.load()
-    design = read_design(geometry_dir)
-    difference = design.attrs_difference(ds.attrs)
+    difference = read_design(geometry_dir).attrs_difference(ds.attrs)
     if difference is not None:
         key, stored, value = difference
         raise CommandError(f"--fe-ltca {path}: design {key} = {stored!r}, the geometry's "
@@ -361,23 +334,21 @@ def slice_stiffness_from_args(args, params, geometry_dir, load_torque):
         raise CommandError(f"--fe-ltca {path}: computed at {stored_load!r} N m, the run's load "
                            f"is {load_torque!r} N m (its slice stiffness is the secant at its "
                            f"own load)")
-    try:
-        return SliceStiffness.from_dataset(ds)
-    except ValueError as err:
-        raise CommandError(f"--fe-ltca {path}: {err}") from None
+    return checked(lambda: SliceStiffness.from_dataset(ds))
 
 
 # ------------------------------------------------------------ sensitivity cases
-def add_case_options(parser, stage):
-    """Add ``--case KEY=VALUE`` (repeatable) and ``--case-out TEMPLATE``: the sensitivity
-    cases (:mod:`lsbg.experiments.sensitivity`) of ``stage`` that a command
+def add_case_options(parser, stage, out=True):
+    """Add ``--case KEY=VALUE`` (repeatable) and, with ``out``, ``--case-out TEMPLATE``: the
+    sensitivity cases (:mod:`lsbg.experiments.sensitivity`) of ``stage`` that a command
     computes beside its own output, in the same process."""
-    # (lsbg.experiments.sensitivity is imported when the cases are read, not here: building the
-    # parser must not make every stage depend on it, lsbg.study.stages)
+    # (lsbg.experiments.sensitivity is imported when the cases are read, not here: building
+    # the parser must not make every stage depend on it, lsbg.study.stages)
     parser.add_argument("--case", action="append", default=[], metavar="KEY=VALUE",
                         help=f"a sensitivity case as in the sensitivity section whose key "
-                             f"reaches the {stage.replace('_', ' ')} (lsbg.experiments.sensitivity."
-                             f"CASE_STAGES), e.g. crowning=0.5; repeatable")
-    parser.add_argument("--case-out", metavar="FILE.nc",
-                        help="output file template of the cases, with the field {case} "
-                             "(the case's name, e.g. crowning_x0.5)")
+                             f"reaches the {stage.replace('_', ' ')} (lsbg.experiments."
+                             f"sensitivity.CASE_STAGES), e.g. crowning=0.5; repeatable")
+    if out:
+        parser.add_argument("--case-out", metavar="FILE.nc",
+                            help="output file template of the cases, with the field {case} "
+                                 "(the case's name, e.g. crowning_x0.5)")

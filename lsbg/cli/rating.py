@@ -3,9 +3,9 @@
 from __future__ import annotations
 
 import math
-import sys
 
-from lsbg.cli.options import CommandError, _assignments, check_output, read_study_sections
+from lsbg.cli.options import (CommandError, add_config_options, add_geometry_input, add_output,
+                              checked, parse_pairs)
 
 __all__ = ["add_rate_parser"]
 
@@ -17,36 +17,30 @@ def add_rate_parser(subparsers):
         description="Rate the pair in --geometry by ISO 10300:2023 method B1 (contact and "
                     "root stress of both members, permissible stresses, safety factors, the "
                     "gear torques at which they reach 1) at the study's load and speed "
-                    "(simulation section of --config) with the factors of its 'rating' "
+                    "(the 'simulation' section) with the factors of the 'rating' "
                     "section, and write them to --out (NetCDF) beside the largest contact "
                     "pressure and root stresses of --fe-ltca (the FE loaded TCA).")
-    parser.add_argument("--geometry", required=True, metavar="DIR",
-                        help="geometry directory written by 'lsbg geometry'")
-    parser.add_argument("--config", metavar="FILE.yaml",
-                        help="study configuration: its rating, tooth, simulation and "
-                             "statistics sections are used")
-    parser.add_argument("--set-rating", action="append", default=[], metavar="KEY=VALUE",
-                        help="override a key of the rating section, e.g. "
-                             "application_factor=1.25; repeatable")
+    add_geometry_input(parser)
+    add_config_options(parser, ("rating", "tooth", "simulation", "statistics"))
     parser.add_argument("--run", metavar="RUN.nc",
                         help="the design point's line-model run: its dynamic factor is K_v "
                              "where rating.dynamic_factor is 'lsbg' (without it, K_v = 1)")
     parser.add_argument("--fe-ltca", metavar="LTCA.nc",
                         help="the design point's loaded TCA with the FE compliance (lsbg ltca "
-                             "--compliance fe) at the same load")
+                             "--set contact.compliance=fe) at the same load")
     parser.add_argument("--fe-envelope", metavar="ENVELOPE.nc",
                         help="the FE loaded TCA at the corners of the assembly's displacement "
-                             "envelope (lsbg ltca --compliance fe --envelope) at the same load")
+                             "envelope (lsbg ltca --set contact.compliance=fe --envelope) at the same load")
     parser.add_argument("--case-run", action="append", default=[], metavar="CASE=RUN.nc",
                         help="a sensitivity case's line-model run (lsbg sensitivity) of the same "
                              "design point: the pair is rated again with its dynamic factor as "
                              "K_v (where rating.dynamic_factor is 'lsbg'); repeatable")
-    parser.add_argument("--out", required=True, metavar="RATING.nc", help="output NetCDF file")
+    add_output(parser, metavar="RATING.nc")
     parser.set_defaults(handler=run_rate)
 
 
 def run_rate(args):
-    """Handler of ``lsbg rate`` [exit code]."""
+    """Handler of ``lsbg rate``: its summary line."""
     from lsbg.solid.directory import read_design
     from lsbg.rating.config import rate_design
     from lsbg.rating.dataset import rating_dataset
@@ -54,16 +48,10 @@ def run_rate(args):
     from lsbg.dynamics.dataset import open_run
     from lsbg.aggregate.summary import statistics_options
 
-    rating, tooth, simulation, statistics = read_study_sections(
-        args.config, "rating", "tooth", "simulation", "statistics")
-    rating = {**rating, **_assignments(args.set_rating, "--set-rating")}
-    check_output(args.out, "--out")
+    rating, tooth, simulation = (args.settings[s] for s in ("rating", "tooth", "simulation"))
     design = read_design(args.geometry)
-    try:
-        after = statistics_options(statistics).get("steady_state_after", 0.2)
-    except ValueError as err:
-        raise CommandError(str(err)) from None
-    by_run = rating.get("dynamic_factor", "lsbg") == "lsbg"
+    after = checked(lambda: statistics_options(args.settings["statistics"]))["steady_state_after"]
+    by_run = rating["dynamic_factor"] == "lsbg"
     kv, source = None, "K_v = 1: no run given"
     if by_run and args.run:
         run = _same_point(open_run(args.run), design, None, "--run")
@@ -71,15 +59,12 @@ def run_rate(args):
     elif not by_run:
         source = "rating.dynamic_factor"
     case_factors = {}
-    for text in args.case_run:
-        name, sep, path = text.partition("=")
-        if not sep or not name.strip() or not path:
-            raise CommandError(f"--case-run {text!r}: must be CASE=RUN.nc")
+    for name, path in parse_pairs(args.case_run, "--case-run").items():
         if by_run:
             run = _same_point(open_run(path), design, None, "--case-run")
-            case_factors[name.strip()] = _dynamic_factor(run, after, "--case-run")
-    load = float(simulation.get("load_torque_N_m", 1964.99))
-    speed = math.radians(float(simulation.get("pinion_speed_deg_s", 7703)))
+            case_factors[name] = _dynamic_factor(run, after, "--case-run")
+    load = float(simulation["load_torque_N_m"])
+    speed = math.radians(float(simulation["pinion_speed_deg_s"]))
 
     def rated(dynamic_factor):
         try:
@@ -106,14 +91,13 @@ def run_rate(args):
     ds = rating_dataset(result, design, material, conditions, source, fe, envelope, cases)
     write_dataset(ds, args.out)
     ratio = design.gear_teeth / design.pinion_teeth
-    print(f"lsbg rate: sigma_H {result.contact_stress / 1e6:.0f} MPa (S_H "
-          f"{min(result.contact_safety):.2f}), sigma_F {result.root_stress[0] / 1e6:.0f} / "
-          f"{result.root_stress[1] / 1e6:.0f} MPa (S_F {result.bending_safety[0]:.2f} / "
-          f"{result.bending_safety[1]:.2f}); rated gear torque "
-          f"{result.rated_pinion_torque_contact * ratio:.0f} N m (pitting), "
-          f"{result.rated_pinion_torque_bending * ratio:.0f} N m (root) against {load:g} N m "
-          f"-> {args.out}", file=sys.stdout)
-    return 0
+    return (f"sigma_H {result.contact_stress / 1e6:.0f} MPa (S_H "
+            f"{min(result.contact_safety):.2f}), sigma_F {result.root_stress[0] / 1e6:.0f} / "
+            f"{result.root_stress[1] / 1e6:.0f} MPa (S_F {result.bending_safety[0]:.2f} / "
+            f"{result.bending_safety[1]:.2f}); rated gear torque "
+            f"{result.rated_pinion_torque_contact * ratio:.0f} N m (pitting), "
+            f"{result.rated_pinion_torque_bending * ratio:.0f} N m (root) against {load:g} N m "
+            f"-> {args.out}")
 
 
 def _dynamic_factor(run, after, option):

@@ -3,19 +3,11 @@
 from __future__ import annotations
 
 import math
-import sys
 
-from lsbg.cli.options import (
-    CommandError,
-    add_contact_options,
-    add_fe_ltca_option,
-    add_simulation_options,
-    check_output,
-    contact_from_args,
-    flanks_from_args,
-    simulation_from_args,
-    slice_stiffness_from_args,
-)
+from lsbg.cli.options import (CommandError, add_config_options, add_output, checked,
+                              command_line, contact_of, flanks_of, simulation_of,
+                              slice_stiffness_of)
+from lsbg.cli.simulate import RUN_SECTIONS, add_run_options
 
 __all__ = ["add_mesh_mode_parser", "add_speed_run_parser", "add_speed_curve_parser"]
 
@@ -33,39 +25,35 @@ def add_mesh_mode_parser(subparsers):
                     "the other; --out writes them as a table (one row each).")
     parser.add_argument("--geometry", required=True, nargs="+", metavar="DIR",
                         help="geometry directory written by 'lsbg geometry' (or several)")
-    add_contact_options(parser, model=False)
-    parser.add_argument("--out", metavar="TABLE.csv",
-                        help="also write the figures as a CSV table, one row per geometry: "
-                             "mesh stiffness [N/um], gear inertia [kg m^2], f_n [Hz], the "
-                             "resonance pinion speeds [deg/s]")
-    parser.set_defaults(handler=run_mesh_mode, contact_model="line")
+    add_config_options(parser, ("contact", "flank_modification", "misalignment"))
+    add_output(parser, metavar="TABLE.csv", required=False,
+               help="also write the figures as a CSV table, one row per geometry: mesh "
+                    "stiffness [N/um], gear inertia [kg m^2], f_n [Hz], the resonance pinion "
+                    "speeds [deg/s]")
+    parser.set_defaults(handler=run_mesh_mode)
 
 
 def run_mesh_mode(args):
-    """Handler of ``lsbg mesh-mode`` [exit code]."""
+    """Handler of ``lsbg mesh-mode``: its figures, a few lines per geometry."""
     import pandas as pd
 
     from lsbg.dynamics import load_model
     from lsbg.experiments.speed import resonance_speeds
 
-    if args.out:
-        check_output(args.out, "--out")
-    params, flanks = contact_from_args(args), flanks_from_args(args)
-    rows = []
+    params, flanks = contact_of(args.settings, model="line"), flanks_of(args.settings)
+    rows, lines = [], []
     for geometry in args.geometry:
         model = load_model(geometry, params, flanks)
         contact, design = model.contact, model.pair.design
         natural = contact.natural_frequency(model.gear_inertia)
         speeds = resonance_speeds(natural, design.pinion_teeth)
-        print(f"lsbg mesh-mode: {design.trace}, spiral angle "
-              f"{math.degrees(design.spiral_angle):g} deg")
-        print(f"  mean mesh stiffness      {contact.mean_mesh_stiffness() / 1e6:10.4g} N/um "
-              f"(torsional {contact.mean_torsional_stiffness():.4g} N m/rad)")
-        print(f"  gear inertia             {model.gear_inertia:10.4g} kg m^2")
-        print(f"  natural frequency f_n    {natural:10.4g} Hz")
-        for order, speed in zip((1, 2, 3), speeds):
-            print(f"  f_mesh = f_n/{order} at pinion {math.degrees(speed):10.6g} deg/s "
-                  f"({speed * 30 / math.pi:.6g} rpm)")
+        lines += [f"{design.trace}, spiral angle {math.degrees(design.spiral_angle):g} deg",
+                  f"  mean mesh stiffness      {contact.mean_mesh_stiffness() / 1e6:10.4g} N/um "
+                  f"(torsional {contact.mean_torsional_stiffness():.4g} N m/rad)",
+                  f"  gear inertia             {model.gear_inertia:10.4g} kg m^2",
+                  f"  natural frequency f_n    {natural:10.4g} Hz"]
+        lines += [f"  f_mesh = f_n/{order} at pinion {math.degrees(speed):10.6g} deg/s "
+                  f"({speed * 30 / math.pi:.6g} rpm)" for order, speed in zip((1, 2, 3), speeds)]
         rows.append({"trace": design.trace,
                      "spiral_angle_deg": round(math.degrees(design.spiral_angle), 9),
                      "mesh_stiffness_N_per_um": contact.mean_mesh_stiffness() / 1e6,
@@ -77,80 +65,49 @@ def run_mesh_mode(args):
         from lsbg.files import write_atomically
 
         write_atomically(args.out, lambda tmp: pd.DataFrame(rows).to_csv(tmp, index=False))
-    return 0
+    return lines
 
 
 # ------------------------------------------------------------ speed run
-#: Options of ``lsbg speed-run`` -> (keyword of lsbg.experiments.speed.speed_settings, type, help).
-SPEED_OPTIONS = {
-    "mesh_cycles": ("mesh_cycles", int, "least mesh cycles in the steady window (default 100)"),
-    "min_window": ("min_window", float, "least length of the steady window [s] (default 0.05)"),
-    "settle_time": ("settle_time", float,
-                    "time after the ramp before the window [s] (default 0.05)"),
-    "samples_per_mesh": ("samples_per_mesh", int,
-                         "least full-rate samples per mesh cycle (default 32)"),
-}
-
-
 def add_speed_run_parser(subparsers):
     """``lsbg speed-run``: one run of the pinion-speed sweep."""
     parser = subparsers.add_parser(
         "speed-run", help="one run of the pinion-speed sweep (line model)",
-        description="Run the line model of --geometry at --pinion-speed with the settings of "
-                    "a speed sweep (lsbg.experiments.speed.speed_settings: a short ramp, a settling time, "
-                    "a steady window of whole mesh cycles, a full-rate record fast enough for "
-                    "the mesh harmonics); the rest of the settings from --config. --ramp-time "
-                    "(default 0.05 s here) is the sweep's ramp; --duration, --samples, "
-                    "--full-rate and --full-rate-after are the sweep's own. Writes the run as "
-                    "'lsbg simulate' does.")
-    add_simulation_options(parser, contact_model=False)
-    add_fe_ltca_option(parser)
-    for option, (_, kind, text) in SPEED_OPTIONS.items():
-        parser.add_argument(f"--{option.replace('_', '-')}", dest=option, type=kind, help=text)
-    parser.add_argument("--out", required=True, metavar="RUN.nc", help="output NetCDF file")
-    parser.set_defaults(handler=run_speed_run, contact_model="line")
+        description="Run the line model of --geometry at simulation.pinion_speed_deg_s with "
+                    "the settings of a speed sweep (lsbg.experiments.speed.speed_settings and "
+                    "the 'speed_sweep' section: a short ramp, a settling time, a steady window "
+                    "of whole mesh cycles, a full-rate record fast enough for the mesh "
+                    "harmonics; the sweep sets the duration, samples and full-rate record); the "
+                    "rest of the settings from the configuration. Writes the run as 'lsbg "
+                    "simulate' does.")
+    add_run_options(parser)
+    add_config_options(parser, (*RUN_SECTIONS, "speed_sweep"))
+    add_output(parser, metavar="RUN.nc")
+    parser.set_defaults(handler=run_speed_run)
 
 
 def run_speed_run(args):
-    """Handler of ``lsbg speed-run`` [exit code]."""
+    """Handler of ``lsbg speed-run``: its summary line."""
     from lsbg.dynamics import SimulationError, simulate
-    from lsbg.solid.directory import read_design
+    from lsbg.experiments.speed import speed_keywords, speed_settings
     from lsbg.files import write_dataset
-    from lsbg.experiments.speed import speed_settings
+    from lsbg.solid.directory import read_design
 
-    if args.pinion_speed is None:
-        raise CommandError("--pinion-speed: required (the speed of this run) [deg/s]")
-    fixed = [f"--{option.replace('_', '-')}" for option in
-             ("duration", "samples", "full_rate", "full_rate_after")
-             if getattr(args, option) is not None]
-    if fixed:
-        raise CommandError(f"{', '.join(fixed)}: set by the speed sweep (use --mesh-cycles, "
-                           f"--min-window, --settle-time, --samples-per-mesh)")
-    check_output(args.out, "--out")
-    ramp = args.ramp_time
-    args.ramp_time = None            # the config's ramp is the paper's run's, not the sweep's
-    base, params = simulation_from_args(args)
-    options = {key: getattr(args, option) for option, (key, _, _) in SPEED_OPTIONS.items()
-               if getattr(args, option) is not None}
-    if ramp is not None:
-        options["ramp_time"] = ramp
+    base = simulation_of(args.settings, args.engine)
+    params = contact_of(args.settings, model="line")
+    teeth = read_design(args.geometry).pinion_teeth
+    settings = checked(lambda: speed_settings(base, base.pinion_speed, teeth,
+                                              **speed_keywords(args.settings["speed_sweep"])))
+    slices = slice_stiffness_of(args.fe_ltca, params, args.geometry, settings.load_torque)
+    speed = math.degrees(base.pinion_speed)
     try:
-        teeth = read_design(args.geometry).pinion_teeth
-        settings = speed_settings(base, base.pinion_speed, teeth, **options)
-    except (OSError, ValueError) as err:
-        raise CommandError(str(err)) from None
-    slices = slice_stiffness_from_args(args, params, args.geometry, settings.load_torque)
-    try:
-        ds = simulate(args.geometry, settings, params, command=" ".join(["lsbg", *sys.argv[1:]]),
-                      flanks=flanks_from_args(args), slice_stiffness=slices)
+        ds = simulate(args.geometry, settings, params, command=command_line(),
+                      flanks=flanks_of(args.settings), slice_stiffness=slices)
     except SimulationError as err:
-        print(f"lsbg speed-run: {args.pinion_speed:g} deg/s: simulation stopped: {err}",
-              file=sys.stderr)
-        return 3
+        raise SimulationError(f"{speed:g} deg/s: {err}") from None
     write_dataset(ds, args.out)
-    print(f"lsbg speed-run: {args.pinion_speed:g} deg/s, {settings.duration:.3g} s simulated "
-          f"-> {args.out} ({ds.attrs['wall_time_s']:.1f} s wall)")
-    return 0
+    return (f"{speed:g} deg/s, {settings.duration:.3g} s simulated -> {args.out} "
+            f"({ds.attrs['wall_time_s']:.1f} s wall)")
 
 
 # ----------------------------------------------------------- speed curve
@@ -164,32 +121,32 @@ def add_speed_curve_parser(subparsers):
                     "grid, the natural frequency of each trace's mesh mode and the speeds at "
                     "which the mesh frequency meets it (NetCDF, CF-1.11).")
     parser.add_argument("--runs", nargs="+", required=True, metavar="RUN.nc", help="run files")
-    parser.add_argument("--out", required=True, metavar="CURVE.nc", help="output NetCDF file")
+    add_output(parser, metavar="CURVE.nc")
     parser.set_defaults(handler=run_speed_curve)
 
 
 def run_speed_curve(args):
-    """Handler of ``lsbg speed-curve`` [exit code]."""
+    """Handler of ``lsbg speed-curve``: a line per trace."""
     import numpy as np
 
     from lsbg.dynamics.dataset import open_runs
     from lsbg.files import write_dataset
     from lsbg.experiments.speed import speed_curve
 
-    check_output(args.out, "--out")
     try:
         curve = speed_curve(open_runs(args.runs))
     except (OSError, ValueError) as err:
         raise CommandError(f"--runs: {err}") from None
     write_dataset(curve, args.out)
     speeds = curve["pinion_speed"].values
+    lines = []
     for trace in curve["trace"].values:
         natural = float(curve["natural_frequency"].sel(trace=trace))
         ratio = curve["mesh_frequency"].values / natural
         peak = curve["dynamic_factor"].sel(trace=trace)
         at = float(speeds[int(np.argmax(peak.values))])
-        print(f"lsbg speed-curve: {trace}: f_n {natural:.4g} Hz; {speeds.size} speeds "
-              f"{speeds.min():.5g}-{speeds.max():.5g} deg/s (f_mesh/f_n {ratio.min():.3g}-"
-              f"{ratio.max():.3g}); peak dynamic factor {float(peak.max()):.4g} at {at:.5g} deg/s")
-    print(f"lsbg speed-curve: -> {args.out}")
-    return 0
+        lines.append(f"{trace}: f_n {natural:.4g} Hz; {speeds.size} speeds "
+                     f"{speeds.min():.5g}-{speeds.max():.5g} deg/s (f_mesh/f_n "
+                     f"{ratio.min():.3g}-{ratio.max():.3g}); peak dynamic factor "
+                     f"{float(peak.max()):.4g} at {at:.5g} deg/s")
+    return lines + [f"-> {args.out}"]

@@ -8,9 +8,8 @@ coordinate per swept key (:mod:`lsbg.aggregate.sweep_dataset`).
 
 from __future__ import annotations
 
-import sys
-
-from lsbg.cli.options import CommandError, check_output, read_study_sections
+from lsbg.cli.options import (CommandError, add_config_options, add_engine_option, add_output,
+                              check_output, checked, command_line)
 
 __all__ = ["add_sweep_run_parser", "add_sweep_combine_parser"]
 
@@ -20,7 +19,7 @@ def add_sweep_run_parser(subparsers):
     parser = subparsers.add_parser(
         "sweep-run", help="run a batch of parameter-sweep points at one design point",
         description="For each --point RUN.nc KEY=VALUE ..., simulate the pair of --geometry "
-                    "with the settings of --config and the point's values (KEY is "
+                    "with the configuration's settings and the point's values (KEY is "
                     "section.key of the design, contact, simulation, flank_modification or "
                     "misalignment section, in the configuration's units) and write the run to "
                     "RUN.nc, its values recorded as attributes sweep_<section>_<key>. A point "
@@ -29,13 +28,9 @@ def add_sweep_run_parser(subparsers):
                     "with exit code 3, the points before it written.")
     parser.add_argument("--geometry", required=True, metavar="DIR",
                         help="geometry directory of the design point (lsbg geometry)")
-    parser.add_argument("--config", metavar="FILE.yaml",
-                        help="study configuration (results/config.yaml): the sections the "
-                             "points change")
-    parser.add_argument("--engine", choices=("pybullet", "scipy", "compiled"), default="compiled",
-                        help="integrator (default: compiled)")
-    parser.add_argument("--contact-model", choices=("point", "line"), default="line",
-                        help="contact model (default: line)")
+    add_config_options(parser, ("design", "contact", "simulation", "flank_modification",
+                                "misalignment"))
+    add_engine_option(parser, default="compiled")
     parser.add_argument("--sweep", required=True, metavar="NAME",
                         help="the sweep's name, recorded in every run")
     parser.add_argument("--kind", choices=("values", "product", "combinations"),
@@ -79,8 +74,7 @@ def _point_objects(args, sections, values, design_dir):
     settings = SimulationSettings.from_config(sections["simulation"], engine=args.engine)
     # (a sweep's runs take the uniform bed: the FE slice stiffness is the study's own
     # design points', at their load; lsbg.experiments.sweeps.FIXED_KEYS)
-    params = ContactParameters.from_config({**sections["contact"], "model": args.contact_model,
-                                            "compliance": "uniform"})
+    params = ContactParameters.from_config({**sections["contact"], "compliance": "uniform"})
     flanks = RealFlanks.from_config(sections["flank_modification"], sections["misalignment"])
     design = None
     if any(k.startswith("design.") for k in values):
@@ -90,7 +84,7 @@ def _point_objects(args, sections, values, design_dir):
 
 
 def run_sweep_run(args):
-    """Handler of ``lsbg sweep-run`` [exit code]."""
+    """Handler of ``lsbg sweep-run``: a line per point."""
     import tempfile
 
     from lsbg.dynamics import SimulationError, simulate
@@ -98,9 +92,7 @@ def run_sweep_run(args):
     from lsbg.files import write_dataset
     from lsbg.experiments.sweeps import point_sections, swept_attribute
 
-    study = dict(zip(("design", "contact", "simulation", "flank_modification", "misalignment"),
-                     read_study_sections(args.config, "design", "contact", "simulation",
-                                         "flank_modification", "misalignment")))
+    study = {section: args.settings[section] for section in args.sections}
     read_design(args.geometry)  # the design point exists and is whole
     points = []
     for words in args.point:
@@ -111,7 +103,7 @@ def run_sweep_run(args):
             points.append((out, values, *_point_objects(args, sections, values, args.geometry)))
         except ValueError as err:
             raise CommandError(f"--point {out}: {err}") from None
-    command = " ".join(["lsbg", *sys.argv[1:]])
+    lines = []
     for out, values, settings, params, flanks, design in points:
         with tempfile.TemporaryDirectory(prefix="lsbg-sweep-") as scratch:
             geometry = args.geometry
@@ -124,17 +116,16 @@ def run_sweep_run(args):
                 write_geometry(design.replace(trace=base.trace, spiral_angle=base.spiral_angle),
                                geometry)
             try:
-                ds = simulate(geometry, settings, params, command=command, flanks=flanks)
+                ds = simulate(geometry, settings, params, command=command_line(), flanks=flanks)
             except SimulationError as err:
-                print(f"lsbg sweep-run: {out}: simulation stopped: {err}", file=sys.stderr)
-                return 3
+                raise SimulationError(f"{out}: {err}") from None
         ds.attrs.update({"sweep_name": args.sweep, "sweep_kind": args.kind,
                          "sweep_keys": " ".join(values)})
         ds.attrs.update({swept_attribute(k): v for k, v in values.items()})
         write_dataset(ds, out)
-        print(f"lsbg sweep-run: {', '.join(f'{k} = {v!r}' for k, v in values.items())} -> {out} "
-              f"({ds.attrs['wall_time_s']:.1f} s wall)")
-    return 0
+        lines.append(f"{', '.join(f'{k} = {v!r}' for k, v in values.items())} -> {out} "
+                     f"({ds.attrs['wall_time_s']:.1f} s wall)")
+    return lines
 
 
 def add_sweep_combine_parser(subparsers):
@@ -148,28 +139,21 @@ def add_sweep_combine_parser(subparsers):
                     "writes the summary rows (lsbg summary) with a column per swept key.")
     parser.add_argument("--runs", nargs="+", required=True, metavar="RUN.nc",
                         help="the sweep's runs")
-    parser.add_argument("--config", metavar="FILE.yaml",
-                        help="study configuration: its statistics section")
-    parser.add_argument("--out", required=True, metavar="SWEEP.nc", help="output NetCDF file")
-    parser.add_argument("--csv", metavar="SWEEP.csv", help="also write the summary rows")
+    add_config_options(parser, ("statistics",))
+    add_output(parser, metavar="SWEEP.nc")
+    add_output(parser, "--csv", metavar="SWEEP.csv", help="also write the summary rows",
+               required=False)
     parser.set_defaults(handler=run_sweep_combine)
 
 
 def run_sweep_combine(args):
-    """Handler of ``lsbg sweep-combine`` [exit code]."""
+    """Handler of ``lsbg sweep-combine``: its summary line."""
     from lsbg.dynamics.dataset import open_run
     from lsbg.files import write_dataset
     from lsbg.aggregate.summary import statistics_options
     from lsbg.aggregate.sweep_dataset import sweep_dataset, sweep_rows
 
-    check_output(args.out, "--out")
-    if args.csv:
-        check_output(args.csv, "--csv")
-    (statistics,) = read_study_sections(args.config, "statistics")
-    try:
-        options = statistics_options(statistics)
-    except ValueError as err:
-        raise CommandError(str(err)) from None
+    options = checked(lambda: statistics_options(args.settings["statistics"]))
     runs = [open_run(path) for path in args.runs]
     try:
         table = sweep_rows(runs, **options)  # once: the dataset is built from these rows
@@ -181,6 +165,5 @@ def run_sweep_combine(args):
         from lsbg.files import write_atomically
 
         write_atomically(args.csv, lambda tmp: table.to_csv(tmp, index=False))
-    print(f"lsbg sweep-combine: {len(runs)} runs of {ds.attrs['sweep_name']} over "
-          f"{', '.join(ds.attrs['sweep_keys'].split())} -> {args.out}")
-    return 0
+    return (f"{len(runs)} runs of {ds.attrs['sweep_name']} over "
+            f"{', '.join(ds.attrs['sweep_keys'].split())} -> {args.out}")

@@ -85,7 +85,7 @@ class SliceStiffness:
         """
         if "slice_stiffness" not in dataset:
             raise ValueError("the dataset has no slice_stiffness: not an LTCA with the "
-                             "tooth's compliance (lsbg ltca --compliance fe)")
+                             "tooth's compliance (lsbg ltca under contact.compliance: fe)")
         k = dataset["slice_stiffness"].transpose("line_turn", "cone_distance")
         attrs = {"compliance": "fe",
                  "compliance_inputs_hash": str(dataset.attrs.get("compliance_inputs_hash", "")),

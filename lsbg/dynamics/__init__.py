@@ -13,18 +13,15 @@
 Angles are forward rotations [rad] (``GearPair.rotation_axis``), speeds [rad/s].
 """
 
-from lsbg.dynamics.model import MeshingModel, RunRecord, Series, load_model, simulate
-from lsbg.dynamics.settings import (
-    COMPILED_METHODS,
-    ENGINES,
-    SCIPY_METHODS,
-    SIMULATION_CONFIG_KEYS,
-    SimulationError,
-    SimulationSettings,
-    pinion_motion,
-    pinion_state,
-)
+from lsbg import lazy_exports
 
-__all__ = ["MeshingModel", "RunRecord", "Series", "load_model", "simulate", "COMPILED_METHODS",
-           "ENGINES", "SCIPY_METHODS", "SIMULATION_CONFIG_KEYS", "SimulationError",
-           "SimulationSettings", "pinion_motion", "pinion_state"]
+#: Submodule -> the names it exports (imported when first used: reading a run's dataset,
+#: lsbg.dynamics.dataset, needs neither the engines nor numba).
+_EXPORTS = {
+    "model": ("MeshingModel", "RunRecord", "Series", "load_model", "simulate"),
+    "settings": ("COMPILED_METHODS", "ENGINES", "SCIPY_METHODS", "SIMULATION_CONFIG_KEYS",
+                 "SimulationError", "SimulationSettings", "pinion_motion", "pinion_state"),
+}
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
+
+__all__ = [name for names in _EXPORTS.values() for name in names]

@@ -290,7 +290,7 @@ def load_model(geometry_dir, contact_params=None, flanks=None,
     if own and slice_stiffness is None:
         raise ValueError("contact.compliance = 'fe': the line model needs the tooth's slice "
                          "stiffness (the loaded TCA with the FE compliance of this design "
-                         "point: lsbg ltca --compliance fe, given as --fe-ltca)")
+                         "point: lsbg ltca under contact.compliance: fe, given as --fe-ltca)")
     if slice_stiffness is not None and not own:
         raise ValueError("a slice stiffness (the tooth's compliance) was given, but the contact "
                          "is not the line model with compliance = 'fe'")

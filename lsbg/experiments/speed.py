@@ -26,7 +26,7 @@ import numpy as np
 from lsbg.stats import spectra
 from lsbg.dynamics.settings import SimulationSettings
 
-__all__ = ["SPEED_QUANTITIES", "speed_grid", "resonance_speeds", "speed_settings",
+__all__ = ["speed_keywords", "SPEED_QUANTITIES", "speed_grid", "resonance_speeds", "speed_settings",
            "speed_point", "speed_curve"]
 
 #: Scalars of each speed: name -> (units, long name).
@@ -81,6 +81,24 @@ def resonance_speeds(natural_frequency, pinion_teeth, orders=(1, 2, 3)):
         Pinion speed of each order [rad/s].
     """
     return np.array([2 * math.pi * natural_frequency / (k * pinion_teeth) for k in orders])
+
+
+def speed_keywords(section):
+    """Keywords of :func:`speed_settings` from the configuration's ``speed_sweep`` section.
+
+    Parameters
+    ----------
+    section : dict
+        ``mesh_cycles``, ``min_window_s``, ``settle_time_s``, ``ramp_time_s`` and
+        ``samples_per_mesh`` (the schema's defaults filled in).
+
+    Returns
+    -------
+    dict
+    """
+    return {"mesh_cycles": section["mesh_cycles"], "min_window": section["min_window_s"],
+            "settle_time": section["settle_time_s"], "ramp_time": section["ramp_time_s"],
+            "samples_per_mesh": section["samples_per_mesh"]}
 
 
 def speed_settings(base: SimulationSettings, pinion_speed, pinion_teeth, mesh_cycles=100,

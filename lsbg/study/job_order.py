@@ -1,33 +1,28 @@
 """The order in which Snakemake starts the study's ready jobs on a few cores.
 
 Snakemake knows the DAG but not what a job costs, so the order in which it
-starts the ready jobs decides how long the cores sit idle. Each rule of the
-default study gets a ``priority:`` from :func:`job_priority`:
+starts the ready jobs decides how long the cores sit idle. Each rule gets a
+priority from its *level*: its own measured job seconds plus the longest chain
+of rules that wait for it, down to the last report (the "highest level first"
+list schedule; Adam, Chandy & Dickson, Commun. ACM 17(12), 1974). The longest
+remaining chain starts first and short jobs are left for the end, where they
+fill the cores; the paper point's geometry and loaded TCA, which every report
+and aggregate waits for, come first by the same rule.
 
-1. :data:`GATE_RULES`, the paper point's geometry and loaded TCA (1-5 s each),
-   before everything: every report and aggregate waits for them (left to
-   the end by their length, they held all of those back: 82 s with -j2).
-2. Every other rule by its *level*: its own measured job seconds plus the
-   longest chain of rules that wait for it, down to the last report (the
-   "highest level first" list schedule; Adam, Chandy & Dickson, Commun. ACM
-   17(12), 1974). The longest remaining chain starts first and short jobs
-   are left for the end, where they fill the cores.
-
-Ranking by a job's own length only (longest processing time first, until
-2026-11-25) started the FE compliance's chain (its loaded TCA, the sensitivity
-runs that read it, the rating, the paper report: 50 s end to end) after the
-sweep batches and the convergence runs, and the paper report then ran alone
-at the end (tests/benchmarks/bench_study.py prints the timeline).
-:data:`WAITING` is the study's rule graph (``snakemake --rulegraph``; a test
-keeps the two equal) and :data:`JOB_SECONDS` the job times measured by
-bench_study.py.
+Nothing here is kept by hand but the measurement: the rule graph
+(:func:`rule_graph`) is read from the rules themselves once the Snakefile has
+defined them all (their input and output files; an input function is asked
+with sample wildcards), and :func:`assign_priorities` sets each rule's
+priority. :data:`JOB_SECONDS` holds the job times measured by
+tests/benchmarks/bench_study.py; a rule not measured counts 0 s (a new stage
+runs after the study's measured jobs until it is measured).
 """
 
 from __future__ import annotations
 
-from functools import lru_cache
+import re
 
-__all__ = ["JOB_SECONDS", "WAITING", "GATE_RULES", "level", "job_priority"]
+__all__ = ["JOB_SECONDS", "rule_graph", "levels", "assign_priorities"]
 
 #: Wall time [s] of one job of each rule of the default study, ``snakemake -j2``
 #: on the 2-core reference machine (tests/benchmarks/bench_study.py, 2026-11-25).
@@ -38,67 +33,111 @@ JOB_SECONDS = {"paper_geometry": 5.4, "paper_ltca": 1.1, "tooth_compliance": 8.8
                "summary": 3.5, "report_paper": 15.9, "report_sweep": 8.4,
                "report_verification": 7.7}
 
-#: {rule: the rules whose jobs read its outputs} in the default study (without
-#: the gates' edges, which :func:`job_priority` puts first anyway).
-WAITING = {
-    "tooth_compliance": ("fe_ltca", "fe_sensitivity"),
-    "fe_ltca": ("sensitivity", "rating", "report_paper"),
-    "fe_sensitivity": ("rating", "report_paper"),
-    "sensitivity": ("rating", "summary", "report_paper"),
-    "rating": ("report_paper",),
-    "sweep_points": ("sweep_contact_state", "combine", "summary"),
-    "sweep_contact_state": ("combine", "summary", "report_sweep"),
-    "contact_state": ("combine", "summary", "report_paper", "report_sweep"),
-    "convergence_point": ("combine", "summary", "report_paper", "report_verification"),
-    "convergence_line": ("combine", "summary", "rating", "report_paper",
-                         "report_verification"),
-    "combine": ("report_paper", "report_sweep"),
-    "summary": ("report_sweep",),
-    "report_paper": (),
-    "report_sweep": (),
-    "report_verification": (),
-}
-
-#: Short jobs that every report and aggregate waits for: before all others, in this order.
-GATE_RULES = ("paper_geometry", "paper_ltca")
+_FIELD = re.compile(r"\{[^{}]*\}")
 
 
-@lru_cache(maxsize=None)
-def level(rule):
-    """Job seconds from the start of a job of ``rule`` to the end of the study [s].
+class _Wildcards(dict):
+    """Sample wildcards for an input function: attribute access, a sample for any name."""
 
-    Its own :data:`JOB_SECONDS` plus the largest level of the rules in
-    :data:`WAITING` for it (0 for a rule not measured).
-
-    Parameters
-    ----------
-    rule : str
-        A rule of the workflow.
-
-    Returns
-    -------
-    float
-    """
-    return JOB_SECONDS.get(rule, 0.0) + max((level(r) for r in WAITING.get(rule, ())),
-                                            default=0.0)
+    def __getattr__(self, name):
+        return self.get(name, "x")
 
 
-def job_priority(rule):
-    """Snakemake priority of the jobs of ``rule``.
+def _pattern(text):
+    """A file pattern's regex: each ``{wildcard}`` matches any text."""
+    parts = _FIELD.split(str(text))
+    return re.compile(".+".join(re.escape(part) for part in parts) + r"\Z")
+
+
+def _files(value, samples):
+    """The file names (or patterns) of a rule's input item: a function is asked with
+    ``samples``; one that needs more than sample wildcards gives nothing."""
+    if callable(value):
+        try:
+            value = value(_Wildcards(samples))
+        except Exception:  # an input function of a rule needs its real wildcards
+            return []
+    if isinstance(value, (str, bytes)):
+        return [str(value)]
+    try:
+        return [str(v) for item in value for v in _files(item, samples)]
+    except TypeError:
+        return []
+
+
+def rule_graph(rules, samples=None):
+    """``{rule name: names of the rules whose jobs read its outputs}``.
 
     Parameters
     ----------
-    rule : str
-        A rule of the workflow.
+    rules : iterable
+        Snakemake rules (``workflow.rules``): ``name``, ``input`` (files,
+        patterns or functions of the wildcards) and ``output`` (patterns).
+    samples : dict, optional
+        Sample wildcards for input functions (``{"trace": "logarithmic", ...}``).
 
     Returns
     -------
-    int
-        Above every other rule for :data:`GATE_RULES` (the first highest), else
-        the rule's :func:`level` in tenths of a second (0 for a rule not
-        measured: after the study's jobs).
+    dict
     """
-    top = max(round(10 * level(r)) for r in WAITING)
-    if rule in GATE_RULES:
-        return top + len(GATE_RULES) - GATE_RULES.index(rule)
-    return round(10 * level(rule))
+    rules = list(rules)
+    outputs = {rule.name: [_pattern(o) for o in rule.output] for rule in rules}
+    waiting = {rule.name: set() for rule in rules}
+    for reader in rules:
+        wanted = [_FIELD.sub("X", f) for f in _files(list(reader.input), samples or {})]
+        for producer, patterns in outputs.items():
+            if producer != reader.name and any(p.match(f) for p in patterns for f in wanted):
+                waiting[producer].add(reader.name)
+    return {name: sorted(readers) for name, readers in waiting.items()}
+
+
+def levels(graph, seconds=JOB_SECONDS):
+    """Job seconds from the start of a job of each rule to the end of the study [s].
+
+    Parameters
+    ----------
+    graph : dict
+        :func:`rule_graph`.
+    seconds : dict
+        Measured job seconds by rule (0 for a rule not in it).
+
+    Returns
+    -------
+    dict
+    """
+    found = {}
+
+    def level(rule, path=()):
+        if rule not in found:
+            after = [level(r, path + (rule,)) for r in graph.get(rule, ()) if r not in path]
+            found[rule] = seconds.get(rule, 0.0) + max(after, default=0.0)
+        return found[rule]
+
+    for rule in graph:
+        level(rule)
+    return found
+
+
+def assign_priorities(rules, samples=None, seconds=JOB_SECONDS):
+    """Set each rule's Snakemake priority to its level in tenths of a second.
+
+    Parameters
+    ----------
+    rules : iterable
+        ``workflow.rules``, once the Snakefile has defined them all.
+    samples : dict, optional
+        Sample wildcards for input functions (:func:`rule_graph`).
+    seconds : dict
+
+    Returns
+    -------
+    dict
+        ``{rule name: priority}``.
+    """
+    rules = list(rules)
+    found = levels(rule_graph(rules, samples), seconds)
+    priorities = {}
+    for rule in rules:
+        priorities[rule.name] = round(10 * found.get(rule.name, 0.0))
+        rule.priority = priorities[rule.name]
+    return priorities

@@ -1,13 +1,28 @@
-"""The lsbg code each workflow stage runs: the inputs that rerun a rule when edited.
+"""The lsbg code a piece of work runs, from the imports: the inputs that rerun a rule when edited.
 
 Snakemake reruns a job when one of its input files changes, so every rule
-lists the lsbg modules its command runs (:data:`STAGE_MODULES`, written out
-here for a reader to see; :func:`stage_sources` turns them into files). A test
-(tests/test_stages.py) checks each list against the real import graph of the
-stage's entry points (:data:`STAGE_ENTRIES`), imports inside functions
-included, so that a new import cannot be forgotten. An answer of a stage's
-code computed while Snakemake starts (the configuration check) is kept on the
-same terms: :func:`cached_answer` asks again when a source of the stage changes.
+lists the lsbg source files its command can run. They are not kept by hand:
+:func:`function_closure` follows the imports from the command's handler (the
+function ``lsbg <command>`` calls, :func:`lsbg.cli.handler_of`), as Python
+executes them:
+
+* a module's module-level imports always run, and importing ``lsbg.a.b`` runs
+  ``lsbg/a/__init__.py`` first (:func:`module_files` gives the ``__init__.py``
+  of every package on the way);
+* inside the command-line modules (``lsbg.cli``) only the functions the handler
+  calls count, followed through the calls by name, within the module and into
+  the other ``lsbg.cli`` modules it imports them from: that is where each
+  command imports its stage, so a command depends on its stage and not on the
+  others;
+* every other module counts whole: all its imports, inside functions too;
+* ``from lsbg.pkg import Name`` where ``pkg/__init__.py`` re-exports ``Name``
+  lazily (:func:`lsbg.lazy_exports`, its ``_EXPORTS`` table) is the submodule
+  that defines ``Name``.
+
+Parsing the ~120 sources takes about 0.1 s, once per process (the files'
+trees are kept). An answer of some code computed while Snakemake starts (the
+configuration check) is kept on the same terms: :func:`cached_answer` asks again
+when a source of that code changes.
 """
 
 from __future__ import annotations
@@ -20,113 +35,247 @@ import json
 import os
 from pathlib import Path
 
+__all__ = ["PACKAGE", "module_files", "module_imports", "module_closure", "function_closure",
+           "notebook_closure", "closure_files", "sources_digest", "cached_answer"]
+
 #: The lsbg package directory.
 PACKAGE = Path(__file__).resolve().parents[1]
+#: The package whose functions are followed call by call (the command line).
+COMMAND_PACKAGE = "cli"
 
-#: Stage -> the lsbg modules (or packages) its command imports, directly or not.
-STAGE_MODULES = {
-    # (contact ... theory, ltca and tca: lsbg.cli.options reads the contact and simulation
-    # options and the flanks, lsbg.tca, too)
-    "geometry": ("cli", "gear", "files", "solid", "contact", "dynamics", "tca"),
-    "ltca": ("cli", "gear", "files", "contact", "dynamics", "tca", "tooth", "solid", "sections", "experiments"),
-    "tooth": ("cli", "gear", "files", "contact", "dynamics", "tca", "tooth", "solid", "sections"),
-    "points": ("cli", "gear", "files", "solid", "contact", "dynamics", "tca", "tooth", "sections"),
-    "simulate": ("cli", "gear", "files", "solid", "contact", "dynamics", "experiments", "tca"),
-    "convergence": ("cli", "gear", "files", "solid", "contact", "dynamics", "experiments", "tca"),
-    "speed": ("cli", "gear", "files", "solid", "contact", "dynamics", "stats", "experiments", "tca"),
-    "contact_state": ("cli", "gear", "files", "solid", "contact", "dynamics", "tca", "experiments"),
-    "sweep": ("cli", "gear", "files", "contact", "dynamics", "tca", "experiments", "aggregate", "stats", "solid", "numba_cache"),
-    "rating": ("cli", "gear", "files", "solid", "contact", "dynamics", "tca", "rating", "aggregate", "stats", "sections"),
-    "aggregate": ("cli", "gear", "files", "solid", "contact", "dynamics", "stats", "aggregate", "tca"),
-    # the notebooks' imports too (tests/test_stages.py reads them)
-    "report": ("cli", "gear", "files", "solid", "contact", "dynamics", "stats", "aggregate", "tca", "reports", "experiments", "tables", "figures", "rating", "sections"),
-}
 
-#: Stage -> where its command starts: ``"module:function"`` of the lsbg.cli
-#: handlers (the test follows their imports and, from there, every import of
-#: every module reached, inside functions too; the module-level imports of all
-#: of lsbg.cli count for every stage, since building the parser imports them).
-STAGE_ENTRIES = {
-    "geometry": ("cli.geometry:run_geometry", "cli.options:design_from_args",
-                 "cli.options:_read_yaml"),
-    "ltca": ("cli.analysis:run_ltca", "cli.options:contact_from_args",
-             "cli.options:flanks_from_args", "cli.options:read_study_sections",
-             "cli.options:_read_yaml", "cli.tooth:compliance_from_args",
-             "cli.tooth:tooth_from_args"),
-    "tooth": ("cli.tooth:run_compliance", "cli.tooth:tooth_from_args",
-              "cli.options:read_study_sections", "cli.options:_read_yaml"),
-    "rating": ("cli.rating:run_rate", "cli.options:read_study_sections",
-               "cli.options:_read_yaml"),
-    "points": ("cli.geometry:run_points", "cli.options:design_from_args",
-               "cli.options:flanks_from_args", "cli.options:read_study_sections",
-               "cli.options:_read_yaml"),
-    "simulate": ("cli.simulate:run_simulate", "cli.simulate:run_sensitivity",
-                 "cli.options:simulation_from_args", "cli.options:contact_from_args",
-                 "cli.options:flanks_from_args", "cli.options:read_study_sections",
-                 "cli.options:_read_yaml"),
-    "convergence": ("cli.simulate:run_convergence", "cli.options:simulation_from_args",
-                    "cli.options:contact_from_args", "cli.options:flanks_from_args",
-                    "cli.options:read_study_sections", "cli.options:_read_yaml"),
-    "speed": ("cli.speed:run_speed_run", "cli.speed:run_speed_curve",
-              "cli.options:simulation_from_args", "cli.options:contact_from_args",
-              "cli.options:flanks_from_args", "cli.options:read_study_sections",
-              "cli.options:_read_yaml"),
-    "contact_state": ("cli.contact_state:run_misalignment_map", "cli.contact_state:run_tca",
-                      "cli.contact_state:_tca", "cli.contact_state:_design_pair",
-                      "cli.contact_state:_section", "cli.options:contact_from_args",
-                      "cli.options:flanks_from_args", "cli.options:read_study_sections",
-                      "cli.options:_read_yaml"),
-    "aggregate": ("cli.analysis:run_combine", "cli.analysis:run_summary",
-                  "cli.options:read_study_sections", "cli.options:_read_yaml"),
-    "report": ("cli.analysis:run_report",),
-    "sweep": ("cli.sweep:run_sweep_run", "cli.sweep:run_sweep_combine",
-              "cli.options:read_study_sections", "cli.options:_read_yaml"),
-}
+def _path(name, package):
+    """The source file of an lsbg module or package (its ``__init__.py``), or None."""
+    base = package.joinpath(*name.split(".")) if name else package
+    if base.is_dir() and (base / "__init__.py").is_file():
+        return base / "__init__.py"
+    path = base.with_suffix(".py")
+    return path if path.is_file() else None
 
 
 def module_files(name, package=PACKAGE):
-    """The source files of an lsbg module or subpackage (``"contact"``, ``"dynamics.model"``).
+    """The files Python runs to import an lsbg module: every ``__init__.py`` on the way, then it.
+
+    Parameters
+    ----------
+    name : str
+        Dotted name below lsbg (``"contact.kernels"``, ``"stats"``; ``""``: lsbg).
+    package : pathlib.Path
 
     Returns
     -------
     list of pathlib.Path
-        Absolute paths, sorted.
 
     Raises
     ------
     ValueError
         If there is no such module.
     """
-    base = package.joinpath(*name.split("."))
-    if base.is_dir():
-        return sorted(base.glob("*.py"))
-    path = base.with_suffix(".py")
-    if not path.is_file():
-        raise ValueError(f"lsbg module {name!r}: no {path.relative_to(package.parent)}")
-    return [path]
+    parts = name.split(".") if name else []
+    files = [package / "__init__.py"]
+    for end in range(1, len(parts) + 1):
+        path = _path(".".join(parts[:end]), package)
+        if path is None:
+            raise ValueError(f"lsbg module {name!r}: no "
+                             f"{Path(package.name, *parts).with_suffix('.py')}")
+        files.append(path)
+    return list(dict.fromkeys(files))
 
 
-def stage_sources(stage, root=None):
-    """The lsbg source files of a stage (:data:`STAGE_MODULES`), for rule inputs.
+@functools.lru_cache(maxsize=None)
+def _tree(path):
+    return ast.parse(Path(path).read_text(encoding="utf-8"))
+
+
+@functools.lru_cache(maxsize=None)
+def _lazy_exports(path):
+    """``{name: submodule}`` of a package ``__init__.py``'s ``_EXPORTS`` table (lazy_exports)."""
+    for node in _tree(path).body:
+        if (isinstance(node, ast.Assign) and any(isinstance(t, ast.Name) and t.id == "_EXPORTS"
+                                                 for t in node.targets)):
+            table = ast.literal_eval(node.value)
+            return {name: module for module, names in table.items() for name in names}
+    return {}
+
+
+def _resolve(dotted, package):
+    """The lsbg module an imported dotted name stands for (``lsbg.contact.ContactParameters``
+    -> ``contact.parameters``), or None outside lsbg."""
+    parts = dotted.split(".")
+    if parts[0] != "lsbg":
+        return None
+    parts = parts[1:]
+    for end in range(len(parts), -1, -1):
+        name = ".".join(parts[:end])
+        path = _path(name, package)
+        if path is None:
+            continue
+        if end < len(parts) and path.name == "__init__.py":
+            owner = _lazy_exports(str(path)).get(parts[end])
+            if owner:
+                return f"{name}.{owner}" if name else owner
+        return name
+    return None
+
+
+def _imports(node, package):
+    """lsbg modules imported anywhere below an AST node (dotted names below lsbg)."""
+    found = set()
+    for item in ast.walk(node):
+        if isinstance(item, ast.Import):
+            names = [alias.name for alias in item.names]
+        elif isinstance(item, ast.ImportFrom) and item.module and not item.level:
+            names = [f"{item.module}.{alias.name}" for alias in item.names]
+        else:
+            continue
+        found.update(m for m in (_resolve(n, package) for n in names) if m is not None)
+    return found
+
+
+def module_imports(name, package=PACKAGE):
+    """The lsbg modules a module imports, at module level and inside functions.
 
     Parameters
     ----------
-    stage : str
-        A key of :data:`STAGE_MODULES`.
+    name : str
+        Dotted module name below lsbg (``"dynamics.model"``; a package: its ``__init__``).
+    package : pathlib.Path
+
+    Returns
+    -------
+    set of str
+    """
+    return _imports(_tree(str(module_files(name, package)[-1])), package)
+
+
+def _module_level_imports(name, package):
+    tree = _tree(str(module_files(name, package)[-1]))
+    found = set()
+    for node in tree.body:
+        if not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+            found |= _imports(node, package)
+    return found
+
+
+def _parents(name):
+    """A module and the packages Python imports before it (``a.b.c`` -> a, a.b, a.b.c)."""
+    parts = name.split(".") if name else []
+    return {".".join(parts[:end]) for end in range(1, len(parts) + 1)} | {""}
+
+
+def module_closure(names, package=PACKAGE):
+    """Every lsbg module run by importing ``names``: their imports, inside functions too,
+    and the packages on the way (``""`` is lsbg itself)."""
+    todo, seen = list(names), set()
+    while todo:
+        name = todo.pop()
+        for module in _parents(name):
+            if module not in seen:
+                seen.add(module)
+                todo.extend(module_imports(module, package))
+    return seen
+
+
+def _defined(tree):
+    return {node.name: node for node in tree.body
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef))}
+
+
+def _imported_names(node, package):
+    """``{local name: (lsbg module, name there)}`` of the ``from lsbg... import`` below ``node``."""
+    names = {}
+    for item in ast.walk(node):
+        if isinstance(item, ast.ImportFrom) and item.module and not item.level:
+            module = _resolve(item.module, package)
+            if module is not None:
+                for alias in item.names:
+                    names[alias.asname or alias.name] = (module, alias.name)
+    return names
+
+
+def function_closure(module, function, package=PACKAGE):
+    """Every lsbg module a function of the command line can run.
+
+    Inside :data:`COMMAND_PACKAGE` the functions it calls are followed by name
+    (in its module and into the command-line modules they come from); every
+    other module reached counts whole (:func:`module_closure`).
+
+    Parameters
+    ----------
+    module : str
+        Dotted name below lsbg (``"cli.analysis"``).
+    function : str
+        A function (or class) defined at the module's top level.
+    package : pathlib.Path
+
+    Returns
+    -------
+    set of str
+    """
+    todo, visited, modules = [(module, function)], set(), set()
+    while todo:
+        where, name = todo.pop()
+        if (where, name) in visited:
+            continue
+        visited.add((where, name))
+        modules |= _parents(where) | _module_level_imports(where, package)
+        tree = _tree(str(module_files(where, package)[-1]))
+        node = _defined(tree).get(name)
+        if node is None:
+            continue
+        modules |= _imports(node, package)
+        local = _defined(tree)
+        imported = {**_imported_names(tree, package), **_imported_names(node, package)}
+        for item in ast.walk(node):
+            if isinstance(item, ast.Name) and item.id != name:
+                if item.id in local:
+                    todo.append((where, item.id))
+                elif item.id in imported:
+                    source, target = imported[item.id]
+                    if source.split(".")[0] == COMMAND_PACKAGE:
+                        todo.append((source, target))
+    command = {m for m in modules if m.split(".")[0] == COMMAND_PACKAGE}
+    return command | module_closure(modules - command, package)
+
+
+def notebook_closure(path, package=PACKAGE):
+    """Every lsbg module a notebook's code cells can run (:func:`module_closure` of their
+    imports).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        A Jupyter notebook (``.ipynb``).
+    package : pathlib.Path
+
+    Returns
+    -------
+    set of str
+    """
+    cells = json.loads(Path(path).read_text(encoding="utf-8"))["cells"]
+    imported = set()
+    for cell in cells:
+        if cell["cell_type"] == "code":
+            imported |= _imports(ast.parse("".join(cell["source"])), package)
+    return module_closure(imported, package)
+
+
+def closure_files(modules, root=None, package=PACKAGE):
+    """The source files of a set of modules (:func:`module_closure`, :func:`function_closure`).
+
+    Parameters
+    ----------
+    modules : iterable of str
     root : str or pathlib.Path, optional
         Directory the paths are made relative to (default: absolute paths).
+    package : pathlib.Path
 
     Returns
     -------
     list of str
-        ``lsbg/__init__.py`` with ``lsbg/numba_cache.py``, which it imports, and the
-        files of the stage's modules.
+        Sorted.
     """
-    if stage not in STAGE_MODULES:
-        raise ValueError(f"stage = {stage!r}: must be one of {sorted(STAGE_MODULES)}")
-    files = {PACKAGE / "__init__.py", PACKAGE / "numba_cache.py"}
-    for name in STAGE_MODULES[stage]:
-        files.update(module_files(name))
+    files = {path for name in modules for path in module_files(name, package)}
     if root is None:
         return sorted(str(f) for f in files)
     root = Path(root).resolve()
@@ -134,85 +283,7 @@ def stage_sources(stage, root=None):
                   for f in files)
 
 
-def _imports(node, package):
-    """lsbg modules imported anywhere below an AST node (dotted names)."""
-    found = set()
-    for item in ast.walk(node):
-        if isinstance(item, ast.Import):
-            names = [alias.name for alias in item.names]
-        elif isinstance(item, ast.ImportFrom) and item.module and not item.level:
-            names = [item.module] + [f"{item.module}.{alias.name}" for alias in item.names]
-        else:
-            continue
-        for imported in names:
-            parts = imported.split(".")
-            if parts[0] != "lsbg" or len(parts) == 1:
-                continue
-            # the longest prefix that is a module or package of lsbg
-            for end in range(len(parts), 1, -1):
-                base = package.joinpath(*parts[1:end])
-                if base.is_dir() or base.with_suffix(".py").is_file():
-                    found.add(".".join(parts[1:end]))
-                    break
-    return found
-
-
-def imported_modules(name, functions=None, package=PACKAGE):
-    """The lsbg modules a module imports, at module level and inside functions.
-
-    Parameters
-    ----------
-    name : str
-        Dotted module name below lsbg (``"study"``, ``"dynamics.model"``).
-    functions : sequence of str, optional
-        Follow only the module-level statements and these functions.
-    package : pathlib.Path
-
-    Returns
-    -------
-    set of str
-        Dotted names; ``from lsbg import x`` names the module x.
-    """
-    found = set()
-    for path in module_files(name, package):
-        tree = ast.parse(path.read_text(encoding="utf-8"))
-        if functions is None:
-            found |= _imports(tree, package)
-            continue
-        for node in tree.body:
-            if isinstance(node, (ast.FunctionDef, ast.ClassDef)):
-                if node.name in functions:
-                    found |= _imports(node, package)
-            else:
-                found |= _imports(node, package)
-    return found
-
-
-def module_closure(names, package=PACKAGE):
-    """Every lsbg module reached from ``names`` by imports, inside functions too."""
-    todo, seen = list(names), set()
-    while todo:
-        name = todo.pop()
-        if name not in seen:
-            seen.add(name)
-            todo.extend(imported_modules(name, package=package))
-    return seen
-
-
-def stage_closure(stage, package=PACKAGE):
-    """Every lsbg module a stage's command can run (dotted names).
-
-    Starts from the module-level imports of lsbg.cli and the stage's handlers
-    (:data:`STAGE_ENTRIES`) and follows every import of every module reached.
-    """
-    start = imported_modules("cli", functions=(), package=package)
-    for entry in STAGE_ENTRIES[stage]:
-        module, _, function = entry.partition(":")
-        start |= imported_modules(module, functions=(function,), package=package)
-    return {"cli"} | module_closure(start, package)
-
-
-# ------------------------------------------------------ answers of a stage
+# ------------------------------------------------------ answers of some code
 #: Answers :func:`cached_answer` keeps in a folder (the most recently used).
 CACHE_ENTRIES = 2000
 #: Answers of this process, by key.
@@ -220,18 +291,24 @@ _ANSWERS = {}
 
 
 @functools.lru_cache(maxsize=None)
-def sources_digest(stage):
-    """SHA-256 of the names and content of a stage's source files (:func:`stage_sources`),
-    hexadecimal; computed once per process."""
+def sources_digest(modules):
+    """SHA-256 of the names and content of every source file the modules run, hexadecimal.
+
+    Parameters
+    ----------
+    modules : str or tuple of str
+        Dotted module names (:func:`module_closure`); computed once per process.
+    """
+    names = (modules,) if isinstance(modules, str) else tuple(modules)
     digest = hashlib.sha256()
-    for name in stage_sources(stage):
+    for name in closure_files(module_closure(names)):
         path = Path(name)
         digest.update(path.relative_to(PACKAGE.parent).as_posix().encode() + b"\0")
         digest.update(path.read_bytes() + b"\0")
     return digest.hexdigest()
 
 
-def cached_answer(folder, stage, inputs, compute):
+def cached_answer(folder, modules, inputs, compute):
     """``compute()``, or its answer kept from an earlier call with the same inputs.
 
     Parameters
@@ -240,15 +317,15 @@ def cached_answer(folder, stage, inputs, compute):
         Where answers are kept between processes (created if missing; at most
         :data:`CACHE_ENTRIES` files, the least recently used go); None: only in
         this process. A folder that cannot be written keeps nothing.
-    stage : str
-        The stage whose code ``compute`` runs: a change of its sources
-        (:func:`sources_digest`) asks again.
+    modules : str or tuple of str
+        The modules whose code ``compute`` runs: a change of any source they
+        run (:func:`sources_digest`) asks again.
     inputs : JSON-serialisable
         Everything else the answer depends on.
     compute : callable
         Returns the answer, a JSON-serialisable value.
     """
-    key = hashlib.sha256(json.dumps([inputs, sources_digest(stage)], sort_keys=True,
+    key = hashlib.sha256(json.dumps([inputs, sources_digest(modules)], sort_keys=True,
                                     default=repr).encode()).hexdigest()[:40]
     if key not in _ANSWERS:
         path = Path(folder) / f"{key}.json" if folder is not None else None

@@ -8,11 +8,12 @@
 # the mesh mode and the pinion speeds at which the mesh frequency meets f_n,
 # f_n/2 and f_n/3, one row per design point, in one job (one start-up):
 #   results/extensions/mesh_mode.csv
-# What such a rule declares: its inputs (the study's files by STUDY's names, the
-# config, and the sources of the lsbg stage it runs, so that editing them reruns
-# it), a log, its resources (the SLURM profile's default resources apply to any
-# rule it does not name), and its output among EXTENSION_TARGETS so that `rule
-# all` asks for it. Its settings are checked with the study's (contact section).
+# What such a rule declares: its inputs named as the command's options (the
+# study's files by STUDY's names, the config) and the sources its command runs
+# (so that editing them reruns it), its output (`out`, among EXTENSION_TARGETS so
+# that `rule all` asks for it), a log, and the command: `params: **command(...)`,
+# `shell: LSBG`. Its settings are checked with the study's (contact section); its
+# priority comes from the rule graph and its resources from the profile's defaults.
 
 MESH_MODE_TABLE = "results/extensions/mesh_mode.csv"
 EXTENSION_TARGETS.append(MESH_MODE_TABLE)
@@ -22,20 +23,15 @@ rule mesh_mode:
     input:
         geometry=[STUDY.geometry(trace, spiral) for trace, spiral in STUDY.points],
         config=ancient(FILES["study_config"]),
-        sources=sources("speed"),
+        sources=sources("mesh-mode"),
     output:
-        MESH_MODE_TABLE,
+        out=MESH_MODE_TABLE,
     params:
-        # Rerun trigger: the line model's settings and the flanks it reads.
-        settings=simulation_params(SWEEP_ENGINE, "line"),
+        **command("mesh-mode"),
+        settings=simulation_params(SWEEP_ENGINE, "line"),  # rerun trigger
     log:
         "logs/extensions/mesh_mode.log",
-    threads: 1
-    resources:
-        mem_mb=1000,
-        runtime=10,
     conda:
         CONDA_ENV
     shell:
-        "lsbg -v mesh-mode --geometry {input.geometry} --config {input.config}"
-        " --out {output} > {log} 2>&1"
+        LSBG

@@ -1,5 +1,7 @@
 # The stage after the runs: the sweep dataset and the summary table (with the
 # contact state of every design point: workflow/rules/contact_state.smk).
+# update(): Snakemake keeps the previous file until the new one is complete (by
+# default it deletes a job's outputs before the job runs).
 
 
 rule combine:
@@ -8,23 +10,17 @@ rule combine:
         meshes=STUDY.meshes,
         tca=STUDY.tca_files,
         vh=STUDY.vh_maps,
-        sources=sources("aggregate"),
+        sources=sources("combine"),
     output:
-        # update(): Snakemake keeps the previous file until the new one is complete
-        # (by default it deletes a job's outputs before the job runs).
-        update(FILES["sweep"]),
-    priority: plan.job_priority("combine")
+        out=update(FILES["sweep"]),
+    params:
+        **command("combine"),
     log:
         "logs/combine/sweep.log",
-    threads: 1
-    resources:
-        mem_mb=2000,
-        runtime=10,
     conda:
         CONDA_ENV
     shell:
-        "lsbg -v combine --runs {input.runs} --meshes {input.meshes} --tca {input.tca}"
-        " --vh {input.vh} --out {output} > {log} 2>&1"
+        LSBG
 
 
 rule summary:
@@ -34,21 +30,15 @@ rule summary:
         tca=STUDY.tca_files,
         vh=STUDY.vh_maps,
         config=ancient(FILES["study_config"]),
-        sources=sources("aggregate"),
+        sources=sources("summary"),
     output:
-        report(update(FILES["summary"]), caption="../report/summary.rst", category="Summary"),
+        out=report(update(FILES["summary"]), caption="../report/summary.rst", category="Summary"),
     params:
-        # Rerun trigger: the statistics settings the table depends on.
-        statistics=plan.canonical(config["statistics"]),
-    priority: plan.job_priority("summary")
+        **command("summary"),
+        statistics=plan.canonical(config["statistics"]),  # rerun trigger
     log:
         "logs/summary/summary.log",
-    threads: 1
-    resources:
-        mem_mb=2000,
-        runtime=10,
     conda:
         CONDA_ENV
     shell:
-        "lsbg -v summary --runs {input.runs} --meshes {input.meshes} --tca {input.tca}"
-        " --vh {input.vh} --config {input.config} --out {output} > {log} 2>&1"
+        LSBG

@@ -1,4 +1,4 @@
-"""Glue between Snakemake and lsbg.study.plan (no rules here).
+"""Glue between Snakemake and lsbg (no rules here).
 
 The configuration is checked completely by lsbg.study.checks.check_config
 (finite numbers, workflow/schemas/config.schema.yaml, file names, lsbg's own
@@ -6,26 +6,46 @@ checks of the settings and the statistics, the physics and the resource
 guard of every design point), which also fills in the schema's defaults,
 before any job runs; each problem is one line naming the user's key.
 lsbg.study.plan.Study then names every design point, run and file; the rules
-read it as STUDY. Paths are relative to the working directory; the
-repository's own files (the notebooks) are found next to the Snakefile.
+read it as STUDY (docs/architecture.md lists what an extension may read).
+
+Each rule is its inputs, outputs, log and rerun triggers; each runs one
+`lsbg` command (shell: LSBG) whose options are the rule's named inputs and
+outputs (`params: **command("ltca")`, :func:`command`), its wildcards set the
+design point (`--set design.trace=...`), and its source inputs are the lsbg
+files the command's handler reaches (:func:`sources`, from the imports).
+Priorities come from the rule graph once every rule is defined (the end of
+the Snakefile, lsbg.study.job_order); memory and time from the profile
+(workflow/profiles/slurm) or :func:`runtime`.
 """
 
 import os
+import shlex
 import sys
+from functools import lru_cache
 from pathlib import Path
 
 import yaml
 from snakemake.logging import logger
 
+from lsbg.files import duplicate_key_problems
 from lsbg.study import checks as config_check
 from lsbg.study import plan
-from lsbg.files import duplicate_key_problems
 
 #: The repository: the directory of the top-level Snakefile.
 REPO = Path(workflow.basedir).resolve()
 SCHEMA = REPO / "workflow" / "schemas" / "config.schema.yaml"
-#: Software of the shell rules (with --software-deployment-method conda).
-CONDA_ENV = "../envs/lsbg.yaml"
+#: Software of every rule (with --software-deployment-method conda).
+CONDA_ENV = (REPO / "workflow" / "envs" / "lsbg.yaml").as_posix()
+#: Extensions: the repository's, then the study folder's own (README, "Your own study").
+EXTENSION_DIRS = (REPO / "workflow" / "extensions", Path("workflow") / "extensions")
+
+
+def extension_file(name):
+    """The file of an extension named in the ``extensions`` list (the study's own first)."""
+    for folder in reversed(EXTENSION_DIRS):
+        if (folder / f"{name}.smk").is_file():
+            return (folder / f"{name}.smk").resolve().as_posix()
+    return None
 
 
 def check_config(config):
@@ -46,10 +66,11 @@ def check_config(config):
         logger.error("invalid configuration file:\n" + "\n".join(f"  {p}" for p in duplicated))
         sys.exit(1)
     problems = config_check.check_config(config, schema)
-    known = sorted(p.stem for p in (REPO / "workflow" / "extensions").glob("*.smk"))
-    problems += [f"extensions[{k}] = {name!r}: no workflow/extensions/{name}.smk (known: "
-                 f"{', '.join(known)})" for k, name in enumerate(config.get("extensions", []))
-                 if name not in known]
+    known = sorted({p.stem for folder in EXTENSION_DIRS for p in folder.glob("*.smk")})
+    problems += [f"extensions[{k}] = {name!r}: no workflow/extensions/{name}.smk here or in "
+                 f"the repository (known: {', '.join(known)})"
+                 for k, name in enumerate(config.get("extensions", []))
+                 if extension_file(name) is None]
     if problems:
         logger.error("invalid configuration (keys as in workflow/schemas/config.schema.yaml):\n"
                      + "\n".join(f"  config key {p}" for p in problems))
@@ -72,44 +93,6 @@ plan.write_study_config(FILES["study_config"], config, only_if_missing=True)
 EXTENSION_TARGETS = []
 
 
-def repo_path(relative):
-    """A file of the repository, relative to the working directory if inside it."""
-    path = REPO / relative
-    inside = os.path.relpath(path)
-    return path.as_posix() if inside.startswith("..") else Path(inside).as_posix()
-
-
-def sources(stage):
-    """Inputs of the rules of ``stage``: the lsbg files it runs (lsbg.study.stages.STAGE_MODULES)."""
-    from lsbg.study.stages import stage_sources
-
-    return stage_sources(stage, root=os.getcwd())
-
-
-def notebook(name):
-    return repo_path(f"workflow/notebooks/{name}.ipynb")
-
-
-def yaml_list(items):
-    """A list as one ``--param`` value, which lsbg reads with yaml.safe_load."""
-    return f"[{', '.join(items)}]"
-
-
-def simulation_params(engine, model):
-    return plan.simulation_params(config, engine, model)
-
-
-def simulation_runtime(runs=1):
-    return plan.simulation_runtime(config, runs)
-
-
-def template(pattern, **fields):
-    """A file-name template of ``lsbg points``/``sensitivity``: some fields filled in,
-    the others left as ``{field}`` for lsbg."""
-    keep = {name: f"{{{name}}}" for name in ("trace", "spiral", "model", "engine", "case")}
-    return pattern.format(**{**keep, **fields})
-
-
 def check_installed_lsbg():
     """Warn if the ``lsbg`` that the rules run is not the one next to this Snakefile."""
     import lsbg
@@ -123,6 +106,164 @@ def check_installed_lsbg():
 check_installed_lsbg()
 
 
+# ---------------------------------------------------------------- commands
+#: The shell command of every rule: ``lsbg <params.command> <params.args>``.
+LSBG = "lsbg -v {params.command} {params.args} > {log} 2>&1"
+#: Wildcards that name a setting of the command: ``--set KEY=VALUE``.
+WILDCARD_SETTINGS = {"trace": "design.trace", "spiral": "design.spiral_angle_deg",
+                     "model": "contact.model"}
+
+
+@lru_cache(maxsize=None)
+def _subparser(name):
+    from lsbg.cli import build_parser
+
+    parser = build_parser()
+    choices = next(a for a in parser._actions if hasattr(a, "choices") and
+                   isinstance(a.choices, dict)).choices
+    return choices[name]
+
+
+def _actions(name):
+    """{name: argparse action} of an lsbg subcommand's options, each by its long option's
+    name (``--compliance-file`` -> ``compliance_file``, ``--config`` -> ``config``)."""
+    return {action.option_strings[-1].lstrip("-").replace("-", "_"): action
+            for action in _subparser(name)._actions if action.option_strings}
+
+
+def _words(action, value):
+    """The words that give ``action`` the value ``value`` (a repeatable option once per
+    item, a flag for True, nothing for None, False or an empty list)."""
+    option = action.option_strings[-1]
+    items = [value] if isinstance(value, (str, int, float)) else list(value or ())
+    if value is True:
+        return [option]
+    if value is False or not items:
+        return []
+    if type(action).__name__ == "_AppendAction":  # (an item may be several words: --point)
+        return [word for item in items for word in
+                (option, *map(str, item if isinstance(item, (list, tuple)) else [item]))]
+    return [option, *map(str, items)]
+
+
+def case_values(stage):
+    """The ``--case KEY=VALUE`` values of the sensitivity cases that reach ``stage``."""
+    from lsbg.experiments.sensitivity import CASE_STAGES
+
+    return [f"{key}={value!r}" for key, values in config["sensitivity"].items()
+            if stage in CASE_STAGES[key] for value in values]
+
+
+def command(name, **extra):
+    """The ``params`` that run ``lsbg <name>`` in a rule, whose shell is LSBG.
+
+    The rule's named inputs and outputs whose names are options of the command
+    (``geometry`` -> ``--geometry``, ``compliance_file`` -> ``--compliance-file``)
+    become those options; the others (``sources``) only rerun it. Its wildcards
+    ``trace``, ``spiral`` and ``model`` set the design point and the contact model
+    (:data:`WILDCARD_SETTINGS`) where the command reads those sections, ``engine``
+    is ``--engine``. ``extra`` adds options by their names in lsbg (a value, a
+    list, True for a flag, or a function of the wildcards); ``set`` adds
+    ``--set`` values.
+    """
+    actions = _actions(name)
+    reads = _subparser(name).get_default("sections") or ()
+
+    def args(wildcards, input, output):
+        words = []
+        for files in (input, output):
+            for key, value in files.items():
+                if key in actions:
+                    words += _words(actions[key], value)
+        settings = [f"{setting}={wildcards[key]}" for key, setting in WILDCARD_SETTINGS.items()
+                    if key in wildcards.keys() and setting.split(".")[0] in reads]
+        if "engine" in wildcards.keys() and "engine" in actions:
+            words += ["--engine", wildcards.engine]
+        for key, value in extra.items():
+            value = value(wildcards) if callable(value) else value
+            if key == "set":
+                settings += list(value)
+            else:
+                words += _words(actions[key], value)
+        words += _words(actions["set"], settings) if settings else []
+        return shlex.join(words)
+
+    return {"command": name, "args": args}
+
+
+def notebook_report(name, **values):
+    """``params`` of a rule that renders ``reports/<name>.html`` (``lsbg report``, with
+    ``shell: LSBG``): each named input but ``notebook`` and ``sources`` is the notebook
+    parameter of its name (a list of files, or one file for ``*_file``), ``values`` the
+    others; the notebook runs from its own folder."""
+    def args(wildcards, input, output):
+        params = {key: (value if key.endswith("_file") else list(value))
+                  for key, value in input.items() if key not in ("notebook", "sources")}
+        params.update(values)
+        words = ["--out", output[0], "--notebook-dir", os.path.dirname(input.notebook)]
+        for key, value in params.items():
+            text = f"[{', '.join(map(str, value))}]" if isinstance(value, list) else str(value)
+            words += ["--param", f"{key}={text}"]
+        return shlex.join(words)
+
+    return {"command": f"report {name}", "args": args}
+
+
+def repo_path(relative):
+    """A file of the repository, relative to the working directory if inside it."""
+    path = REPO / relative
+    inside = os.path.relpath(path)
+    return path.as_posix() if inside.startswith("..") else Path(inside).as_posix()
+
+
+@lru_cache(maxsize=None)
+def sources(name, notebook=None):
+    """The sources that ``lsbg <name>`` runs, as a rule's inputs; every lsbg file its handler reaches (and,
+    for a report, the notebook's code; lsbg.study.stages), so that editing one reruns it."""
+    from lsbg.cli import handler_of
+    from lsbg.study.stages import closure_files, function_closure, notebook_closure
+
+    handler = handler_of(name)
+    modules = function_closure(handler.__module__.removeprefix("lsbg."), handler.__name__)
+    if notebook:
+        modules |= notebook_closure(REPO / "workflow" / "notebooks" / f"{notebook}.ipynb")
+    return closure_files(modules, root=os.getcwd())
+
+
+def runtime(runs=1):
+    """``resources`` of a simulation rule: its time limit [min] for ``runs`` runs."""
+    return {"runtime": plan.simulation_runtime(config, runs)}
+
+
+def points_resources(points):
+    """``resources`` of a job of ``points`` design points (``lsbg points``): 2 min each, and
+    under ``contact.compliance: fe`` the FE compliance's memory and time too."""
+    own = STUDY.own_compliance
+    return {"mem_mb": 4000 if own else 1000,
+            "runtime": 10 + (2 + own * config["limits"]["tooth_minutes"]) * points}
+
+
+def geometry_output(spiral="{spiral}"):
+    """A design point's geometry directory as a rule's output, its picture in the report."""
+    return report(directory(template(FILES["geometry"], spiral=spiral)), patterns=["{name}.png"],
+                  caption="../report/geometry.rst", category="Geometry", subcategory="{trace}",
+                  labels={"trace": "{trace}", "spiral angle [deg]": spiral})
+
+
+def point_templates(**patterns):
+    """Extra options of a command that writes several design points of a trace: file-name
+    templates with ``{spiral}`` (filled in by lsbg), the trace from the wildcards."""
+    return {option: (lambda w, p=pattern: template(p, trace=w.trace))
+            for option, pattern in patterns.items()}
+
+
+def template(pattern, **fields):
+    """A file-name template of ``lsbg points``/``sensitivity``: some fields filled in,
+    the others left as ``{field}`` for lsbg."""
+    keep = {name: f"{{{name}}}" for name in ("trace", "spiral", "model", "engine", "case")}
+    return pattern.format(**{**keep, **fields})
+
+
 def fe_ltca_input(needed):
     """Input ``fe_ltca`` of line-model runs: the loaded TCA with the FE compliance of their
     design point (the paper's, where the wildcards name no angle), where ``needed(wildcards)``."""
@@ -130,6 +271,5 @@ def fe_ltca_input(needed):
                       if needed(w) else [])
 
 
-def fe_ltca_option(wildcards, input):
-    """``--fe-ltca FILE`` of a run whose rule has the ``fe_ltca`` input, else nothing."""
-    return f"--fe-ltca {input.fe_ltca}" if input.fe_ltca else ""
+def simulation_params(engine, model):
+    return plan.simulation_params(config, engine, model)

@@ -12,41 +12,33 @@ rule speed_run:
         geometry=FILES["geometry"],
         config=ancient(FILES["study_config"]),
         fe_ltca=fe_ltca_input(lambda w: STUDY.own_compliance),
-        sources=sources("speed"),
+        sources=sources("speed-run"),
     output:
-        FILES["speed_run"],
+        out=FILES["speed_run"],
     params:
-        engine=SPEED_ENGINE,
-        options=STUDY.speed_options,
-        settings=simulation_params(SPEED_ENGINE, "line"),
-        fe_ltca=fe_ltca_option,
+        **command("speed-run", engine=SPEED_ENGINE,
+                  set=lambda w: [f"simulation.pinion_speed_deg_s={w.speed}"]),
+        settings=simulation_params(SPEED_ENGINE, "line"),  # rerun triggers
+        speed=plan.canonical(STUDY.speed_sweep),
     log:
         "logs/speed_run/{trace}_beta{spiral}_w{speed}.log",
-    threads: 1
-    resources:
-        mem_mb=1000,
-        runtime=10,
     conda:
         CONDA_ENV
     shell:
-        "lsbg -v speed-run --geometry {input.geometry} --config {input.config}"
-        " --engine {params.engine} --pinion-speed {wildcards.speed} {params.options}"
-        " {params.fe_ltca} --out {output} > {log} 2>&1"
+        LSBG
 
 
 rule speed_curve:
     input:
         runs=STUDY.speed_runs,
-        sources=sources("speed"),
+        sources=sources("speed-curve"),
     output:
-        report(FILES["speed_curve"], caption="../report/speed.rst", category="Speed sweep"),
+        out=report(FILES["speed_curve"], caption="../report/speed.rst", category="Speed sweep"),
+    params:
+        **command("speed-curve"),
     log:
         "logs/speed_curve/speed_curve.log",
-    threads: 1
-    resources:
-        mem_mb=2000,
-        runtime=10,
     conda:
         CONDA_ENV
     shell:
-        "lsbg -v speed-curve --runs {input.runs} --out {output} > {log} 2>&1"
+        LSBG

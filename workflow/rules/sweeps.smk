@@ -9,19 +9,19 @@
 # cost two Snakemake start-ups and a polling latency more (docs/scaling.md).
 
 import re
-import shlex
 
 from lsbg.files import number_label
 
 
-def sweep_point_options(sweep, batch):
-    """``--point RUN.nc KEY=VALUE ...`` of a batch's points (the wildcards filled in)."""
-    def options(wildcards, output):
-        return " ".join(
-            f"--point {shlex.quote(out)} "
-            + " ".join(shlex.quote(f"{key}={value!r}") for key, value in sweep.points[i].items())
-            for out, i in zip(output, batch))
-    return options
+def sweep_points(sweep, batch):
+    """``--point RUN.nc KEY=VALUE ...`` values of a batch's points (the wildcards filled in)."""
+    patterns = sweep.patterns()
+
+    def points(wildcards):
+        return [[FILES["sweep_run"].format(name=sweep.name, trace=wildcards.trace,
+                                           spiral=wildcards.spiral, point=patterns[i]),
+                 *(f"{key}={value!r}" for key, value in sweep.points[i].items())] for i in batch]
+    return points
 
 
 for _sweep in STUDY.sweeps:
@@ -35,33 +35,26 @@ for _sweep in STUDY.sweeps:
             input:
                 geometry=FILES["geometry"],
                 config=ancient(FILES["study_config"]),
-                sources=sources("sweep"),
+                sources=sources("sweep-run"),
             output:
                 [FILES["sweep_run"].format(name=_sweep.name, trace="{trace}", spiral="{spiral}",
                                            point=_patterns[i]) for i in _batch],
             params:
-                points=sweep_point_options(_sweep, _batch),
-                engine=_sweep.engine,
-                model=_sweep.contact_model,
-                kind=_sweep.kind,
-                name=_sweep.name,
-                # Rerun trigger: the settings the runs read besides their own values.
-                settings=simulation_params(_sweep.engine, _sweep.contact_model),
+                **command("sweep-run", engine=_sweep.engine, sweep=_sweep.name, kind=_sweep.kind,
+                          set=[f"contact.model={_sweep.contact_model}"],
+                          point=sweep_points(_sweep, _batch)),
+                settings=simulation_params(_sweep.engine, _sweep.contact_model),  # rerun trigger
             wildcard_constraints:
                 trace="|".join(_sweep.traces),
                 spiral="|".join(map(re.escape, _labels)),
             log:
                 f"logs/sweeps/{_sweep.name}/{{trace}}_beta{{spiral}}_batch{_k}.log",
-            threads: 1
             resources:
-                mem_mb=1000,
-                runtime=simulation_runtime(runs=len(_batch)),
+                **runtime(runs=len(_batch)),
             conda:
                 CONDA_ENV
             shell:
-                "lsbg -v sweep-run --geometry {input.geometry} --config {input.config}"
-                " --engine {params.engine} --contact-model {params.model} --sweep {params.name}"
-                " --kind {params.kind} {params.points} > {log} 2>&1"
+                LSBG
 
     rule:
         name:
@@ -70,20 +63,16 @@ for _sweep in STUDY.sweeps:
         input:
             runs=STUDY.parameter_sweep_runs(_sweep),
             config=ancient(FILES["study_config"]),
-            sources=sources("sweep"),
+            sources=sources("sweep-combine"),
         output:
-            dataset=FILES["sweep_dataset"].format(name=_sweep.name),
-            table=FILES["sweep_table"].format(name=_sweep.name),
+            out=FILES["sweep_dataset"].format(name=_sweep.name),
+            csv=FILES["sweep_table"].format(name=_sweep.name),
         params:
-            statistics=plan.canonical(config["statistics"]),
+            **command("sweep-combine"),
+            statistics=plan.canonical(config["statistics"]),  # rerun trigger
         log:
             f"logs/sweeps/{_sweep.name}/combine.log",
-        threads: 1
-        resources:
-            mem_mb=2000,
-            runtime=10,
         conda:
             CONDA_ENV
         shell:
-            "lsbg -v sweep-combine --runs {input.runs} --config {input.config}"
-            " --out {output.dataset} --csv {output.table} > {log} 2>&1"
+            LSBG

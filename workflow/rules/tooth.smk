@@ -1,10 +1,10 @@
 # The tooth's own compliance (docs/model.md, "The tooth itself"): `lsbg compliance`
 # meshes a seven-tooth segment of each member and writes its finite-element
 # influence coefficients and fillet stresses (results/tooth/*_compliance.nc);
-# `lsbg ltca --compliance fe` solves the loaded TCA with them and Hertz's local
-# contact as a complementarity problem, and writes the transmission error,
-# mesh stiffness, contact pressure, root stresses and the slice stiffness that
-# line-model runs under compliance fe take (--fe-ltca).
+# `lsbg ltca` under contact.compliance: fe solves the loaded TCA with them and
+# Hertz's local contact as a complementarity problem, and writes the transmission
+# error, mesh stiffness, contact pressure, root stresses and the slice stiffness
+# that line-model runs under compliance fe take (--fe-ltca).
 #
 # Which design points: under contact.compliance: uniform (the default) the
 # paper's point of each trace, for the comparison uniform / FE in the paper
@@ -15,31 +15,33 @@
 
 import re
 
+#: The rerun triggers of an FE loaded TCA: the load, the line model's settings (its
+#: bands and flanks) and the tooth's.
+FE_TRIGGERS = dict(load=config["simulation"]["load_torque_N_m"],
+                   contact=simulation_params(SWEEP_ENGINE, "line")["contact"],
+                   tooth=plan.canonical(config["tooth"]))
+
 
 rule tooth_compliance:
     input:
         geometry=FILES["geometry"],
         config=ancient(FILES["study_config"]),
-        sources=sources("tooth"),
+        sources=sources("compliance"),
     output:
-        FILES["compliance"],
+        out=FILES["compliance"],
     params:
-        # Rerun trigger: the material and the mesh (the design: the geometry's).
-        tooth=plan.canonical(config["tooth"]),
+        **command("compliance"),
+        tooth=plan.canonical(config["tooth"]),  # rerun trigger (the design: the geometry's)
     wildcard_constraints:
         spiral=re.escape(PAPER_SPIRAL),
-    priority: plan.job_priority("tooth_compliance")
     log:
         "logs/tooth_compliance/{trace}_beta{spiral}.log",
-    threads: 1
     resources:
-        mem_mb=4000,
         runtime=config["limits"]["tooth_minutes"],
     conda:
         CONDA_ENV
     shell:
-        "lsbg -v compliance --geometry {input.geometry} --config {input.config}"
-        " --out {output} > {log} 2>&1"
+        LSBG
 
 
 if not STUDY.own_compliance:
@@ -48,30 +50,21 @@ if not STUDY.own_compliance:
         input:
             geometry=FILES["geometry"],
             config=ancient(FILES["study_config"]),
-            compliance=FILES["compliance"],
+            compliance_file=FILES["compliance"],
             sources=sources("ltca"),
         output:
-            FILES["fe_ltca"],
+            out=FILES["fe_ltca"],
         params:
-            # Rerun trigger: the load, the line model's settings (its bands and
-            # flanks) and the tooth's.
-            load=config["simulation"]["load_torque_N_m"],
-            contact=simulation_params(SWEEP_ENGINE, "line")["contact"],
-            tooth=plan.canonical(config["tooth"]),
+            **command("ltca", set=["contact.compliance=fe"]),
+            **FE_TRIGGERS,
         wildcard_constraints:
             spiral=re.escape(PAPER_SPIRAL),
-        priority: plan.job_priority("fe_ltca")
         log:
             "logs/fe_ltca/{trace}_beta{spiral}.log",
-        threads: 1
-        resources:
-            mem_mb=2000,
-            runtime=10,
         conda:
             CONDA_ENV
         shell:
-            "lsbg -v ltca --geometry {input.geometry} --config {input.config} --compliance fe"
-            " --compliance-file {input.compliance} --out {output} > {log} 2>&1"
+            LSBG
 
 
 # The FE loaded TCA at the corners of the assembly's displacement envelope
@@ -85,35 +78,23 @@ rule fe_sensitivity:
     input:
         geometry=FILES["geometry"],
         config=ancient(FILES["study_config"]),
-        compliance=FILES["compliance"],
+        compliance_file=FILES["compliance"],
         sources=sources("ltca"),
     output:
-        envelope=FILES["fe_envelope"],
+        out=FILES["fe_envelope"],
         cases=[template(FILES["fe_case"], case=case) for case in STUDY.stage_cases("fe_ltca")],
     params:
-        # Rerun trigger: the load, the line model's bands, the flanks, the envelope and
-        # the tooth's settings (the cases: their options).
-        load=config["simulation"]["load_torque_N_m"],
-        contact=simulation_params(SWEEP_ENGINE, "line")["contact"],
-        flanks=plan.canonical({"misalignment": config["misalignment"],
-                               "flank_modification": config["flank_modification"]}),
-        envelope=plan.canonical({k: config["misalignment_map"][k] for k in ("axes", "range")}),
-        tooth=plan.canonical(config["tooth"]),
-        phases=plan.envelope_positions(config),
-        cases=STUDY.case_options("fe_ltca"),
-        case_out=lambda w: template(FILES["fe_case"], trace=w.trace, spiral=w.spiral),
+        **command("ltca", set=["contact.compliance=fe"], envelope=True,
+                  case=case_values("fe_ltca"),
+                  case_out=lambda w: template(FILES["fe_case"], trace=w.trace, spiral=w.spiral)),
+        **FE_TRIGGERS,
+        envelope=plan.canonical({k: config[k] for k in ("misalignment", "flank_modification")}
+                                | {k: config["misalignment_map"][k] for k in ("axes", "range")}),
     wildcard_constraints:
         spiral=re.escape(PAPER_SPIRAL),
-    priority: plan.job_priority("fe_sensitivity")
     log:
         "logs/fe_sensitivity/{trace}_beta{spiral}.log",
-    threads: 1
-    resources:
-        mem_mb=2000,
-        runtime=10,
     conda:
         CONDA_ENV
     shell:
-        "lsbg -v ltca --geometry {input.geometry} --config {input.config} --compliance fe"
-        " --compliance-file {input.compliance} --envelope --phases {params.phases}"
-        " {params.cases} --case-out '{params.case_out}' --out {output.envelope} > {log} 2>&1"
+        LSBG
