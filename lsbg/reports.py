@@ -16,7 +16,6 @@ Markdown.
 
 from __future__ import annotations
 
-import io
 import logging
 import os
 import shutil
@@ -30,7 +29,7 @@ from lsbg.tables.style import format_table
 __all__ = ["NOTEBOOK_DIR", "PATH_PARAMETER_SUFFIXES", "ReportError", "notebook_path",
            "available_reports", "notebook_parameters", "parse_parameter",
            "resolve_parameters", "render_report", "notebook_to_html", "Report",
-           "figure_png", "provenance", "format_table", "REPORT_STYLE"]
+           "provenance", "format_table", "REPORT_STYLE"]
 
 log = logging.getLogger(__name__)
 
@@ -319,37 +318,6 @@ def render_report(name, out_html, parameters=None, notebook_dir=None, cwd=None,
 
 
 # ------------------------------------------------------ inside a notebook
-def figure_png(fig, dpi=100, palette=True) -> bytes:
-    """A matplotlib figure as PNG bytes (tight bounding box unless its layout is constrained).
-
-    Parameters
-    ----------
-    fig : matplotlib.figure.Figure
-    dpi : float, default 100
-        Resolution [dots per inch]; 100 keeps reports small.
-    palette : bool, default True
-        Store the image with a 256-colour palette (no dithering): line plots
-        look the same at about a third of the size.
-    """
-    from matplotlib.layout_engine import ConstrainedLayoutEngine
-
-    buffer = io.BytesIO()
-    # a constrained layout already fits the figure; "tight" would draw it twice
-    tight = None if isinstance(fig.get_layout_engine(), ConstrainedLayoutEngine) else "tight"
-    fig.savefig(buffer, format="png", dpi=dpi, bbox_inches=tight)
-    if not palette:
-        return buffer.getvalue()
-    from PIL import Image
-
-    buffer.seek(0)
-    # the octree quantizer: 10x faster than median cut, alike on line plots
-    image = Image.open(buffer).convert("RGB").quantize(
-        colors=256, method=Image.Quantize.FASTOCTREE, dither=Image.Dither.NONE)
-    out = io.BytesIO()
-    image.save(out, format="PNG")
-    return out.getvalue()
-
-
 def provenance(files, extra=None) -> str:
     """Markdown listing the input files, the lsbg version and the time.
 
@@ -456,6 +424,8 @@ class Report:
     def figures_side_by_side(self, figs, caption):
         """Show several figures in one row (wrapping if narrow) with one caption."""
         from IPython.display import HTML
+
+        from lsbg.figures.base import figure_png  # (matplotlib only in lsbg.figures)
 
         style = (f"max-width:{100 / len(figs):.0f}%; min-width:320px; height:auto"
                  if len(figs) > 1 else "max-width:100%; height:auto")

@@ -1,7 +1,7 @@
 """Every report figure reads well at report size: labels with units, nothing cut or overprinted.
 
 Each figure function of :mod:`lsbg.figures` is drawn (Agg, 100 dpi, as
-:func:`lsbg.reports.figure_png` renders it into a report) and checked by one
+:func:`lsbg.figures.base.figure_png` renders it into a report) and checked by one
 helper, :func:`readability_problems`:
 
 (a) every visible axes with data has an x and a y label, with a unit in square
@@ -37,11 +37,12 @@ from lsbg.figures import (geometry as geometry_figures, mesh as mesh_figures,
                           trends as trend_figures, verification as verification_figures)
 from lsbg.figures.base import axis_label, display_unit, wrap_label
 from lsbg.solid.directory import read_design
-from lsbg.reports import figure_png
+from lsbg.figures.base import figure_png
 from lsbg.dynamics.dataset import open_run
 from lsbg.aggregate.runs import open_mesh
 from lsbg.tables import line_model as line_tables, paper as paper_tables
 from lsbg.tables import verification as verification_tables
+from lsbg.experiments import point_checks
 
 #: Widest PNG a report shows at full size [px].
 MAX_WIDTH_PX = 1340
@@ -382,7 +383,7 @@ def test_picture_crop_drops_the_caption_and_the_blank_border():
 
 def test_geometry_checks_read_well(geometry_dirs):
     assert_readable(geometry_figures.plot_spiral_angle_along_face(list(geometry_dirs.values())))
-    errors = {label: verification_tables.conjugacy_errors(read_design(path), phases=5, n=5)
+    errors = {label: point_checks.conjugacy_errors(read_design(path), phases=5, n=5)
               for label, path in geometry_dirs.items()}
     assert_readable(geometry_figures.plot_conjugacy(errors))
 

@@ -9,7 +9,6 @@ import numpy as np
 import pandas as pd
 import pytest
 import xarray as xr
-import yaml
 
 from lsbg import cli, reports
 from lsbg.experiments import speed
@@ -76,9 +75,11 @@ def study_files(tmp_path_factory):
         tca = root / "results" / "tca" / f"{trace}_beta35.nc"
         vh = root / "results" / "vh" / f"{trace}_beta35.nc"
         assert cli.main(["misalignment-map", "--geometry", str(files["geometry"][trace]),
-                         "--modification", "lengthwise_crowning_um=25",
-                         "--modification", "profile_crowning_um=5", "--steps", "3",
-                         "--positions", "24", "--load-torque", "500", "--out", str(vh),
+                         "--set", "flank_modification.lengthwise_crowning_um=25",
+                         "--set", "flank_modification.profile_crowning_um=5",
+                         "--set", "misalignment_map.steps=3",
+                         "--set", "misalignment_map.positions=24",
+                         "--set", "misalignment_map.load_torque_N_m=500", "--out", str(vh),
                          "--tca-out", str(tca)]) == 0
         files["tca"].append(tca)
         files["vh"].append(vh)
@@ -91,6 +92,19 @@ def study_files(tmp_path_factory):
         path.parent.mkdir(parents=True, exist_ok=True)
         table.to_csv(path, index=False)
         files["convergence"].append(path)
+    # what the reports show that a stage computes: the checks of each design point
+    # (lsbg checks) and the ISO 10300 rating of every point of the summary (lsbg rate-sweep)
+    files["checks"] = []
+    for trace in ("logarithmic", "circular"):
+        path = root / "results" / "verification" / f"{trace}_beta35_checks.nc"
+        assert cli.main(["checks", "--geometry", str(files["geometry"][trace]),
+                         "--mesh", str(files["meshes"][trace]),
+                         "--run", str(files["runs"][(trace, "point", "pybullet")]),
+                         "--out", str(path)]) == 0
+        files["checks"].append(path)
+    files["rating_sweep"] = root / "results" / "rating_sweep.nc"
+    assert cli.main(["rate-sweep", "--summary", str(files["summary"]),
+                     "--out", str(files["rating_sweep"])]) == 0
     return files
 
 
@@ -100,7 +114,7 @@ def paper_parameters(files):
             "geometry_dirs": [files["geometry"][t] for t in ("logarithmic", "circular")],
             "paper_engine": "pybullet",
             "line_engine": "compiled", "sweep_file": files["sweep"], "tca_files": files["tca"],
-            "vh_files": files["vh"], **STATISTICS}
+            "vh_files": files["vh"], "checks_files": files["checks"], **STATISTICS}
 
 
 def check_html(path, headings, images, code_snippets):
@@ -210,13 +224,11 @@ def test_paper_report(study_files, tmp_path):
 
 def test_sweep_report(study_files, tmp_path):
     out = tmp_path / "sweep.html"
-    config = tmp_path / "config.yaml"
-    config.write_text(yaml.safe_dump({"design": {}, "rating": {}, "tooth": {},
-                                      "simulation": {"load_torque_N_m": 1964.99}}))
     reports.render_report("sweep", out, {"sweep_file": study_files["sweep"],
                                          "summary_file": study_files["summary"],
                                          "speed_curve_file": study_files["speed_curve"],
-                                         "vh_files": study_files["vh"], "config_file": config,
+                                         "vh_files": study_files["vh"],
+                                         "rating_sweep_file": study_files["rating_sweep"],
                                          "steady_state_after_s": 0.01})
     html = check_html(out, ["Spiral-angle sweep", "1. Loaded tooth contact",
                             "2. Fluctuations against", "3. Which type",
@@ -249,11 +261,13 @@ def test_verification_report_via_cli_with_relative_paths(study_files, monkeypatc
     geometry = [study_files["geometry"][t].relative_to(root) for t in ("logarithmic", "circular")]
     convergence = [path.relative_to(root) for path in study_files["convergence"]]
     meshes = [path.relative_to(root) for path in study_files["meshes"].values()]
+    checks = [path.relative_to(root) for path in study_files["checks"]]
     code = cli.main(["report", "verification", "--out", "reports/verification.html",
                      "--param", f"convergence_files=[{', '.join(map(str, convergence))}]",
                      f"geometry_dirs=[{', '.join(map(str, geometry))}]",
                      f"runs=[{', '.join(map(str, relative.values()))}]",
                      f"mesh_files=[{', '.join(map(str, meshes))}]",
+                     f"checks_files=[{', '.join(map(str, checks))}]",
                      "--param", "steady_state_after_s=0.01"])
     assert code == 0, capsys.readouterr().err
     html = check_html(root / "reports" / "verification.html",
@@ -263,7 +277,7 @@ def test_verification_report_via_cli_with_relative_paths(study_files, monkeypatc
                        "5. The contact state", "Appendix. Inputs and settings"],
                       # convergence (two models), engine agreement, spiral angle, pressure
                       # angle, conjugacy
-                      images=6, code_snippets=["verification_tables.conjugacy_errors(read_design"])
+                      images=6, code_snippets=["verification_tables.conjugacy_table(ds)"])
     # the finding: how many checks pass, and the checks that must pass even on short runs
     assert re.search(r"<strong>(All )?\d+ of \d+ checks pass</strong>", html)
     for check in ("LSBG spiral angle constant along the face", "flanks conjugate",
@@ -318,11 +332,12 @@ def test_notebooks_declare_the_interface_parameters():
         "paper": {"runs", "sensitivity_runs", "mesh_files", "geometry_dirs", "paper_engine",
                   "line_engine", "steady_state_after_s", "chart_window_start_s",
                   "chart_window_stop_s", "subgroup_size", "sweep_file", "tca_files", "vh_files",
-                  "fe_ltca_files", "rating_files", "vh_case_files", "fe_case_files"},
+                  "fe_ltca_files", "rating_files", "vh_case_files", "fe_case_files",
+                  "checks_files"},
         "sweep": {"sweep_file", "summary_file", "speed_curve_file", "steady_state_after_s",
-                  "vh_files", "config_file", "parameter_sweep_files"},
+                  "vh_files", "rating_sweep_file", "parameter_sweep_files"},
         "verification": {"convergence_files", "geometry_dirs", "runs", "mesh_files",
-                         "steady_state_after_s"},
+                         "steady_state_after_s", "checks_files"},
     }
     import nbformat
 

@@ -1,7 +1,7 @@
 """The figure factory, the colours, and the labels and legends every figure shares.
 
 Every figure is read in a browser at about 1400 px, from a PNG rendered at
-100 dpi (:func:`lsbg.reports.figure_png`), so what this module builds keeps a
+100 dpi (:func:`figure_png`), so what this module builds keeps a
 figure readable there: axis labels "quantity [unit]" with units as printed
 (µrad, N/µm, N·m; :func:`axis_label`), long labels wrapped rather than cut,
 and legends outside the data (:func:`figure_legend`, :func:`legend_above`).
@@ -9,6 +9,7 @@ and legends outside the data (:func:`figure_legend`, :func:`legend_above`).
 
 from __future__ import annotations
 
+import io
 import textwrap
 
 import numpy as np
@@ -283,3 +284,40 @@ def wrap_categories(labels, width=14):
     run into their neighbours.
     """
     return [textwrap.fill(str(label), width=width, break_long_words=False) for label in labels]
+
+
+def figure_png(fig, dpi=100, palette=True) -> bytes:
+    """A matplotlib figure as PNG bytes (tight bounding box unless its layout is constrained).
+
+    What a report embeds of a figure (:meth:`lsbg.reports.Report.figure`).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+    dpi : float, default 100
+        Resolution [dots per inch]; 100 keeps reports small.
+    palette : bool, default True
+        Store the image with a 256-colour palette (no dithering): line plots
+        look the same at about a third of the size.
+
+    Returns
+    -------
+    bytes
+    """
+    from matplotlib.layout_engine import ConstrainedLayoutEngine
+
+    buffer = io.BytesIO()
+    # a constrained layout already fits the figure; "tight" would draw it twice
+    tight = None if isinstance(fig.get_layout_engine(), ConstrainedLayoutEngine) else "tight"
+    fig.savefig(buffer, format="png", dpi=dpi, bbox_inches=tight)
+    if not palette:
+        return buffer.getvalue()
+    from PIL import Image
+
+    buffer.seek(0)
+    # the octree quantizer: 10x faster than median cut, alike on line plots
+    image = Image.open(buffer).convert("RGB").quantize(
+        colors=256, method=Image.Quantize.FASTOCTREE, dither=Image.Dither.NONE)
+    out = io.BytesIO()
+    image.save(out, format="PNG")
+    return out.getvalue()

@@ -191,7 +191,8 @@ def plot_conjugacy(errors) -> Figure:
     Parameters
     ----------
     errors : dict
-        ``{gear type: DataFrame}`` from :func:`conjugacy_errors`.
+        ``{gear type: DataFrame}`` from :func:`lsbg.tables.verification.conjugacy_table`
+        (:func:`lsbg.experiments.point_checks.conjugacy_errors`).
 
     Returns
     -------

@@ -215,7 +215,7 @@ def plot_rating_against_angle(table):
     Parameters
     ----------
     table : pandas.DataFrame
-        From :func:`lsbg.tables.rating.rating_by_angle` (MPa).
+        From :func:`lsbg.tables.rating.read_rating_sweep` (MPa).
 
     Returns
     -------

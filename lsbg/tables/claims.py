@@ -429,7 +429,7 @@ def claims_by_angle(ratios, contact, rating):
     contact : pandas.DataFrame
         :func:`contact_state_by_angle`, or empty.
     rating : pandas.DataFrame
-        :func:`lsbg.tables.rating.rating_by_angle`, or empty.
+        :func:`lsbg.tables.rating.read_rating_sweep`, or empty.
 
     Returns
     -------

@@ -17,8 +17,7 @@ import pandas as pd
 from lsbg.aggregate.runs import gear_type
 
 __all__ = ["tca_table", "sensitivity_table", "pattern_movement",
-           "movement_statement", "sensitivity_by_angle", "steadier_by_angle",
-           "contact_state_checks"]
+           "movement_statement", "sensitivity_by_angle", "steadier_by_angle"]
 
 #: Quantities of a V-H map summarised per 0.1 of each displacement, with their
 #: words and units.
@@ -197,59 +196,3 @@ def steadier_by_angle(table, quantity="pattern_movement", axis="total"):
     wide["steadier"] = np.where(wide.get("SBG", np.nan).abs() < wide.get("LSBG", np.nan).abs(),
                                 "SBG", "LSBG")
     return wide.reset_index()
-
-
-def contact_state_checks(pair, modification, positions=100):
-    """What the contact-state analysis must satisfy on a design, checked.
-
-    Parameters
-    ----------
-    pair : lsbg.gear.geometry.GearPair
-    modification : lsbg.tca.modification.FlankModification
-        The crowning to check (with lengthwise and profile crowning).
-    positions : int
-        Positions of each TCA over a mesh cycle [-].
-
-    Returns
-    -------
-    dict
-        ``conjugate_te_pp_rad``: the conjugate, aligned pair's unloaded TE
-        peak to peak from the surfaces [rad]; ``backlash_error``: its least
-        backlash against the design's j_t / r_m2, relative [-];
-        ``crowned_te_pp_urad`` and ``designed_te_pp_urad``: the crowned
-        pair's TE peak to peak from the surfaces and from the closed form
-        [µrad]; ``line_model_te_difference``: the line model's unloaded TE on
-        the separation field against the surface TCA's, relative [-];
-        ``pattern_shift_plus_mm``, ``pattern_shift_minus_mm``: the pattern
-        centre's movement towards the heel for an offset E = +0.1 and -0.1 mm
-        [mm] (the displacement that moves both types' patterns most).
-    """
-    from lsbg.contact import ContactParameters, MeshContact
-    from lsbg.tca.loaded import loaded_tca
-    from lsbg.tca.analysis import tooth_contact_analysis
-    from lsbg.tca.misalignment import Misalignment
-    from lsbg.tca.separation import separation_field
-
-    design = pair.design
-    conjugate = tooth_contact_analysis(pair, positions=positions)
-    backlash = design.backlash / design.mean_pitch_radius(2) * 1e6
-    crowned = tooth_contact_analysis(pair, modification, positions=positions)
-    line = loaded_tca(MeshContact(pair, ContactParameters(model="line"),
-                                  separation=separation_field(pair, modification)),
-                      0.0, phases=positions)
-    centre = crowned.attrs["pattern_centre_cone_distance_mm"]
-    shifted = {sign: tooth_contact_analysis(pair, modification,
-                                            Misalignment(offset=sign * 1e-4),
-                                            positions=positions)
-               for sign in (1, -1)}
-    surface_pp = crowned.attrs["transmission_error_peak_to_peak_urad"]
-    return {
-        "conjugate_te_pp_rad": conjugate.attrs["transmission_error_peak_to_peak_urad"] * 1e-6,
-        "backlash_error": conjugate.attrs["backlash_min_urad"] / backlash - 1,
-        "crowned_te_pp_urad": surface_pp,
-        "designed_te_pp_urad": crowned.attrs["designed_transmission_error_peak_to_peak_urad"],
-        "line_model_te_difference":
-            line.attrs["transmission_error_peak_to_peak_urad"] / surface_pp - 1,
-        "pattern_shift_plus_mm": shifted[1].attrs["pattern_centre_cone_distance_mm"] - centre,
-        "pattern_shift_minus_mm": shifted[-1].attrs["pattern_centre_cone_distance_mm"] - centre,
-    }

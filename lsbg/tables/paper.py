@@ -6,7 +6,9 @@
 * :func:`compare_types`, :func:`fluctuation_table` and
   :func:`fluctuation_conclusion`: the paper's "LSBG fluctuates less", with a
   number and an interval on it (:func:`lsbg.stats.compare_fluctuation`);
-* :func:`control_charts`: the Xbar-R charts of 0.8–1.0 s (§4.3).
+* :func:`control_charts`: the Xbar-R charts of 0.8–1.0 s (§4.3);
+* :func:`at_spiral_angle` and :func:`cases_at_spiral_angle`: a report's files
+  of its own design point among those of every angle.
 
 Units are the run datasets' (deg/s, N).
 
@@ -21,12 +23,13 @@ import numpy as np
 import pandas as pd
 
 from lsbg import stats
-from lsbg.aggregate.runs import (QUANTITIES, QUANTITY_LABELS, TYPE_ORDER, records_by_type,
-                                 run_theory, runs_by_type, steady)
+from lsbg.aggregate.runs import (QUANTITIES, QUANTITY_LABELS, TYPE_ORDER, gear_type,
+                                 records_by_type, run_theory, runs_by_type, steady)
 
 __all__ = [
     "PAPER", "design_table", "theory_table", "paper_comparison_table", "compare_types",
-    "fluctuation_table", "fluctuation_conclusion", "control_charts"
+    "fluctuation_table", "fluctuation_conclusion", "control_charts", "at_spiral_angle",
+    "cases_at_spiral_angle"
 ]
 
 
@@ -314,3 +317,42 @@ def control_charts(runs, quantity, window=(0.8, 1.0), subgroup_size=4) -> dict:
     return {label: stats.xbar_r_chart(stats.subgroups_from_window(
         ds[quantity].values, ds["time"].values, window[0], window[1], subgroup_size))
         for label, ds in runs_by_type(runs).items()}
+
+
+def _at_angle(paths, spiral_angle):
+    """The datasets of ``paths`` whose ``design_spiral_angle_deg`` is ``spiral_angle``."""
+    import xarray as xr
+
+    from lsbg.files import as_path_list
+
+    for path in as_path_list(paths):
+        with xr.open_dataset(path) as ds:
+            if float(ds.attrs["design_spiral_angle_deg"]) == spiral_angle:
+                yield ds.load()
+
+
+def at_spiral_angle(paths, spiral_angle) -> dict:
+    """The files of one design point among those of every spiral angle, by gear type.
+
+    Parameters
+    ----------
+    paths : str, os.PathLike or sequence of them
+        NetCDF files of lsbg with the ``design_*`` attributes (unloaded
+        TCAs, V-H maps, FE loaded TCAs, ratings).
+    spiral_angle : float
+        The design point's spiral angle [deg] (as its runs' attribute).
+
+    Returns
+    -------
+    dict
+        ``{gear type: dataset}`` (loaded) in the paper's order; a type with
+        no file at that angle is left out.
+    """
+    found = {gear_type(ds): ds for ds in _at_angle(paths, spiral_angle)}
+    return {t: found[t] for t in TYPE_ORDER if t in found}
+
+
+def cases_at_spiral_angle(paths, spiral_angle) -> list:
+    """The sensitivity cases' files of one design point (:func:`at_spiral_angle`), a list
+    in the order of ``paths``."""
+    return list(_at_angle(paths, spiral_angle))

@@ -9,7 +9,9 @@ rating_dataset`, one per gear type). Units are the datasets' (MPa, N m).
   assembly's displacement envelope;
 * :func:`life_table`: the life of the LSBG over the SBG's that each stress
   ratio implies on the Basquin lines of ISO 6336's life factors, with the
-  exponent's range (:func:`lsbg.rating.life.life_ratio`).
+  exponent's range (:func:`lsbg.rating.life.life_ratio`);
+* :func:`read_rating_sweep`: the rating of every design point of the sweep
+  (``lsbg rate-sweep``) as a table.
 """
 
 from __future__ import annotations
@@ -19,7 +21,7 @@ import pandas as pd
 
 from lsbg.aggregate.runs import TYPE_ORDER
 
-__all__ = ["rating_table", "life_table", "life_statement", "rating_by_angle", "LIFE_STRESSES",
+__all__ = ["rating_table", "life_table", "life_statement", "read_rating_sweep", "LIFE_STRESSES",
            "RESOLVED_STRESS_DIFFERENCE"]
 
 
@@ -227,63 +229,36 @@ def life_statement(ratings, where="", brief=False):
             f"differences beyond the FE model's {RESOLVED_STRESS_DIFFERENCE:.0%} scatter count.")
 
 
-def rating_by_angle(config, summary, engine="compiled"):
-    """ISO 10300 at every design point of a sweep, with each point's own K_v.
-
-    The standard needs only the geometry and the load: every design point of
-    the summary table is rated with the study's ``rating`` and ``tooth``
-    sections at its load and speed, K_v from the point's line-model run (the
-    summary table's ``dynamic_factor``; 1 where there is none, or the
-    section's number).
+def read_rating_sweep(path) -> pd.DataFrame:
+    """The ISO 10300 rating of every design point of the sweep (``lsbg rate-sweep``).
 
     Parameters
     ----------
-    config : dict
-        The study's settings as validated (``results/config.yaml``): its
-        ``design``, ``rating``, ``tooth`` and ``simulation`` sections.
-    summary : pandas.DataFrame
-        The summary table (:func:`lsbg.aggregate.summary.summary_table`): its design
-        points (``trace``, ``spiral_angle_deg``) and dynamic factors.
-    engine : str
-        The engine of the line-model runs whose K_v is taken.
+    path : str, os.PathLike or ""
+        The file of :func:`lsbg.experiments.rating_sweep.rating_sweep_dataset`
+        ("" or None: none).
 
     Returns
     -------
     pandas.DataFrame
-        Per gear type and spiral angle [deg]: ``K_v``, ``contact_stress``,
-        ``root_stress_pinion``, ``root_stress_gear`` [MPa],
-        ``contact_safety``, ``bending_safety_pinion``, ``bending_safety_gear``,
-        ``rated_gear_torque_contact`` [N m].
+        Per gear type and spiral angle [deg], as
+        :func:`lsbg.experiments.rating_sweep.rating_by_angle` gives it:
+        ``K_v``, the stresses [MPa], the safety factors and the rated gear
+        torque [N m]; empty without a file.
+
+    Raises
+    ------
+    lsbg.files.InputError
+        Naming a file that is missing or not a rating sweep.
     """
-    import math
+    from lsbg.experiments.rating_sweep import RATING_SWEEP_VARIABLES
+    from lsbg.files import as_path_list, open_dataset
 
-    from lsbg.gear.design import TRACE_LABELS, GearPairDesign
-    from lsbg.rating.config import rate_design
-
-    simulation = config.get("simulation", {})
-    load = float(simulation.get("load_torque_N_m", 1964.99))
-    speed = math.radians(float(simulation.get("pinion_speed_deg_s", 7703)))
-    factors = summary[(summary.contact_model == "line") & (summary.engine == engine)
-                      & summary.dynamic_factor.notna()]
-    rows = []
-    points = summary[["trace", "spiral_angle_deg"]].drop_duplicates()
-    for trace, angle in sorted(points.itertuples(index=False, name=None)):
-        if trace not in TRACE_LABELS:
-            continue
-        design = GearPairDesign.from_config({**config["design"], "trace": trace,
-                                             "spiral_angle_deg": float(angle)})
-        kv = factors[(factors.trace == trace) & np.isclose(factors.spiral_angle_deg, angle)]
-        kv = float(kv.dynamic_factor.iloc[0]) if len(kv) else None
-        rating, _, _ = rate_design(design, config.get("rating", {}), config.get("tooth", {}),
-                                   load, speed, kv)
-        ratio = design.gear_teeth / design.pinion_teeth
-        rows.append({"gear_type": TRACE_LABELS[trace], "spiral_angle": float(angle),
-                     "K_v": rating.factors["K_v"],
-                     "contact_stress": rating.contact_stress / 1e6,
-                     "root_stress_pinion": rating.root_stress[0] / 1e6,
-                     "root_stress_gear": rating.root_stress[1] / 1e6,
-                     "contact_safety": min(rating.contact_safety),
-                     "bending_safety_pinion": rating.bending_safety[0],
-                     "bending_safety_gear": rating.bending_safety[1],
-                     "rated_gear_torque_contact": rating.rated_pinion_torque_contact * ratio})
-    return pd.DataFrame(rows)
+    paths = as_path_list(path)
+    if not paths:
+        return pd.DataFrame()
+    columns = ("gear_type", "spiral_angle", *RATING_SWEEP_VARIABLES)
+    ds = open_dataset(paths[0], "rating sweep", columns, (),
+                      "a rating sweep of lsbg rate-sweep")
+    return pd.DataFrame({name: ds[name].values.tolist() if name == "gear_type"
+                         else ds[name].values for name in columns})

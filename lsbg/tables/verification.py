@@ -1,21 +1,21 @@
 """Tables of the verification report: engines agree, runs converge, the geometry is exact.
 
 * :func:`engine_agreement`: each engine's statistics against the reference
-  engine's (:data:`REFERENCE_ENGINES`);
+  engine's (:data:`REFERENCE_ENGINES`), per contact model with
+  :func:`agreement_by_model`;
 * :func:`read_convergence` and :func:`convergence_table`: the statistics under
   halving the time step or tightening the tolerance (``lsbg convergence``);
-* :func:`contact_resonance`: the contact mode's frequency and damping ratio
-  from the contact law and the gear's inertia;
-* :func:`pressure_angle_table` and :func:`conjugacy_errors`: the pressure
-  angles along the face and the deviation of the flanks from conjugacy
-  (:mod:`lsbg.gear.geometry`);
+* :func:`pressure_angle_table`: the normal pressure angles measured on the
+  flanks (the design record of ``lsbg geometry``);
+* :func:`read_checks`, :func:`ltca_check_table`, :func:`contact_state_check_table`,
+  :func:`conjugacy_table`, :func:`check_settings` and :func:`resonance_of`:
+  the checks of a design point that ``lsbg checks`` computed
+  (:mod:`lsbg.experiments.point_checks`), read and tabulated;
 * :func:`setting_label`, :func:`convergence_display` and :func:`by_gear_type`:
   the tables as the verification report shows them (narrow; nothing computed).
 """
 
 from __future__ import annotations
-
-import math
 
 import numpy as np
 import pandas as pd
@@ -26,8 +26,10 @@ from lsbg.aggregate.runs import records_by_type, run_spiral_angle, steady
 from lsbg.stats.samples import format_number
 
 __all__ = [
-    "REFERENCE_ENGINES", "engine_agreement", "contact_resonance", "read_convergence",
-    "convergence_table", "pressure_angle_table", "conjugacy_errors", "setting_label",
+    "REFERENCE_ENGINES", "engine_agreement", "agreement_by_model", "read_convergence",
+    "convergence_table",
+    "pressure_angle_table", "read_checks", "ltca_check_table", "contact_state_check_table",
+    "conjugacy_table", "check_settings", "resonance_of", "setting_label",
     "CONVERGENCE_DISPLAY_COLUMNS", "convergence_display", "by_gear_type"
 ]
 
@@ -94,57 +96,32 @@ def engine_agreement(runs, start=0.2, quantities=("gear_speed", "tangential_forc
     return pd.DataFrame(rows, columns=columns)
 
 
-def _contact_parameters(ds):
-    """ContactParameters from a run's ``contact_*`` attributes (the paper's if absent)."""
-    from lsbg.contact import ContactParameters
-
-    return ContactParameters.from_dict({} if ds is None else ds.attrs, prefix="contact_")
-
-
-def contact_resonance(geometry_dir, run=None, positions=12) -> dict:
-    """Torsional resonance of the gear on the linearised contact at the static load.
-
-    The pinion follows its prescribed motion, so the gear (inertia J2) rests
-    on the mesh spring k = −dT/dφ2 of the IMPACT law at the deflection that
-    carries the load: f = √(k/J2) / 2π. The stiffness varies with the mesh
-    position (the number of tooth pairs and their lines change), so it is
-    evaluated at ``positions`` pinion angles over one pinion pitch.
+def agreement_by_model(runs, start=0.2, quantities=("gear_speed", "tangential_force"),
+                       models=("point", "line")) -> pd.DataFrame:
+    """:func:`engine_agreement` per contact model, stacked.
 
     Parameters
     ----------
-    geometry_dir : str or os.PathLike
-        Geometry directory of the design point.
-    run : xarray.Dataset, optional
-        Run dataset whose contact parameters and load torque to use (the
-        paper's otherwise).
-    positions : int, default 12
-        Mesh positions over one pinion pitch [-].
+    runs : sequence of xarray.Dataset
+    start : float
+        End of the transient [s].
+    quantities : sequence of str
+    models : sequence of str
+        Contact models, in the order of the result.
 
     Returns
     -------
-    dict
-        ``frequency_hz`` (mean), ``frequency_min_hz``, ``frequency_max_hz``
-        [Hz] and ``stiffness_N_m_per_rad`` (mean) [N m/rad].
+    pandas.DataFrame
+        :func:`engine_agreement`'s rows of each model with a column
+        ``contact_model``; empty (no columns) if no model has two engines.
     """
-    from lsbg.dynamics import SimulationSettings, load_model
-
-    model = load_model(geometry_dir, _contact_parameters(run))
-    load = (float(run.attrs["solver_load_torque_N_m"])
-            if run is not None and "solver_load_torque_N_m" in run.attrs
-            else SimulationSettings().load_torque)
-    z1 = model.pair.design.pinion_teeth
-    stiffness = []
-    for phi1 in np.linspace(0.0, 2 * math.pi / z1, positions, endpoint=False):
-        phi2 = model.contact.static_gear_angle(load, pinion_angle=phi1)
-        h = 1e-7
-        plus = model.contact.forces(phi1, phi2 + h).gear_torque
-        minus = model.contact.forces(phi1, phi2 - h).gear_torque
-        stiffness.append(abs(plus - minus) / (2 * h))
-    stiffness = np.asarray(stiffness)
-    freq = np.sqrt(stiffness / model.gear_inertia) / (2 * math.pi)
-    return {"frequency_hz": float(freq.mean()), "frequency_min_hz": float(freq.min()),
-            "frequency_max_hz": float(freq.max()),
-            "stiffness_N_m_per_rad": float(stiffness.mean())}
+    groups = []
+    for model in models:
+        part = engine_agreement([ds for ds in runs if ds.attrs["contact_model"] == model],
+                                start, quantities=quantities)
+        if not part.empty:
+            groups.append(part.assign(contact_model=model))
+    return pd.concat(groups, ignore_index=True) if groups else pd.DataFrame()
 
 
 # -------------------------------------------------------------- verification
@@ -238,59 +215,178 @@ def pressure_angle_table(geometry_dirs) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
-def conjugacy_errors(design, side="drive", phases=25, n=17) -> pd.DataFrame:
-    """Distance between the pinion and gear flanks on the contact lines.
+# ------------------------------------------------ the checks (lsbg checks)
+#: Columns of :func:`ltca_check_table` read from the design point's loaded TCA
+#: (``lsbg ltca``): column -> its attribute.
+_MESH_COLUMNS = {"mean_stiffness_N_per_um": "mesh_stiffness_mean_N_per_um",
+                 "closed_form_N_per_um": "mean_mesh_stiffness_closed_form_N_per_um",
+                 "c_gamma_N_per_mm_um": "mesh_stiffness_per_face_width_N_per_mm_um"}
+#: Columns of :func:`ltca_check_table` from ``lsbg checks`` and of
+#: :func:`contact_state_check_table`: column -> variable of the checks' dataset.
+_LTCA_COLUMNS = {"unloaded_te_max_rad": "unloaded_te_max", "linearity_error": "linearity_error",
+                 "te_pp_slices_x2_change_percent": "te_pp_slices_x2_change",
+                 "te_pp_slices_x4_change_percent": "te_pp_slices_x4_change",
+                 "k_l_for_c_gamma_20_N_per_mm_um": "calibrated_line_stiffness"}
+_CONTACT_STATE_COLUMNS = {"conjugate_te_pp_rad": "conjugate_te_pp",
+                          "backlash_error": "backlash_error",
+                          "crowned_te_pp_urad": "crowned_te_pp",
+                          "designed_te_pp_urad": "designed_te_pp",
+                          "line_model_te_difference": "line_model_te_difference",
+                          "pattern_shift_plus_mm": "pattern_shift_plus",
+                          "pattern_shift_minus_mm": "pattern_shift_minus"}
 
-    At each mesh position (turn Ψ of the generating curve) both members are
-    turned so that tooth 0's contact line lies at Ψ; the flank points of both
-    members at the contact-line points (same cone distance and polar angle)
-    must coincide with the line and their normals must be opposite: exact
-    line contact (DESIGN.md §2).
+
+def read_checks(paths, types=None) -> dict:
+    """The checks of the design points (``lsbg checks``), by gear type.
 
     Parameters
     ----------
-    design : lsbg.gear.design.GearPairDesign
-    side : {'drive', 'coast'}
-    phases : int, default 25
-        Mesh positions across the field of contact (and a little beyond) [-].
-    n : int, default 17
-        Points per contact line; the end points (possibly on the base cone,
-        where the polar angle is a singular parameter) are left out [-].
+    paths : str, os.PathLike or sequence of them
+        Files of :func:`lsbg.experiments.point_checks.design_point_checks`.
+    types : sequence of str, optional
+        The gear types a report needs, in its order.
+
+    Returns
+    -------
+    dict
+        ``{gear type: xarray.Dataset}`` in the order of ``types``, else of
+        ``paths``.
+
+    Raises
+    ------
+    lsbg.files.InputError
+        Naming a file that is missing or not a checks dataset.
+    ValueError
+        Naming a gear type of ``types`` that no file holds.
+    """
+    from lsbg.experiments.point_checks import CHECK_VARIABLES, CONJUGACY_VARIABLES
+    from lsbg.files import open_dataset
+
+    checks = {}
+    for path in as_path_list(paths):
+        ds = open_dataset(path, "checks", (*CHECK_VARIABLES, *CONJUGACY_VARIABLES),
+                          ("design_trace", "load_torque_N_m", "contact_slices"),
+                          "a checks dataset of lsbg checks")
+        checks[TRACE_LABELS.get(ds.attrs["design_trace"], ds.attrs["design_trace"])] = ds
+    if types is None:
+        return checks
+    missing = [t for t in types if t not in checks]
+    if missing:
+        raise ValueError(f"checks_files: no checks of the {', '.join(missing)} (lsbg checks "
+                         f"at its design point)")
+    return {t: checks[t] for t in types}
+
+
+def ltca_check_table(checks, meshes) -> pd.DataFrame:
+    """The loaded TCA's checks, one row per gear type.
+
+    Parameters
+    ----------
+    checks : dict
+        ``{gear type: dataset}`` of :func:`read_checks`; the rows follow it.
+    meshes : dict
+        ``{gear type: dataset}`` of the same design points' loaded TCAs
+        (``lsbg ltca``): their mean mesh stiffness, its closed form and c_gamma.
 
     Returns
     -------
     pandas.DataFrame
-        Per mesh position with a contact line: ``phase_deg``,
-        ``pinion_distance_m`` and ``gear_distance_m`` (largest distance of a
-        member's flank point from the contact line point) [m] and
-        ``normal_mismatch`` (largest |n1 + n2|) [-].
+        ``gear_type``, ``unloaded_te_max_rad``, ``mean_stiffness_N_per_um``,
+        ``closed_form_N_per_um``, ``c_gamma_N_per_mm_um``,
+        ``linearity_error``, ``te_pp_slices_x2_change_percent``,
+        ``te_pp_slices_x4_change_percent``, ``k_l_for_c_gamma_20_N_per_mm_um``.
     """
-    from lsbg.gear.geometry import GearPair
-    from lsbg.gear.vectors import rotate
-
-    pair = GearPair(design)
-    lo, hi = pair.planes[side].field[:2]
     rows = []
-    for phase in np.linspace(lo - 0.3, hi + 0.3, phases):
-        rho, points, _ = pair.contact_line(side, phase, n=n)
-        if rho.size < 3:
-            continue
-        rho, points = rho[1:-1], points[1:-1]
-        flanks = []
-        for member in (1, 2):
-            u = pair.rotation_axis[member]
-            rotation = (phase / pair.axis_normal_component(member, side)
-                        - pair.flank_offset[(member, side)])
-            polar = np.arccos(points @ pair.axis[member] / np.linalg.norm(points, axis=1))
-            body, normals = pair.flank(member, side, rho, polar)
-            flanks.append((rotate(body, u, rotation), rotate(normals, u, rotation)))
-        (p1, n1), (p2, n2) = flanks
-        rows.append({"phase_deg": math.degrees(phase),
-                     "pinion_distance_m": float(np.max(np.linalg.norm(p1 - points, axis=1))),
-                     "gear_distance_m": float(np.max(np.linalg.norm(p2 - points, axis=1))),
-                     "normal_mismatch": float(np.max(np.linalg.norm(n1 + n2, axis=1)))})
-    return pd.DataFrame(rows, columns=["phase_deg", "pinion_distance_m", "gear_distance_m",
-                                       "normal_mismatch"])
+    for label, ds in checks.items():
+        row = {"gear_type": label, "unloaded_te_max_rad": float(ds["unloaded_te_max"])}
+        row.update({column: meshes[label].attrs[name] for column, name in _MESH_COLUMNS.items()})
+        row.update({column: float(ds[name]) for column, name in _LTCA_COLUMNS.items()
+                    if column not in row})
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def contact_state_check_table(checks) -> pd.DataFrame:
+    """The contact state's checks, one row per gear type.
+
+    Parameters
+    ----------
+    checks : dict
+        ``{gear type: dataset}`` of :func:`read_checks`; the rows follow it.
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``gear_type`` and the answers of
+        :func:`lsbg.experiments.point_checks.contact_state_checks`
+        (``conjugate_te_pp_rad``, ``backlash_error``, ``crowned_te_pp_urad``,
+        ``designed_te_pp_urad``, ``line_model_te_difference``,
+        ``pattern_shift_plus_mm``, ``pattern_shift_minus_mm``), then
+        ``designed_te_difference``: the surfaces' TE over the closed form − 1.
+    """
+    table = pd.DataFrame([{"gear_type": label, **{column: float(ds[name]) for column, name
+                                                   in _CONTACT_STATE_COLUMNS.items()}}
+                          for label, ds in checks.items()])
+    table["designed_te_difference"] = table.crowned_te_pp_urad / table.designed_te_pp_urad - 1
+    return table
+
+
+def conjugacy_table(ds) -> pd.DataFrame:
+    """A design point's conjugacy errors (``lsbg checks``) as a table.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Per mesh position: ``phase_deg``, ``pinion_distance_m``,
+        ``gear_distance_m`` [m] and ``normal_mismatch`` [-], as
+        :func:`lsbg.experiments.point_checks.conjugacy_errors` gives them.
+    """
+    return pd.DataFrame({"phase_deg": ds["phase"].values,
+                         "pinion_distance_m": ds["conjugacy_pinion_distance"].values,
+                         "gear_distance_m": ds["conjugacy_gear_distance"].values,
+                         "normal_mismatch": ds["conjugacy_normal_mismatch"].values})
+
+
+def check_settings(checks) -> dict:
+    """``{gear type: (load torque [N m], slices)}`` of the loaded TCAs the checks ran."""
+    return {label: (float(ds.attrs["load_torque_N_m"]), ds.attrs["contact_slices"])
+            for label, ds in checks.items()}
+
+
+def resonance_of(checks, engine=None) -> dict:
+    """The contact resonance of each gear type (``lsbg checks``).
+
+    Parameters
+    ----------
+    checks : dict
+        ``{gear type: dataset}`` of :func:`read_checks`.
+    engine : str, optional
+        The engine whose point-model run the report discusses: a check
+        computed on another engine's run is refused.
+
+    Returns
+    -------
+    dict
+        ``{gear type: {"frequency_hz", "frequency_min_hz", "frequency_max_hz",
+        "stiffness_N_m_per_rad"}}`` as
+        :func:`lsbg.experiments.point_checks.contact_resonance` gives them.
+
+    Raises
+    ------
+    ValueError
+        Naming the gear type whose checks ran on another engine's run.
+    """
+    out = {}
+    for label, ds in checks.items():
+        ran = ds.attrs.get("resonance_run_engine", "")
+        if engine is not None and ran != engine:
+            raise ValueError(f"{ds.encoding.get('source', label)}: its resonance is of the "
+                             f"{ran} engine's run, not the {engine} engine's")
+        out[label] = {key: float(ds[name]) for key, name in (
+            ("frequency_hz", "resonance_frequency"), ("frequency_min_hz", "resonance_frequency_min"),
+            ("frequency_max_hz", "resonance_frequency_max"),
+            ("stiffness_N_m_per_rad", "resonance_stiffness"))}
+    return out
 
 
 # ------------------------------------------------------------- as shown
