@@ -16,9 +16,9 @@ the configuration's schema before any work; a command's own options are only
 its inputs, its outputs and what it runs.
 
 Every subcommand is a function ``add_<name>_parser(subparsers)`` that adds its
-parser and sets ``handler=<function(args)>`` as a default. They are listed in
-:data:`PARSERS` as ``"module:function"`` strings, imported when the parser is
-built. To add a subcommand, write, in its own module::
+parser and sets ``handler=<function(args)>`` as a default; :func:`parser_adders`
+finds them in the modules of this package (their ``__all__``) when the parser
+is built. To add a subcommand, write a new module here::
 
     from lsbg.cli.options import add_config_options, add_output, settings_of
 
@@ -33,8 +33,10 @@ built. To add a subcommand, write, in its own module::
         ...
         return f"wear {...} -> {args.out}"
 
-and add ``"lsbg.<module>:add_wear_parser"`` to :data:`PARSERS`. Keep the
-stage's imports inside the handler: the workflow reruns a command's jobs when a
+and list ``add_wear_parser`` in its ``__all__``: nothing else to edit (a module
+imports only :mod:`lsbg.cli.options` at its top, since every command builds
+the whole parser; tests/study/test_stages.py checks it). Keep the stage's
+imports inside the handler: the workflow reruns a command's jobs when a
 source its handler reaches changes (:func:`lsbg.study.stages.function_closure`
 from :func:`handler_of`), and ``lsbg --help`` stays fast.
 
@@ -67,35 +69,37 @@ from lsbg.config import ConfigError
 from lsbg.files import InputError
 from lsbg.gear.design import DesignError
 
-__all__ = ["main", "build_parser", "handler_of", "CommandError", "PARSERS", "USER_ERRORS"]
+__all__ = ["main", "build_parser", "parser_adders", "handler_of", "CommandError", "USER_ERRORS"]
 
 #: Exceptions that are a user's mistake: exit code 2 with the message, no traceback.
 USER_ERRORS = (ConfigError, DesignError, CommandError, InputError)
 
-#: One ``add_<name>_parser(subparsers)`` per subcommand, as ``"module:function"``.
-PARSERS = [
-    "lsbg.cli.config:add_check_config_parser",
-    "lsbg.cli.geometry:add_geometry_parser",
-    "lsbg.cli.geometry:add_points_parser",
-    "lsbg.cli.simulate:add_simulate_parser",
-    "lsbg.cli.simulate:add_sensitivity_parser",
-    "lsbg.cli.simulate:add_convergence_parser",
-    "lsbg.cli.analysis:add_ltca_parser",
-    "lsbg.cli.tooth:add_compliance_parser",
-    "lsbg.cli.rating:add_rate_parser",
-    "lsbg.cli.contact_state:add_tca_parser",
-    "lsbg.cli.contact_state:add_misalignment_map_parser",
-    "lsbg.cli.speed:add_mesh_mode_parser",
-    "lsbg.cli.speed:add_speed_run_parser",
-    "lsbg.cli.speed:add_speed_curve_parser",
-    "lsbg.cli.sweep:add_sweep_run_parser",
-    "lsbg.cli.sweep:add_sweep_combine_parser",
-    "lsbg.cli.analysis:add_combine_parser",
-    "lsbg.cli.analysis:add_summary_parser",
-    "lsbg.cli.analysis:add_report_parser",
-    "lsbg.cli.checks:add_checks_parser",
-    "lsbg.cli.checks:add_rate_sweep_parser",
-]
+#: The modules' places in ``lsbg --help`` (the data flow); a module not named comes after.
+RANKS = {"config": 0, "geometry": 1, "simulate": 2, "analysis": 3, "tooth": 4, "rating": 5,
+         "contact_state": 6, "speed": 7, "sweep": 8, "checks": 9}
+
+
+def parser_adders():
+    """Every ``add_<name>_parser(subparsers)`` of the modules of lsbg.cli, in ``RANKS`` order
+    (each module's in its ``__all__`` order).
+
+    A new subcommand is a new module here: found, not registered, so that adding one
+    changes no file that the other commands run (their jobs do not rerun).
+
+    Returns
+    -------
+    list of callable
+    """
+    import pkgutil
+
+    names = sorted((m.name for m in pkgutil.iter_modules(__path__)),
+                   key=lambda name: (RANKS.get(name, len(RANKS)), name))
+    adders = []
+    for name in names:
+        module = importlib.import_module(f"{__name__}.{name}")
+        adders += [getattr(module, f) for f in getattr(module, "__all__", ())
+                   if f.startswith("add_") and f.endswith("_parser")]
+    return adders
 
 
 def build_parser():
@@ -108,10 +112,7 @@ def build_parser():
     parser.add_argument("--version", action="version", version=f"lsbg {__version__}")
     parser.add_argument("-v", "--verbose", action="store_true", help="log progress on stderr")
     subparsers = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
-    for add in PARSERS:
-        if isinstance(add, str):
-            module, _, name = add.partition(":")
-            add = getattr(importlib.import_module(module), name)
+    for add in parser_adders():
         add(subparsers)
     for sub in subparsers.choices.values():
         sub.allow_abbrev = False

@@ -83,7 +83,7 @@ class ContactParameters:
         literature: 0.02–0.1, docs/model.md).
     slices : int, default 20
         Line model: slices across the face width [-], chosen by the
-        convergence test of tests/test_line_contact.py.
+        convergence test of tests/contact/test_kernels.py.
     approach_limit : float, default 0.5 mm = 5e-4 m
         Line model: a slice approach beyond this stops the run as a blow-up
         [m] (a linear slice law for steel teeth means nothing at half a

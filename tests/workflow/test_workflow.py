@@ -14,9 +14,6 @@ directory, so that nothing is written into the repository:
 import os
 import re
 import shutil
-import subprocess
-import sys
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -25,57 +22,12 @@ import xarray as xr
 import yaml
 
 from lsbg.study import job_order
-
-REPO = Path(__file__).resolve().parents[1]
-SNAKEFILE = REPO / "Snakefile"
-TEST_CONFIG = "workflow/config-test.yaml"
-
-
-def snakemake(*args, cwd, env=None, check=None):
-    """Run ``python -m snakemake ARGS`` in ``cwd``; return the completed process (text).
-
-    ``check=True`` asserts exit code 0 and shows the output if not.
-    """
-    proc = subprocess.run([sys.executable, "-m", "snakemake", *map(str, args)], cwd=cwd,
-                          env=env, capture_output=True, text=True, timeout=600)
-    proc.output = proc.stdout + proc.stderr
-    if check:
-        assert proc.returncode == 0, proc.output[-6000:]
-    return proc
-
-
-_JOB = re.compile(r"^(?:local)?rule (\w+):\n((?:    .*\n)+)", re.MULTILINE)
-
-
-def planned_jobs(output):
-    """The jobs of a dry run: {(rule, output files)} parsed from Snakemake's listing."""
-    jobs = set()
-    for rule, body in _JOB.findall(output):
-        fields = dict(re.findall(r"^    (\w+): (.*)$", body, re.MULTILINE))
-        jobs.add((rule, fields.get("output", "")))
-    return jobs
-
-
-def rules_of(jobs):
-    return sorted(rule for rule, _ in jobs)
-
-
-def job_inputs(output):
-    """rule -> input files (of its first job) in a dry run's listing."""
-    inputs = {}
-    for rule, body in _JOB.findall(output):
-        fields = dict(re.findall(r"^    (\w+): (.*)$", body, re.MULTILINE))
-        inputs.setdefault(rule, fields.get("input", "").split(", "))
-    return inputs
-
-
-def write_yaml(path, data):
-    path.write_text(yaml.safe_dump(data), encoding="utf-8")
-    return path
+from tests.workflow.helpers import (REPO, SNAKEFILE, TEST_CONFIG, _JOB, dry_run,
+                                    job_inputs, planned_jobs, rules_of, snakemake, write_yaml)
 
 
 # ------------------------------------------------------------ configuration
-# Invalid configurations: tests/test_config_checks.py (the fuzz suite, and a few
+# Invalid configurations: tests/study/test_checks.py (the fuzz suite, and a few
 # end to end through snakemake -n).
 
 
@@ -197,7 +149,7 @@ def test_lint_passes(tmp_path):
 
 def test_slurm_profile_schedules_with_resources(tmp_path):
     """The SLURM profile alone selects the executor and gives every job its memory, time
-    and one CPU (dry run, no sbatch; tests/test_slurm.py runs it on a real cluster)."""
+    and one CPU (dry run, no sbatch; tests/workflow/test_slurm.py runs it on a real cluster)."""
     profile = REPO / "workflow" / "profiles" / "slurm"
     assert yaml.safe_load((profile / "config.yaml").read_text())["executor"] == "slurm"
     proc = snakemake("-n", "--snakefile", SNAKEFILE, "--configfile", REPO / TEST_CONFIG,
@@ -210,39 +162,6 @@ def test_slurm_profile_schedules_with_resources(tmp_path):
 
 
 # ---------------------------------------------------------------- end to end
-def copy_repository(target):
-    """Copy the repository's files (tracked and untracked, not ignored) to ``target``."""
-    try:
-        listing = subprocess.run(["git", "ls-files", "-co", "--exclude-standard", "-z"],
-                                 cwd=REPO, capture_output=True, check=True).stdout
-        files = [f for f in listing.decode().split("\0") if f]
-    except (OSError, subprocess.CalledProcessError):
-        skip = {".git", "results", "logs", ".snakemake", "__pycache__", ".pytest_cache"}
-        files = [str(p.relative_to(REPO)) for p in REPO.rglob("*")
-                 if p.is_file() and not skip & set(p.relative_to(REPO).parts)]
-    for name in files:
-        source = REPO / name
-        if source.is_file() and not name.startswith(("results/", "logs/", "reports/")):
-            (target / name).parent.mkdir(parents=True, exist_ok=True)
-            shutil.copy2(source, target / name)
-    return target
-
-
-@pytest.fixture(scope="module")
-def study(tmp_path_factory):
-    """The tiny study run with -j2 in a copy of the repository: (directory, environment)."""
-    root = copy_repository(tmp_path_factory.mktemp("study"))
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join(
-        [str(root), *filter(None, [os.environ.get("PYTHONPATH")])]))
-    snakemake("-j2", "--configfile", TEST_CONFIG, cwd=root, env=env, check=True)
-    return root, env
-
-
-def dry_run(study, *configfiles):
-    root, env = study
-    proc = snakemake("-n", "--configfile", TEST_CONFIG, *configfiles, cwd=root, env=env,
-                     check=True)
-    return planned_jobs(proc.output), proc.output
 
 
 @pytest.mark.slow
@@ -404,8 +323,8 @@ def test_a_new_spiral_angle_runs_only_its_points_and_the_aggregates(study, tmp_p
     # (the paper report's conclusion says what the sweep finds at the other angles, so it
     # reads the combined sweep and is rendered again; the verification report is not)
     assert rules_of(jobs) == sorted(["sweep_points"] * 2 + ["sweep_contact_state"] * 2
-                                    + ["combine", "summary", "report_sweep", "report_paper",
-                                       "all"]), output
+                                    + ["combine", "summary", "rating_sweep", "report_sweep",
+                                       "report_paper", "all"]), output
     assert {out for rule, out in jobs if rule == "sweep_contact_state"} == {
         f"results/tca/{t}_beta40.nc, results/vh/{t}_beta40.nc"
         for t in ("logarithmic", "circular")}
@@ -422,10 +341,9 @@ def test_a_changed_setting_reruns_only_the_runs_that_use_it(study, tmp_path):
     line-model setting the line-model runs and loaded TCAs only."""
     extra = write_yaml(tmp_path / "dt.yaml", {"simulation": {"time_step_s": 2e-6}})
     jobs, output = dry_run(study, extra)
-    # (the point model's convergence tables write its compiled runs too: combine follows)
-    assert rules_of(jobs) == sorted(["convergence_point"] * 2
-                                    + ["combine", "summary", "report_paper", "report_sweep",
-                                       "report_verification", "all"]), output
+    # (the point model's convergence tables write its compiled runs too: combine follows,
+    # and the design point's checks read the point-model run)
+    assert rules_of(jobs) == sorted(["convergence_point"] * 2 + _CHECKS + _AGGREGATES), output
     assert {f for rule, out in jobs if rule == "convergence_point" for f in out.split(", ")} == {
         f"results/{name}" for t in ("logarithmic", "circular")
         for name in (f"verification/convergence_{t}_point.csv",
@@ -437,9 +355,7 @@ def test_a_changed_setting_reruns_only_the_runs_that_use_it(study, tmp_path):
     # (and the rating: its FE loaded TCA and its K_v's line run)
     _line_model = (["paper_ltca"] * 2 + ["fe_ltca"] * 2 + ["sensitivity"] * 2
                    + ["convergence_line"] * 2 + ["contact_state"] * 2 + ["rating"] * 2
-                   + ["fe_sensitivity"] * 2
-                   + ["combine", "summary", "report_paper", "report_sweep",
-                      "report_verification", "all"])
+                   + ["fe_sensitivity"] * 2 + _CHECKS + _AGGREGATES)
     assert rules_of(jobs) == sorted(_line_model), output
     # The flanks: every line-model job and the contact state, not the point model.
     extra = write_yaml(tmp_path / "flanks.yaml", {"flank_modification": {"bias_um": 2}})
@@ -449,45 +365,53 @@ def test_a_changed_setting_reruns_only_the_runs_that_use_it(study, tmp_path):
     extra = write_yaml(tmp_path / "tca.yaml", {"tca": {"positions": 50}})
     jobs, output = dry_run(study, extra)
     assert rules_of(jobs) == sorted(["contact_state"] * 2 + ["combine", "summary",
-                                                             "report_paper", "report_sweep",
-                                                             "all"]), output
+                                                             "rating_sweep", "report_paper",
+                                                             "report_sweep", "all"]), output
     # Statistics settings rerun the statistics, not the simulations; the steady state
     # the convergence tables and the rating's K_v too
     extra = write_yaml(tmp_path / "stats.yaml", {"statistics": {"subgroup_size": 4}})
     jobs, output = dry_run(study, extra)
-    assert rules_of(jobs) == sorted(["summary", "report_paper", "report_sweep", "all"]), output
+    assert rules_of(jobs) == sorted(["summary", "rating_sweep", "report_sweep", "all"]), output
     extra = write_yaml(tmp_path / "steady.yaml", {"statistics": {"steady_state_after_s": 0.008}})
     jobs, output = dry_run(study, extra)
-    assert rules_of(jobs) == sorted(_CONVERGENCE + ["rating"] * 2 + _AGGREGATES), output
-    # The rating's own settings: its jobs and the paper report
+    assert rules_of(jobs) == sorted(_CONVERGENCE + ["rating"] * 2 + _CHECKS + _AGGREGATES), output
+    # The rating's own settings: its jobs and the reports that show them
     extra = write_yaml(tmp_path / "rating.yaml", {"rating": {"application_factor": 1.25}})
     jobs, output = dry_run(study, extra)
-    # (the sweep report rates every design point by the standard)
-    assert rules_of(jobs) == sorted(["rating", "rating", "report_paper", "report_sweep",
-                                     "all"]), output
+    # (the sweep report rates every design point by the standard: lsbg rate-sweep)
+    assert rules_of(jobs) == sorted(["rating", "rating", "rating_sweep", "report_paper",
+                                     "report_sweep", "all"]), output
 
 
 _CONVERGENCE = ["convergence_point"] * 2 + ["convergence_line"] * 2
-_AGGREGATES = ["combine", "summary", "report_paper", "report_sweep", "report_verification",
-               "all"]
+#: The design point's checks (lsbg checks): they read its loaded TCA and point-model run.
+_CHECKS = ["checks"] * 2
+_AGGREGATES = ["combine", "summary", "rating_sweep", "report_paper", "report_sweep",
+               "report_verification", "all"]
 #: Every job of the test study.
 _EVERYTHING = (["paper_geometry"] * 2 + ["paper_ltca"] * 2 + ["sensitivity"] * 2
                + _CONVERGENCE + ["contact_state"] * 2 + ["tooth_compliance"] * 2
-               + ["fe_ltca"] * 2 + ["fe_sensitivity"] * 2 + ["rating"] * 2 + _AGGREGATES)
+               + ["fe_ltca"] * 2 + ["fe_sensitivity"] * 2 + ["rating"] * 2 + _CHECKS
+               + _AGGREGATES)
+#: The loaded TCA's jobs: the commands that reach lsbg.tca.loaded and what reads them.
+_LOADED_TCA = (["paper_ltca"] * 2 + ["fe_ltca"] * 2 + ["fe_sensitivity"] * 2
+               + ["contact_state"] * 2 + ["sensitivity"] * 2 + ["rating"] * 2 + _CHECKS
+               + _AGGREGATES)
 CODE_CHANGES = {
     # (the rating reads the line run that the convergence table writes, and its K_v
     # comes through lsbg.aggregate.summary, which reads lsbg.stats)
-    "lsbg/experiments/verification.py": _CONVERGENCE + ["rating"] * 2 + _AGGREGATES,
+    "lsbg/experiments/verification.py": _CONVERGENCE + ["rating"] * 2 + _CHECKS + _AGGREGATES,
     "lsbg/stats/samples.py": ["rating"] * 2 + _AGGREGATES,
-    # lsbg.cli.options reads the flanks (lsbg.tca, which imports lsbg.tca.loaded): every
-    # stage lists both (lsbg.study.stages), so a change reruns the study
-    "lsbg/tca/loaded.py": _EVERYTHING,
-    "lsbg/tca/vh_map.py": _EVERYTHING,
+    # a command depends on its stage only (lsbg.study.stages): the loaded TCA reruns the
+    # loaded TCAs (the line model's, the FE one, the V-H maps'), not the runs or the FE
+    # compliance; the sensitivity runs and the rating read the FE loaded TCA
+    "lsbg/tca/loaded.py": _LOADED_TCA,
+    # the V-H map: the contact state's jobs alone, and the aggregates that read them
+    "lsbg/tca/vh_map.py": ["contact_state"] * 2 + ["combine", "summary", "rating_sweep",
+                                                   "report_paper", "report_sweep", "all"],
     # (the cases reach the contact state's and the loaded TCA's commands, lsbg ltca
     # --case, and the rating reads the cases' runs)
-    "lsbg/experiments/sensitivity.py": (["sensitivity"] * 2 + ["contact_state"] * 2 + ["fe_sensitivity"] * 2
-                            + ["paper_ltca"] * 2 + ["fe_ltca"] * 2 + ["rating"] * 2
-                            + _AGGREGATES),
+    "lsbg/experiments/sensitivity.py": _LOADED_TCA,
     # every run at the paper's point reads its geometry; the convergence tables write
     # every engine's run there; the FE segment is lofted through the STEP solid's
     # sections (lsbg.solid.step, lsbg.solid.solids)

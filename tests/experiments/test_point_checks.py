@@ -20,7 +20,7 @@ from lsbg.files import read_yaml_file
 from lsbg.tables import rating as rating_tables
 from lsbg.tables import verification as verification_tables
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 CONFIG = REPO / "workflow" / "config.yaml"
 
 #: The LSBG's checks at the paper's point of the default study, as the verification

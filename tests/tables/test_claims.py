@@ -7,7 +7,7 @@ import xarray as xr
 
 from lsbg.rating.life import EXPONENTS
 from lsbg.tables import claims
-from test_tables_rating import fe_ltca, rating
+from tests.tables.test_rating import fe_ltca, rating
 
 AXES = (-0.1, 0.0, 0.1)
 

@@ -268,28 +268,21 @@ def test_spiral_angle_setting_is_degrees():
     assert math.degrees(design_of(settings_of(args)).spiral_angle) == pytest.approx(30)
 
 
-def test_subcommands_can_be_registered_by_name(monkeypatch, capsys):
-    """Another module adds a subcommand with one entry in cli.PARSERS (as lsbg.cli's
-    docstring shows): its configuration resolved before its handler, its line printed."""
-    import sys
-    import types
-
-    from lsbg.cli.options import add_config_options, design_of
-
-    module = types.ModuleType("lsbg_fake_subcommand")
-
-    def hello(args):
-        teeth = design_of(args.settings).pinion_teeth
-        return 7 if teeth == 11 else f"{teeth} pinion teeth"
-
-    def add_hello_parser(subparsers):
-        parser = subparsers.add_parser("hello")
-        add_config_options(parser, ("design",))
-        parser.set_defaults(handler=hello)
-
-    module.add_hello_parser = add_hello_parser
-    monkeypatch.setitem(sys.modules, module.__name__, module)
-    monkeypatch.setattr(cli, "PARSERS", cli.PARSERS + [f"{module.__name__}:add_hello_parser"])
+def test_a_new_module_of_lsbg_cli_is_a_new_subcommand(monkeypatch, capsys, tmp_path):
+    """A module of lsbg.cli with an ``add_<name>_parser`` in its ``__all__`` is a subcommand
+    (as lsbg.cli's docstring shows), nothing registered: its configuration resolved before
+    its handler, its line printed."""
+    monkeypatch.setattr(cli, "__path__", [*cli.__path__, str(tmp_path)])
+    (tmp_path / "hello.py").write_text(
+        "from lsbg.cli.options import add_config_options, design_of\n"
+        "__all__ = ['add_hello_parser']\n\n"
+        "def hello(args):\n"
+        "    teeth = design_of(args.settings).pinion_teeth\n"
+        "    return 7 if teeth == 11 else f'{teeth} pinion teeth'\n\n"
+        "def add_hello_parser(subparsers):\n"
+        "    parser = subparsers.add_parser('hello')\n"
+        "    add_config_options(parser, ('design',))\n"
+        "    parser.set_defaults(handler=hello)\n")
     assert cli.main(["hello", "--set", "design.pinion_teeth=11"]) == 7
     assert cli.main(["hello", "--set", "design.pinion_teeth=13"]) == 0
     assert capsys.readouterr().out == "lsbg hello: 13 pinion teeth\n"

@@ -1,10 +1,9 @@
 """lsbg.study.plan, the workflow's plan without Snakemake: the design points, runs and
 files of a study, the rerun triggers and the study config (the configuration checks:
-tests/test_config_checks.py)."""
+tests/study/test_checks.py)."""
 
 import copy
 import os
-import re
 from pathlib import Path
 
 import pytest
@@ -14,7 +13,7 @@ from snakemake.utils import validate
 from lsbg.study import job_order
 from lsbg.study import plan
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 SCHEMA = REPO / "workflow" / "schemas" / "config.schema.yaml"
 
 

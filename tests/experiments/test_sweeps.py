@@ -10,7 +10,7 @@ from lsbg.study import checks as config_check
 from lsbg.study.sweep_checks import MAX_SWEEP_RUNS
 from lsbg.experiments.sweeps import sweeps_from_config
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 SCHEMA = yaml.safe_load((REPO / "workflow" / "schemas" / "config.schema.yaml").read_text())
 
 

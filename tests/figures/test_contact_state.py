@@ -3,7 +3,7 @@
 The bearing-pattern and transmission-error figures are drawn from real TCA
 datasets (40 positions, about a third of a second each once numba has
 compiled); the V-H maps from small synthetic datasets. Every figure also
-passes the report checks of tests/test_figures.py (labels with units, width,
+passes the report checks of tests/figures/test_base.py (labels with units, width,
 nothing cut or overprinted, legends off the data).
 """
 
@@ -23,7 +23,7 @@ from lsbg.figures.base import MAX_WIDTH, type_color
 from lsbg.gear.geometry import GearPair
 from lsbg.tca.analysis import tooth_contact_analysis
 from lsbg.tca.modification import FlankModification
-from test_figures import assert_readable
+from tests.figures.test_base import assert_readable
 
 UNIT = re.compile(r"\[[^\]]+\]")
 POSITIONS = 40

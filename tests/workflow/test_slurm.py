@@ -4,7 +4,7 @@ Needs SLURM with accounting on this machine: ``.ci/slurm-up`` brings up a
 one-node cluster (``.ci/run`` calls it before pytest). Without SLURM the tests
 skip, with the reason; in CI (``CI=true``) a missing SLURM is a failure.
 
-One module fixture runs, in a copy of the repository (as tests/test_workflow.py
+One module fixture runs, in a copy of the repository (as tests/workflow/test_workflow.py
 does), the README's command
 
     snakemake --profile workflow/profiles/slurm --configfile workflow/config-test.yaml
@@ -34,7 +34,7 @@ import pytest
 import xarray as xr
 import yaml
 
-from test_workflow import TEST_CONFIG, copy_repository, snakemake
+from tests.workflow.helpers import TEST_CONFIG, copy_repository, snakemake
 
 PROFILE = "workflow/profiles/slurm"
 COMMAND = ("--profile", PROFILE, "--configfile", TEST_CONFIG)

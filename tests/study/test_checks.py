@@ -24,7 +24,7 @@ from lsbg.study import checks as config_check, resources, stages, plan
 from lsbg.gear.design import GearPairDesign
 from lsbg.gear.geometry import GearPair
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 SCHEMA = yaml.safe_load((REPO / "workflow" / "schemas" / "config.schema.yaml")
                         .read_text(encoding="utf-8"))
 

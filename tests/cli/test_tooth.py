@@ -17,8 +17,8 @@ from lsbg.gear.design import GearPairDesign
 from lsbg.solid.export import write_geometry
 from lsbg.tooth.config import tooth_from_config
 
-REPO = Path(__file__).resolve().parents[1]
-#: A coarse FE model: the suite's budget (the default mesh is checked in tests/test_tooth.py).
+REPO = Path(__file__).resolve().parents[2]
+#: A coarse FE model: the suite's budget (the default mesh is checked in tests/tooth/test_ltca.py).
 COARSE = ["--set", "tooth.element_size_module=0.52", "--set", "tooth.rim_element_factor=10",
           "--set", "tooth.face_points=5", "--set", "tooth.profile_points=5"]
 #: The FE loaded TCA: the tooth's own compliance, at 48 mesh positions.

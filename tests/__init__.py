@@ -1,0 +1,1 @@
+"""lsbg's tests: one folder per package, one file per module (as pvlib lays them out)."""

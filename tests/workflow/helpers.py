@@ -1,0 +1,82 @@
+"""What the workflow's tests share: running Snakemake in a folder, reading its plan, a copy
+of the repository to run a study in (the session's study: tests/workflow/conftest.py)."""
+
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import yaml
+
+REPO = Path(__file__).resolve().parents[2]
+SNAKEFILE = REPO / "Snakefile"
+TEST_CONFIG = "workflow/config-test.yaml"
+
+
+def snakemake(*args, cwd, env=None, check=None):
+    """Run ``python -m snakemake ARGS`` in ``cwd``; return the completed process (text).
+
+    ``check=True`` asserts exit code 0 and shows the output if not.
+    """
+    proc = subprocess.run([sys.executable, "-m", "snakemake", *map(str, args)], cwd=cwd,
+                          env=env, capture_output=True, text=True, timeout=600)
+    proc.output = proc.stdout + proc.stderr
+    if check:
+        assert proc.returncode == 0, proc.output[-6000:]
+    return proc
+
+
+_JOB = re.compile(r"^(?:local)?rule (\w+):\n((?:    .*\n)+)", re.MULTILINE)
+
+
+def planned_jobs(output):
+    """The jobs of a dry run: {(rule, output files)} parsed from Snakemake's listing."""
+    jobs = set()
+    for rule, body in _JOB.findall(output):
+        fields = dict(re.findall(r"^    (\w+): (.*)$", body, re.MULTILINE))
+        jobs.add((rule, fields.get("output", "")))
+    return jobs
+
+
+def rules_of(jobs):
+    return sorted(rule for rule, _ in jobs)
+
+
+def job_inputs(output):
+    """rule -> input files (of its first job) in a dry run's listing."""
+    inputs = {}
+    for rule, body in _JOB.findall(output):
+        fields = dict(re.findall(r"^    (\w+): (.*)$", body, re.MULTILINE))
+        inputs.setdefault(rule, fields.get("input", "").split(", "))
+    return inputs
+
+
+def write_yaml(path, data):
+    path.write_text(yaml.safe_dump(data), encoding="utf-8")
+    return path
+
+
+def copy_repository(target):
+    """Copy the repository's files (tracked and untracked, not ignored) to ``target``."""
+    try:
+        listing = subprocess.run(["git", "ls-files", "-co", "--exclude-standard", "-z"],
+                                 cwd=REPO, capture_output=True, check=True).stdout
+        files = [f for f in listing.decode().split("\0") if f]
+    except (OSError, subprocess.CalledProcessError):
+        skip = {".git", "results", "logs", ".snakemake", "__pycache__", ".pytest_cache"}
+        files = [str(p.relative_to(REPO)) for p in REPO.rglob("*")
+                 if p.is_file() and not skip & set(p.relative_to(REPO).parts)]
+    for name in files:
+        source = REPO / name
+        if source.is_file() and not name.startswith(("results/", "logs/", "reports/")):
+            (target / name).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(source, target / name)
+    return target
+
+
+def dry_run(study, *configfiles):
+    root, env = study
+    proc = snakemake("-n", "--configfile", TEST_CONFIG, *configfiles, cwd=root, env=env,
+                     check=True)
+    return planned_jobs(proc.output), proc.output
