@@ -13,7 +13,7 @@ step ended on, and the states are checked for a blow-up in blocks of
 record instants by the compiled kernel. The mesh
 reaction on the pinion is not applied: the velocity motor holds the pinion on
 its prescribed speed and would absorb it (measured: applying it changes the
-gear speed by less than 1e-9 relative, tests/test_dynamics.py). The pybullet
+gear speed by less than 1e-9 relative, tests/dynamics/test_model.py). The pybullet
 calls pass the client positionally, which parses faster than the keyword.
 """
 

@@ -8,7 +8,7 @@ evaluated in those units here, behind SI arguments.
 
 Sources: ISO 10300-1:2023 (load factors), ISO 10300-2:2023 (contact),
 ISO 10300-3:2023 (root), checked against the worked spiral bevel example of
-ISO/TR 10300-30:2024, Annex A (tests/test_rating.py).
+ISO/TR 10300-30:2024, Annex A (tests/rating/test_iso10300.py).
 """
 
 from __future__ import annotations

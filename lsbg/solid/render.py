@@ -89,7 +89,7 @@ def _downsample(image, factor):
     Bit for bit ``image.reshape(h, factor, w, factor, 3).sum(axis=(1, 3))``
     (the picture's bytes stay the same): numpy adds a block's pixels one by
     one in memory order, as here, but its strided reduction is five times
-    slower (0.1 s at 1800 x 1400). tests/test_render.py checks the order.
+    slower (0.1 s at 1800 x 1400). tests/solid/test_render.py checks the order.
 
     Parameters
     ----------

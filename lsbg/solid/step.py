@@ -10,7 +10,7 @@ every section and interpolates smoothly between them
 body is cut to the spherical shell R_i <= |r| <= R_e and bored, as
 :mod:`lsbg.solid.outline` defines the gear blank.
 
-Checked (``tests/test_step.py``) by reading the file back with OCC: one closed
+Checked (``tests/solid/test_step.py``) by reading the file back with OCC: one closed
 solid, its volume against :func:`lsbg.solid.mass.quadrature_mass_properties`, and the
 exact flanks' distance from its surface at a few hundred points (measured for
 the paper's pair: 0.2 µm on the pinion, 0.05 µm on the gear).

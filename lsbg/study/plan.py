@@ -8,7 +8,7 @@ each rule depends on (its ``params``) :mod:`lsbg.study.params`, the rules'
 priorities :mod:`lsbg.study.job_order`; the rules read them all through this
 module (``plan.FILES``, ``plan.simulation_params``, ``plan.assign_priorities``).
 Everything here is tested by pytest without Snakemake
-(tests/test_workflow_plan.py, tests/test_config_checks.py).
+(tests/study/test_plan.py, tests/study/test_checks.py).
 
 File names are relative to the working directory (the repository root when
 run the documented way).

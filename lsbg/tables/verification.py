@@ -36,7 +36,7 @@ __all__ = [
 
 #: Engines in the order they serve as the reference of :func:`engine_agreement`
 #: (the compiled DOP853 loop agrees with scipy's LSODA at rtol 1e-10 within
-#: 1e-10, tests/test_dynamics.py).
+#: 1e-10, tests/dynamics/test_model.py).
 REFERENCE_ENGINES = ("compiled", "scipy", "pybullet")
 
 

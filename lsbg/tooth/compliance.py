@@ -116,7 +116,7 @@ class FEMeshSettings:
     segment_teeth : int
         Teeth of the segment, odd, >= 3 [-]. Its cut faces are clamped, which
         stiffens the rim under the loaded tooth: in the spur-like limit
-        (tests/test_tooth_limits.py) the tooth compliance at the pitch point
+        (tests/tooth/test_limits.py) the tooth compliance at the pitch point
         is 0.78 of the potential-energy reference with 3 teeth, 0.85 with 5
         and 0.90 with 7 (9 teeth add about 2 % more); 7 costs about 5 % more
         degrees of freedom than 3, the rim's elements being large.
