@@ -68,5 +68,6 @@ rule all:
         EXTENSION_TARGETS,
 
 
-# Every rule's priority from the rule graph, now that all are defined (lsbg.study.job_order).
-plan.assign_priorities(workflow.rules, STUDY.sample_wildcards)
+# Now that every rule is defined: each one's priority from the rule graph
+# (lsbg.study.job_order) and its software (--software-deployment-method conda).
+finish_rules(workflow.rules)

@@ -55,8 +55,6 @@ rule contact_ratio:
         **command("contact-ratio"),
     log:
         "logs/extensions/contact_ratio.log",
-    conda:
-        CONDA_ENV
     shell:
         LSBG
 '''
@@ -121,8 +119,6 @@ def test_a_study_folder_of_ones_own(study, tmp_path):
         '        "results/extensions/pictures.txt",\n'
         '    log:\n'
         '        "logs/extensions/pictures.log",\n'
-        '    conda:\n'
-        '        CONDA_ENV\n'
         '    shell:\n'
         '        "ls {input} > {output} 2> {log}"\n', encoding="utf-8")
     config = write_yaml(mine / "config.yaml", {"extensions": ["pair_pictures"]})

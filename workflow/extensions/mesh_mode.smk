@@ -31,7 +31,5 @@ rule mesh_mode:
         settings=simulation_params(SWEEP_ENGINE, "line"),  # rerun trigger
     log:
         "logs/extensions/mesh_mode.log",
-    conda:
-        CONDA_ENV
     shell:
         LSBG

@@ -17,8 +17,6 @@ rule combine:
         **command("combine"),
     log:
         "logs/combine/sweep.log",
-    conda:
-        CONDA_ENV
     shell:
         LSBG
 
@@ -38,7 +36,5 @@ rule summary:
         statistics=plan.canonical(config["statistics"]),  # rerun trigger
     log:
         "logs/summary/summary.log",
-    conda:
-        CONDA_ENV
     shell:
         LSBG

@@ -32,8 +32,6 @@ rule checks:
         spiral=re.escape(PAPER_SPIRAL),
     log:
         "logs/checks/{trace}_beta{spiral}.log",
-    conda:
-        CONDA_ENV
     shell:
         LSBG
 
@@ -52,7 +50,5 @@ rule rating_sweep:
         load=[config["simulation"][k] for k in ("load_torque_N_m", "pinion_speed_deg_s")],
     log:
         "logs/rating_sweep/rating_sweep.log",
-    conda:
-        CONDA_ENV
     shell:
         LSBG

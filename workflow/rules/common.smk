@@ -13,9 +13,9 @@ Each rule is its inputs, outputs, log and rerun triggers; each runs one
 outputs (`params: **command("ltca")`, :func:`command`), its wildcards set the
 design point (`--set design.trace=...`), and its source inputs are the lsbg
 files the command's handler reaches (:func:`sources`, from the imports).
-Priorities come from the rule graph once every rule is defined (the end of
-the Snakefile, lsbg.study.job_order); memory and time from the profile
-(workflow/profiles/slurm) or :func:`runtime`.
+Priorities come from the rule graph and the conda environment from CONDA_ENV
+once all rules are defined (the end of the Snakefile, :func:`finish_rules`);
+memory and time from the profile (workflow/profiles/slurm) or :func:`runtime`.
 """
 
 import os
@@ -207,6 +207,17 @@ def notebook_report(name, **values):
         return shlex.join(words)
 
     return {"command": f"report {name}", "args": args}
+
+
+def finish_rules(rules):
+    """Once all rules are defined: each rule's priority from the rule graph
+    (lsbg.study.job_order) and, for a rule that runs a command, the workflow's conda
+    environment (CONDA_ENV) unless it names its own."""
+    defined = list(rules)
+    plan.assign_priorities(defined, STUDY.sample_wildcards)
+    for each in defined:
+        if each.shellcmd and each.conda_env is None:
+            each.conda_env = CONDA_ENV
 
 
 def repo_path(relative):

@@ -36,8 +36,6 @@ rule contact_state:
         spiral=re.escape(PAPER_SPIRAL),
     log:
         "logs/contact_state/{trace}_beta{spiral}.log",
-    conda:
-        CONDA_ENV
     shell:
         LSBG
 
@@ -65,7 +63,5 @@ if CONTACT_BATCH:
             "logs/sweep_contact_state/{trace}.log",
         resources:
             runtime=10 + len(CONTACT_BATCH),
-        conda:
-            CONDA_ENV
         shell:
             LSBG

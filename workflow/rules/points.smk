@@ -25,8 +25,6 @@ rule paper_geometry:
         spiral=re.escape(PAPER_SPIRAL),
     log:
         "logs/paper_geometry/{trace}_beta{spiral}.log",
-    conda:
-        CONDA_ENV
     shell:
         LSBG
 
@@ -47,8 +45,6 @@ rule paper_ltca:
         spiral=re.escape(PAPER_SPIRAL),
     log:
         "logs/paper_ltca/{trace}_beta{spiral}.log",
-    conda:
-        CONDA_ENV
     shell:
         LSBG
 
@@ -81,7 +77,5 @@ if BATCH:
             "logs/sweep_points/{trace}.log",
         resources:
             **points_resources(len(BATCH)),
-        conda:
-            CONDA_ENV
         shell:
             LSBG

@@ -32,7 +32,5 @@ rule rating:
         spiral=re.escape(PAPER_SPIRAL),
     log:
         "logs/rating/{trace}_beta{spiral}.log",
-    conda:
-        CONDA_ENV
     shell:
         LSBG

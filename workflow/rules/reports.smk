@@ -33,8 +33,6 @@ rule report_paper:
                           subgroup_size=STATISTICS["subgroup_size"]),
     log:
         "logs/report_paper/paper.log",
-    conda:
-        CONDA_ENV
     shell:
         LSBG
 
@@ -58,8 +56,6 @@ rule report_sweep:
         rating=plan.canonical({k: config[k] for k in ("rating", "tooth")}),
     log:
         "logs/report_sweep/sweep.log",
-    conda:
-        CONDA_ENV
     shell:
         LSBG
 
@@ -81,7 +77,5 @@ rule report_verification:
                           steady_state_after_s=STATISTICS["steady_state_after_s"]),
     log:
         "logs/report_verification/verification.log",
-    conda:
-        CONDA_ENV
     shell:
         LSBG

@@ -28,8 +28,6 @@ rule simulate:
         "logs/simulate/{trace}_beta{spiral}_{model}_{engine}.log",
     resources:
         **runtime(),
-    conda:
-        CONDA_ENV
     shell:
         LSBG
 
@@ -55,8 +53,6 @@ if STUDY.sensitivity:
             "logs/sensitivity/{trace}.log",
         resources:
             **runtime(runs=len(STUDY.sensitivity)),
-        conda:
-            CONDA_ENV
         shell:
             LSBG
 
@@ -88,7 +84,5 @@ for model in plan.CONTACT_MODELS:
             f"logs/convergence/{{trace}}_{model}.log",
         resources:
             **runtime(runs=6),
-        conda:
-            CONDA_ENV
         shell:
             LSBG

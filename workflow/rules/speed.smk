@@ -22,8 +22,6 @@ rule speed_run:
         speed=plan.canonical(STUDY.speed_sweep),
     log:
         "logs/speed_run/{trace}_beta{spiral}_w{speed}.log",
-    conda:
-        CONDA_ENV
     shell:
         LSBG
 
@@ -38,7 +36,5 @@ rule speed_curve:
         **command("speed-curve"),
     log:
         "logs/speed_curve/speed_curve.log",
-    conda:
-        CONDA_ENV
     shell:
         LSBG

@@ -51,8 +51,6 @@ for _sweep in STUDY.sweeps:
                 f"logs/sweeps/{_sweep.name}/{{trace}}_beta{{spiral}}_batch{_k}.log",
             resources:
                 **runtime(runs=len(_batch)),
-            conda:
-                CONDA_ENV
             shell:
                 LSBG
 
@@ -72,7 +70,5 @@ for _sweep in STUDY.sweeps:
             statistics=plan.canonical(config["statistics"]),  # rerun trigger
         log:
             f"logs/sweeps/{_sweep.name}/combine.log",
-        conda:
-            CONDA_ENV
         shell:
             LSBG

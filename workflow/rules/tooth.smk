@@ -38,8 +38,6 @@ rule tooth_compliance:
         "logs/tooth_compliance/{trace}_beta{spiral}.log",
     resources:
         runtime=config["limits"]["tooth_minutes"],
-    conda:
-        CONDA_ENV
     shell:
         LSBG
 
@@ -61,8 +59,6 @@ if not STUDY.own_compliance:
             spiral=re.escape(PAPER_SPIRAL),
         log:
             "logs/fe_ltca/{trace}_beta{spiral}.log",
-        conda:
-            CONDA_ENV
         shell:
             LSBG
 
@@ -94,7 +90,5 @@ rule fe_sensitivity:
         spiral=re.escape(PAPER_SPIRAL),
     log:
         "logs/fe_sensitivity/{trace}_beta{spiral}.log",
-    conda:
-        CONDA_ENV
     shell:
         LSBG
