@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 from lsbg.cli.options import (CommandError, add_case_options, add_config_options,
-                              add_geometry_input, add_output, checked, command_line, contact_of,
-                              flank_sections_of, flanks_of, load_torque_of)
+                              add_geometry_input, add_output, add_result_inputs, checked,
+                              command_line, contact_of, flank_sections_of, flanks_of,
+                              load_torque_of, read_results)
 
 __all__ = ["add_ltca_parser", "add_combine_parser", "add_summary_parser", "add_report_parser"]
 
@@ -154,16 +155,12 @@ def add_combine_parser(subparsers):
                     "misalignment-map) the maps on the union of their grids and their "
                     "sensitivities per 0.1 mm (0.1 deg); missing points are NaN (NetCDF, "
                     "CF-1.11).")
-    parser.add_argument("--runs", nargs="+", required=True, metavar="RUN.nc",
-                        help="run files, one per contact model and design point")
-    parser.add_argument("--meshes", nargs="+", default=[], metavar="MESH.nc",
-                        help="loaded-TCA files (lsbg ltca), one per design point")
-    parser.add_argument("--tca", nargs="+", default=[], metavar="TCA.nc",
-                        help="unloaded-TCA files (lsbg tca, lsbg misalignment-map --tca-out), "
-                             "one per design point")
-    parser.add_argument("--vh", nargs="+", default=[], metavar="MAP.nc",
-                        help="V-H maps (lsbg misalignment-map) on one pair of axes, one per "
-                             "design point")
+    add_result_inputs(
+        parser, runs="run files, one per contact model and design point",
+        meshes="loaded-TCA files (lsbg ltca), one per design point",
+        tca="unloaded-TCA files (lsbg tca, lsbg misalignment-map --tca-out), one per design "
+            "point",
+        vh="V-H maps (lsbg misalignment-map) on one pair of axes, one per design point")
     add_output(parser, metavar="SWEEP.nc")
     parser.set_defaults(handler=run_combine)
 
@@ -173,10 +170,7 @@ def run_combine(args):
     from lsbg.aggregate.combine import combine_runs
     from lsbg.files import write_dataset
 
-    try:
-        ds = combine_runs(args.runs, meshes=args.meshes, tca=args.tca, vh_maps=args.vh)
-    except (OSError, ValueError) as err:
-        raise CommandError(f"--runs: {err}") from None
+    ds = read_results(combine_runs, args)
     write_dataset(ds, args.out)
     return (f"{len(args.runs)} runs ({ds.attrs['solver_engine']}), traces "
             f"{', '.join(map(str, ds.trace.values))}, spiral angles "
@@ -200,16 +194,13 @@ def add_summary_parser(subparsers):
                     "movement toe-heel and root-tip and the change of the unloaded and loaded "
                     "transmission error per 0.1 mm (0.1 deg) of each axis. Windows and "
                     "subgroups from the 'statistics' section.")
-    parser.add_argument("--runs", nargs="+", required=True, metavar="RUN.nc", help="run files")
-    parser.add_argument("--meshes", nargs="+", default=[], metavar="MESH.nc",
-                        help="loaded-TCA files (lsbg ltca): two rows each, the static "
-                             "transmission error and the mesh stiffness")
-    parser.add_argument("--tca", nargs="+", default=[], metavar="TCA.nc",
-                        help="unloaded-TCA files (lsbg tca): one row each, the unloaded "
-                             "transmission error")
-    parser.add_argument("--vh", nargs="+", default=[], metavar="MAP.nc",
-                        help="V-H maps (lsbg misalignment-map): four rows per axis, the "
-                             "sensitivities per 0.1 mm (0.1 deg)")
+    add_result_inputs(
+        parser, runs="run files",
+        meshes="loaded-TCA files (lsbg ltca): two rows each, the static transmission error "
+               "and the mesh stiffness",
+        tca="unloaded-TCA files (lsbg tca): one row each, the unloaded transmission error",
+        vh="V-H maps (lsbg misalignment-map): four rows per axis, the sensitivities per 0.1 "
+           "mm (0.1 deg)")
     add_config_options(parser, ("statistics",))
     add_output(parser, metavar="SUMMARY.csv", help="output CSV file")
     parser.set_defaults(handler=run_summary)
@@ -221,11 +212,7 @@ def run_summary(args):
     from lsbg.files import write_atomically
 
     options = checked(lambda: statistics_options(args.settings["statistics"]))
-    try:
-        table = summary_table(args.runs, meshes=args.meshes, tca=args.tca, vh_maps=args.vh,
-                              **options)
-    except (OSError, ValueError) as err:
-        raise CommandError(f"--runs: {err}") from None
+    table = read_results(lambda runs, **files: summary_table(runs, **files, **options), args)
     write_atomically(args.out, lambda tmp: table.to_csv(tmp, index=False))
     return f"{len(args.runs)} runs, {len(table)} rows -> {args.out}"
 

@@ -29,7 +29,7 @@ __all__ = ["CommandError", "check_output", "check_outputs", "add_config_options"
            "add_output", "add_geometry_input", "add_engine_option", "command_line", "design_of",
            "contact_of", "simulation_of", "flanks_of", "flank_sections_of", "load_torque_of",
            "add_fe_ltca_option", "slice_stiffness_of", "add_case_options", "parse_pairs",
-           "checked"]
+           "checked", "RESULT_FILES", "add_result_inputs", "read_results"]
 
 
 class CommandError(ValueError):
@@ -123,6 +123,38 @@ def add_engine_option(parser, default="pybullet"):
                         help=f"integrator: pybullet (multibody, fixed step), scipy (solve_ivp) or "
                              f"compiled (embedded Runge-Kutta compiled with numba) "
                              f"(default: {default})")
+
+
+#: The files of results ``lsbg combine`` and ``lsbg summary`` read besides the runs:
+#: option, metavar and the keyword of :func:`lsbg.aggregate.combine.combine_runs` and
+#: :func:`lsbg.aggregate.summary.summary_table` that takes them.
+RESULT_FILES = (("--meshes", "MESH.nc", "meshes"), ("--tca", "TCA.nc", "tca"),
+                ("--vh", "MAP.nc", "vh_maps"))
+
+
+def add_result_inputs(parser, runs, meshes, tca, vh):
+    """Add ``--runs RUN.nc ...`` (required) and ``--meshes``, ``--tca``, ``--vh`` (optional).
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+    runs, meshes, tca, vh : str
+        The help of each option: run files (lsbg simulate), loaded TCAs (lsbg
+        ltca), unloaded TCAs (lsbg tca) and V-H maps (lsbg misalignment-map).
+    """
+    parser.add_argument("--runs", nargs="+", required=True, metavar="RUN.nc", help=runs)
+    for (option, metavar, _), text in zip(RESULT_FILES, (meshes, tca, vh)):
+        parser.add_argument(option, nargs="+", default=[], metavar=metavar, help=text)
+
+
+def read_results(build, args):
+    """``build(args.runs, meshes=..., tca=..., vh_maps=...)`` of :func:`add_result_inputs`'
+    files; a file's OSError or ValueError as a CommandError under ``--runs``."""
+    files = {keyword: getattr(args, option.lstrip("-")) for option, _, keyword in RESULT_FILES}
+    try:
+        return build(args.runs, **files)
+    except (OSError, ValueError) as err:
+        raise CommandError(f"--runs: {err}") from None
 
 
 # ------------------------------------------------------------- configuration

@@ -7,7 +7,8 @@ from lsbg.cli.options import (CommandError, add_case_options, add_config_options
                               add_output, check_output, command_line, contact_of, flanks_of,
                               parse_pairs, simulation_of, slice_stiffness_of)
 
-__all__ = ["add_simulate_parser", "add_sensitivity_parser", "add_convergence_parser"]
+__all__ = ["add_simulate_parser", "add_sensitivity_parser", "add_convergence_parser",
+           "simulate_to"]
 
 #: The sections a run reads.
 RUN_SECTIONS = ("simulation", "contact", "flank_modification", "misalignment")
@@ -19,6 +20,47 @@ def add_run_options(parser, engine="pybullet"):
     add_geometry_input(parser)
     add_engine_option(parser, default=engine)
     add_fe_ltca_option(parser)
+
+
+def simulate_to(path, geometry, settings, params, flanks, slices, label=None):
+    """Simulate one run (:func:`lsbg.dynamics.simulate`) and write it to ``path``.
+
+    Parameters
+    ----------
+    path : str
+        The run file to write (NetCDF).
+    geometry : str
+        The design point's geometry directory.
+    settings : lsbg.dynamics.SimulationSettings
+    params : lsbg.contact.ContactParameters
+    flanks : lsbg.tca.separation.RealFlanks
+    slices : lsbg.contact.slices.SliceStiffness or None
+        The tooth's slice stiffness (:func:`slice_stiffness_of`).
+    label : str, optional
+        Put before the message of a blow-up (the case, the speed).
+
+    Returns
+    -------
+    str
+        ``-> PATH (S s wall)``: where it went and its wall-clock time [s].
+
+    Raises
+    ------
+    lsbg.dynamics.SimulationError
+        On a blow-up; nothing is written.
+    """
+    from lsbg.dynamics import SimulationError, simulate
+    from lsbg.files import write_dataset
+
+    try:
+        ds = simulate(geometry, settings, params, command=command_line(), flanks=flanks,
+                      slice_stiffness=slices)
+    except SimulationError as err:
+        if label is None:
+            raise
+        raise SimulationError(f"{label}: {err}") from None
+    write_dataset(ds, path)
+    return f"-> {path} ({ds.attrs['wall_time_s']:.1f} s wall)"
 
 
 def add_simulate_parser(subparsers):
@@ -38,18 +80,12 @@ def add_simulate_parser(subparsers):
 
 def run_simulate(args):
     """Handler of ``lsbg simulate``: its summary line."""
-    from lsbg.dynamics import simulate
-    from lsbg.files import write_dataset
-
     settings = simulation_of(args.settings, args.engine)
     params = contact_of(args.settings)
     flanks = flanks_of(args.settings)
     slices = slice_stiffness_of(args.fe_ltca, params, args.geometry, settings.load_torque)
-    ds = simulate(args.geometry, settings, params, command=command_line(), flanks=flanks,
-                  slice_stiffness=slices)
-    write_dataset(ds, args.out)
-    return (f"{settings.engine} engine, {params.model} model -> {args.out} "
-            f"({ds.attrs['wall_time_s']:.1f} s wall)")
+    written = simulate_to(args.out, args.geometry, settings, params, flanks, slices)
+    return f"{settings.engine} engine, {params.model} model {written}"
 
 
 # ------------------------------------------------------------ sensitivity
@@ -79,8 +115,6 @@ def add_sensitivity_parser(subparsers):
 def run_sensitivity(args):
     """Handler of ``lsbg sensitivity``: a line per case."""
     from lsbg.cli.cases import sensitivity_cases
-    from lsbg.dynamics import SimulationError, simulate
-    from lsbg.files import write_dataset
 
     if not args.case:
         raise CommandError("--case: at least one case (e.g. --case crowning=0.5)")
@@ -92,13 +126,8 @@ def run_sensitivity(args):
              in sensitivity_cases(args, "dynamics", args.out, "--out", model="line")]
     lines = []
     for name, params, flanks, slices, path in cases:
-        try:
-            ds = simulate(args.geometry, settings, params, command=command_line(), flanks=flanks,
-                          slice_stiffness=slices)
-        except SimulationError as err:
-            raise SimulationError(f"case {name}: {err}") from None
-        write_dataset(ds, path)
-        lines.append(f"{name} -> {path} ({ds.attrs['wall_time_s']:.1f} s wall)")
+        written = simulate_to(path, args.geometry, settings, params, flanks, slices, f"case {name}")
+        lines.append(f"{name} {written}")
     return lines
 
 

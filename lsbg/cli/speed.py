@@ -5,9 +5,8 @@ from __future__ import annotations
 import math
 
 from lsbg.cli.options import (CommandError, add_config_options, add_output, checked,
-                              command_line, contact_of, flanks_of, simulation_of,
-                              slice_stiffness_of)
-from lsbg.cli.simulate import RUN_SECTIONS, add_run_options
+                              contact_of, flanks_of, simulation_of, slice_stiffness_of)
+from lsbg.cli.simulate import RUN_SECTIONS, add_run_options, simulate_to
 
 __all__ = ["add_mesh_mode_parser", "add_speed_run_parser", "add_speed_curve_parser"]
 
@@ -88,9 +87,7 @@ def add_speed_run_parser(subparsers):
 
 def run_speed_run(args):
     """Handler of ``lsbg speed-run``: its summary line."""
-    from lsbg.dynamics import SimulationError, simulate
     from lsbg.experiments.speed import speed_keywords, speed_settings
-    from lsbg.files import write_dataset
     from lsbg.solid.directory import read_design
 
     base = simulation_of(args.settings, args.engine)
@@ -100,14 +97,9 @@ def run_speed_run(args):
                                               **speed_keywords(args.settings["speed_sweep"])))
     slices = slice_stiffness_of(args.fe_ltca, params, args.geometry, settings.load_torque)
     speed = math.degrees(base.pinion_speed)
-    try:
-        ds = simulate(args.geometry, settings, params, command=command_line(),
-                      flanks=flanks_of(args.settings), slice_stiffness=slices)
-    except SimulationError as err:
-        raise SimulationError(f"{speed:g} deg/s: {err}") from None
-    write_dataset(ds, args.out)
-    return (f"{speed:g} deg/s, {settings.duration:.3g} s simulated -> {args.out} "
-            f"({ds.attrs['wall_time_s']:.1f} s wall)")
+    written = simulate_to(args.out, args.geometry, settings, params, flanks_of(args.settings),
+                          slices, f"{speed:g} deg/s")
+    return f"{speed:g} deg/s, {settings.duration:.3g} s simulated {written}"
 
 
 # ----------------------------------------------------------- speed curve

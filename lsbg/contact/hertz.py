@@ -72,12 +72,9 @@ def implied_correction_coefficient(k, r1, r2, e1, e2, nu1, nu2):
     ----------
     k : array_like
         Contact stiffness for exponent 1.5 [N/m^1.5].
-    r1, r2 : array_like
-        Radii of curvature at the contact point [m].
-    e1, e2 : array_like
-        Young's moduli [Pa].
-    nu1, nu2 : array_like
-        Poisson's ratios [-].
+    r1, r2, e1, e2, nu1, nu2 : array_like
+        Radii of curvature at the contact point [m], Young's moduli [Pa] and
+        Poisson's ratios [-] of the two bodies, as in :func:`hertz_stiffness`.
 
     Returns
     -------
@@ -98,14 +95,10 @@ def hertz_approach(force, r1, r2, e1, e2, nu1, nu2, correction=1.0):
     ----------
     force : array_like
         Normal contact force P, >= 0 [N].
-    r1, r2 : array_like
-        Radii of curvature at the contact point [m].
-    e1, e2 : array_like
-        Young's moduli [Pa].
-    nu1, nu2 : array_like
-        Poisson's ratios [-].
-    correction : array_like, default 1.0
-        Correction coefficient ρ of Eq. (9) [-].
+    r1, r2, e1, e2, nu1, nu2, correction : array_like
+        Radii of curvature at the contact point [m], Young's moduli [Pa],
+        Poisson's ratios [-] and the correction coefficient ρ (default 1.0)
+        [-], as in :func:`hertz_stiffness`.
 
     Returns
     -------

@@ -173,6 +173,19 @@ def _point_torques(force, lever, aa, ab, bb, w1, w2, sign, v_normal, params, mu)
 
 
 @njit(cache=True)
+def _add_pair(gear, pinion, tangential, normal, pairs, deepest, pair_gear, pair_pinion,
+              pair_tangential, pair_normal, pair_deepest):
+    """A side's sums (torques [N m], forces [N], pairs whose normal force is > 0 [-], the
+    deepest approach [m]) with one tooth pair's added, in both models."""
+    if pair_normal > 0.0:
+        pairs += 1
+    if pair_deepest > deepest:
+        deepest = pair_deepest
+    return (gear + pair_gear, pinion + pair_pinion, tangential + pair_tangential,
+            normal + pair_normal, pairs, deepest)
+
+
+@njit(cache=True)
 def _point_side(side, eps, eps_rate, sign, phase, phase_rate, w1, w2, params, sides, table,
                 details, count):
     """Sum over the tooth pairs of one side, point model (one IMPACT incident each).
@@ -213,14 +226,8 @@ def _point_side(side, eps, eps_rate, sign, phase, phase_rate, w1, w2, params, si
         t2, t1, mu, slide = _point_torques(force, lever, aa, ab, bb, w1, w2, sign,
                                            lever * relative, params, -1.0)
         radius = table[side, i, T_RADIUS] + f * (table[side, i + 1, T_RADIUS] - table[side, i, T_RADIUS])
-        gear += t2
-        pinion += t1
-        tangential += t2 / radius
-        normal += force
-        if force > 0.0:
-            pairs += 1
-        if x > deepest:
-            deepest = x
+        gear, pinion, tangential, normal, pairs, deepest = _add_pair(
+            gear, pinion, tangential, normal, pairs, deepest, t2, t1, t2 / radius, force, x)
         if details is not None and count < details.shape[0]:
             row = details[count]
             row[D_SIDE], row[D_PHASE], row[D_LEVER] = side, here, lever
@@ -381,14 +388,9 @@ def _line_side(side, eps, eps_rate, sign, phase, phase_rate, w1, w2, params, sid
             pair_length += length
         if not inside:
             continue
-        gear += pair_gear
-        pinion += pair_pinion
-        tangential += pair_tangential
-        normal += pair_normal
-        if pair_normal > 0.0:
-            pairs += 1
-        if pair_deepest > deepest:
-            deepest = pair_deepest
+        gear, pinion, tangential, normal, pairs, deepest = _add_pair(
+            gear, pinion, tangential, normal, pairs, deepest, pair_gear, pair_pinion,
+            pair_tangential, pair_normal, pair_deepest)
         if details is not None and count < details.shape[0]:
             row = details[count]
             weight = 1.0 / pair_normal if pair_normal > 0.0 else 0.0

@@ -278,10 +278,9 @@ def friction_integral_scalar(x, rate, mu_s, mu_d, v_s, v_d):
         Upper limit, >= 0 [unit of u].
     rate : float
         Sliding speed per unit u, > 0 [m/s per unit of u].
-    mu_s, mu_d : float
-        Static and dynamic friction coefficients [-].
-    v_s, v_d : float
-        Stiction and friction transition velocities [m/s].
+    mu_s, mu_d, v_s, v_d : float
+        The friction law of :func:`friction_coefficient_scalar`: static and
+        dynamic coefficients [-], stiction and transition velocities [m/s].
 
     Returns
     -------

@@ -225,6 +225,7 @@ def run_compiled(model, settings: SimulationSettings):
     Returns
     -------
     lsbg.dynamics.RunRecord
+        Its ``steps``: the steps tried, accepted and rejected [-].
 
     Raises
     ------

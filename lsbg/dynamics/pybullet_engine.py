@@ -90,6 +90,7 @@ def run_pybullet(model, settings: SimulationSettings, apply_pinion_torque=False)
     Returns
     -------
     lsbg.dynamics.RunRecord
+        Its ``steps``: the fixed PyBullet steps of ``settings.time_step`` [-].
 
     Raises
     ------

@@ -34,6 +34,7 @@ def run_scipy(model, settings: SimulationSettings):
     Returns
     -------
     lsbg.dynamics.RunRecord
+        Its ``steps``: the right-hand side evaluations [-].
 
     Raises
     ------

@@ -277,6 +277,45 @@ def sparse_log_ticks(axis):
         axis.set_minor_formatter(NullFormatter())
 
 
+def flank_maps(datasets, variable, profile, cmap, label):
+    """A field over the flank, one panel per gear type with a shared colour scale.
+
+    Parameters
+    ----------
+    datasets : dict
+        ``{gear type: dataset}`` holding ``variable`` over ``cone_distance``
+        [mm] and ``profile`` [deg].
+    variable : str
+        The field drawn; values <= 0 are left blank [its unit].
+    profile : str
+        The coordinate of the path of contact: the angle in the plane of
+        action [deg].
+    cmap : str
+        Matplotlib colour map.
+    label : str
+        Label of the colour bar, "quantity [unit]".
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Face width (cone distance) up, path of contact across.
+    """
+    fig, axes = new_figure(1, len(datasets), width=4.2, height=3.4)
+    top = max(float(ds[variable].max()) for ds in datasets.values())
+    image = None
+    for ax, (name, ds) in zip(axes[0], datasets.items()):
+        field = ds[variable].transpose("cone_distance", profile).values
+        image = ax.pcolormesh(ds[profile].values, ds["cone_distance"].values,
+                              np.ma.masked_less_equal(field, 0.0), vmin=0.0, vmax=top,
+                              shading="auto", cmap=cmap)
+        ax.set_title(name)
+        ax.set_xlabel(axis_label("path of contact: angle in the plane of action", "deg", wrap=40))
+        ax.set_ylabel("cone distance [mm]")
+    if image is not None:
+        fig.colorbar(image, ax=list(axes[0]), label=label)
+    return fig
+
+
 def wrap_categories(labels, width=14):
     """Category tick labels wrapped onto lines of at most ``width`` characters [-].
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from lsbg.figures.base import axis_label, figure_legend, new_figure, type_color
+from lsbg.figures.base import axis_label, figure_legend, flank_maps, new_figure, type_color
 
 
 #: Fewest mesh phases per cycle the transmission-error figure accepts [-]. The
@@ -111,11 +111,14 @@ def plot_load_sharing(meshes):
     Parameters
     ----------
     meshes : dict
-        ``{gear type: loaded-TCA dataset}``.
+        ``{gear type: loaded-TCA dataset}`` (:func:`lsbg.tca.loaded.loaded_tca`):
+        its ``tooth_pair_load`` [N] over ``passage`` [base pitches].
 
     Returns
     -------
     matplotlib.figure.Figure
+        One panel: the load [kN] against the position of the pair's contact
+        line in the field [base pitches], one colour per type.
     """
     fig, axes = new_figure(1, 1, width=7.0)
     ax = axes[0, 0]
@@ -136,24 +139,13 @@ def plot_contact_pattern(meshes):
     Parameters
     ----------
     meshes : dict
-        ``{gear type: loaded-TCA dataset}``.
+        ``{gear type: loaded-TCA dataset}`` (:func:`lsbg.tca.loaded.loaded_tca`):
+        its ``contact_pattern`` over (cone_distance, profile_angle) [N/mm].
 
     Returns
     -------
     matplotlib.figure.Figure
         One panel per type with a shared colour scale [N/mm].
     """
-    fig, axes = new_figure(1, len(meshes), width=4.2, height=3.4)
-    top = max(float(ds["contact_pattern"].max()) for ds in meshes.values())
-    image = None
-    for ax, (label, ds) in zip(axes[0], meshes.items()):
-        pattern = ds["contact_pattern"].values
-        image = ax.pcolormesh(ds["profile_angle"].values, ds["cone_distance"].values,
-                              np.ma.masked_less_equal(pattern, 0.0), vmin=0.0, vmax=top,
-                              shading="auto", cmap="viridis")
-        ax.set_title(label)
-        ax.set_xlabel(axis_label("path of contact: angle in the plane of action", "deg", wrap=40))
-        ax.set_ylabel("cone distance [mm]")
-    if image is not None:
-        fig.colorbar(image, ax=list(axes[0]), label="load per unit length [N/mm]")
-    return fig
+    return flank_maps(meshes, "contact_pattern", "profile_angle", "viridis",
+                      "load per unit length [N/mm]")

@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-import numpy as np
-
-from lsbg.figures.base import axis_label, figure_legend, new_figure, type_color
+from lsbg.figures.base import axis_label, figure_legend, flank_maps, new_figure, type_color
 
 __all__ = ["plot_stresses", "plot_contact_pressure"]
 
@@ -52,7 +50,9 @@ def plot_contact_pressure(fe_ltcas):
     Parameters
     ----------
     fe_ltcas : dict
-        ``{gear type: loaded TCA with the FE compliance}``.
+        ``{gear type: loaded TCA with the FE compliance}``
+        (:func:`lsbg.tooth.analysis.fe_ltca`): its ``contact_pressure`` over
+        (cone_distance, pressure_profile_angle) [MPa].
 
     Returns
     -------
@@ -60,17 +60,5 @@ def plot_contact_pressure(fe_ltcas):
         One panel per type (face width x path of contact), shared colour
         scale [MPa].
     """
-    fig, axes = new_figure(1, len(fe_ltcas), width=4.2, height=3.4)
-    top = max(float(ds["contact_pressure"].max()) for ds in fe_ltcas.values())
-    image = None
-    for ax, (label, ds) in zip(axes[0], fe_ltcas.items()):
-        field = ds["contact_pressure"].transpose("cone_distance", "pressure_profile_angle").values
-        image = ax.pcolormesh(ds["pressure_profile_angle"].values, ds["cone_distance"].values,
-                              np.ma.masked_less_equal(field, 0.0), vmin=0.0, vmax=top,
-                              shading="auto", cmap="magma")
-        ax.set_title(label)
-        ax.set_xlabel(axis_label("path of contact: angle in the plane of action", "deg", wrap=40))
-        ax.set_ylabel("cone distance [mm]")
-    if image is not None:
-        fig.colorbar(image, ax=list(axes[0]), label="largest Hertz pressure [MPa]")
-    return fig
+    return flank_maps(fe_ltcas, "contact_pressure", "pressure_profile_angle", "magma",
+                      "largest Hertz pressure [MPa]")

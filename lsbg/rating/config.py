@@ -149,11 +149,11 @@ def rating_problems(config, pairs):
 
     Parameters
     ----------
-    config : dict
-        The study configuration, defaults filled in.
-    pairs : dict
-        ``(trace, spiral label) -> lsbg.gear.geometry.GearPair`` of the design
-        points that passed their own checks.
+    config, pairs : dict
+        The study configuration (defaults filled in) and the design points
+        that passed their own checks, as in
+        :func:`lsbg.tooth.config.tooth_problems`; the paper's spiral angle is
+        rated.
 
     Returns
     -------

@@ -96,10 +96,8 @@ def elasticity_factor(young_modulus, poisson_ratio):
 
     Parameters
     ----------
-    young_modulus : float
-        E [Pa].
-    poisson_ratio : float
-        nu [-].
+    young_modulus, poisson_ratio : float
+        E [Pa] and nu [-] of the steel.
     """
     return math.sqrt(young_modulus / (2 * math.pi * (1 - poisson_ratio ** 2)))
 

@@ -188,9 +188,9 @@ class QuadratureMassProperties:
     Attributes
     ----------
     volume : float
-        [m^3]
+        Of the gear's solid, teeth included [m^3].
     mass : float
-        [kg]
+        The volume times the density [kg].
     axial_inertia : float
         About the gear axis [kg m^2].
     centre_of_mass_distance : float

@@ -125,6 +125,7 @@ def render_pair(path, pair, meshes, size=(900, 700), supersample=2):
     path : str or os.PathLike
         PNG file to write.
     pair : lsbg.gear.geometry.GearPair
+        Its design is the caption.
     meshes : dict
         ``{member: lsbg.solid.polyhedra.TriangleMesh}`` for members 1 and 2 [m].
     size : tuple of int

@@ -95,7 +95,7 @@ def effective_sample_size(values):
     Parameters
     ----------
     values : array_like
-        Samples, 1-D, at least 4, not constant [any unit].
+        The series of :func:`integrated_autocorrelation_time` [any unit].
 
     Returns
     -------

@@ -118,10 +118,8 @@ def subgroups_from_window(values, time, start, stop, size):
 
     Parameters
     ----------
-    values : array_like
-        Samples, 1-D [any unit].
-    time : array_like
-        Time stamps of ``values``, strictly increasing [s].
+    values, time : array_like
+        Samples [any unit] and their time stamps [s], as in :func:`steady_state`.
     start : float
         Window start, excluded [s].
     stop : float

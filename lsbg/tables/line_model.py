@@ -208,6 +208,7 @@ def sensitivity_table(cells, start=0.2, quantities=("gear_speed", "tangential_fo
     start : float
         Start of the steady state [s].
     quantities : sequence of str
+        Run variables compared in every cell.
     **options
         Passed to :func:`compare_fluctuation`.
 
@@ -489,7 +490,9 @@ def speed_curve_table(curve) -> pd.DataFrame:
     Parameters
     ----------
     curve : xarray.Dataset
-        From :func:`lsbg.experiments.speed.speed_curve`.
+        From :func:`lsbg.experiments.speed.speed_curve`: per trace its
+        ``natural_frequency`` [Hz], ``resonance_speed`` per order [deg/s] and
+        the curves over ``pinion_speed`` [deg/s].
 
     Returns
     -------

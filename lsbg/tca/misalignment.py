@@ -34,14 +34,6 @@ __all__ = ["Misalignment", "MISALIGNMENT_CONFIG_KEYS", "DISPLACEMENTS", "member_
 
 _MM = 1e-3
 
-#: Configuration keys of ``misalignment:`` and the field each sets.
-MISALIGNMENT_CONFIG_KEYS = {
-    "offset_E_mm": "offset",
-    "pinion_axial_P_mm": "pinion_axial",
-    "gear_axial_G_mm": "gear_axial",
-    "shaft_angle_error_deg": "shaft_angle_error",
-}
-
 #: The displacements by their letters: (field, configuration key, SI per config unit).
 DISPLACEMENTS = {
     "E": ("offset", "offset_E_mm", _MM),
@@ -49,6 +41,9 @@ DISPLACEMENTS = {
     "G": ("gear_axial", "gear_axial_G_mm", _MM),
     "Sigma": ("shaft_angle_error", "shaft_angle_error_deg", math.pi / 180.0),
 }
+
+#: Configuration keys of ``misalignment:`` and the field each sets (of :data:`DISPLACEMENTS`).
+MISALIGNMENT_CONFIG_KEYS = {key: name for name, key, _ in DISPLACEMENTS.values()}
 
 
 @dataclass(frozen=True)

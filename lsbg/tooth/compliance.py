@@ -200,6 +200,7 @@ def flank_grid(pair, member, settings):
     pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
     settings : FEMeshSettings
+        Its ``face_points`` x ``profile_points`` grid (:func:`grid_axes`).
 
     Returns
     -------
@@ -286,6 +287,8 @@ def mesh_sizes(pair, member, settings):
     pair : lsbg.gear.geometry.GearPair
     member : {1, 2}
     settings : FEMeshSettings
+        Its ``tooth_size`` and ``fillet_radius`` [mean normal modules] and
+        ``body_size`` [tooth sizes].
 
     Returns
     -------

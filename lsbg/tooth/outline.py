@@ -117,10 +117,9 @@ def _round_corner(first, second, spine, sphere_radius, radius):
         The two curves' points leaving the corner (both start at it) [m].
     spine : numpy.ndarray, shape (3,)
         Unit tangent of the corner line there [-].
-    sphere_radius : float
-        The section's cone distance [m].
-    radius : float
-        Fillet radius rho [m].
+    sphere_radius, radius : float
+        The section's cone distance and the fillet radius rho, as in
+        :func:`round_corners` [m].
 
     Returns
     -------

@@ -427,12 +427,9 @@ def line_contact_peak_pressure(load_per_length, reduced_radius, reduced_modulus)
 
     Parameters
     ----------
-    load_per_length : array_like
-        Normal load per unit length q, > 0 [N/m].
-    reduced_radius : array_like
-        Reduced radius R, > 0 [m].
-    reduced_modulus : array_like
-        Contact modulus E*, > 0 [Pa].
+    load_per_length, reduced_radius, reduced_modulus : array_like
+        q > 0 [N/m], R > 0 [m] and E* > 0 [Pa], as in
+        :func:`line_contact_half_width`.
 
     Returns
     -------
