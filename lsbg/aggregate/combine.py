@@ -24,7 +24,7 @@ from lsbg.contact.parameters import CONTACT_MODELS
 from lsbg.gear.design import TRACES, TRACE_LABELS
 from lsbg.dynamics.dataset import FULL_RATE_VARIABLES, VARIABLES, open_run
 from lsbg.files import as_path_list, open_dataset
-from lsbg.aggregate.runs import open_mesh, run_source, run_spiral_angle
+from lsbg.aggregate.runs import datasets_by_key, open_mesh, run_source, run_spiral_angle
 
 __all__ = ["POINT_VARIABLES", "MESH_VARIABLES", "TCA_VARIABLES", "VH_PREFIX", "combine_runs",
            "add_contact_state", "open_tca", "open_vh_map", "contact_state_point",
@@ -228,7 +228,7 @@ def combine_runs(paths, meshes=(), tca=(), vh_maps=()) -> xr.Dataset:
     for name, axis in names.items():
         out[name] = (("contact_model", "trace", "spiral_angle", axis), data[name], {
             key: value for key, value in first[name].attrs.items()
-            if key in ("units", "long_name", "standard_name")})
+            if key in ("units", "long_name", "standard_name", "description")})
     for attr, (name, units, long_name) in POINT_VARIABLES.items():
         if np.isfinite(point_data[attr]).any():
             out[name] = (("trace", "spiral_angle"), point_data[attr],
@@ -329,14 +329,9 @@ def sensitivity_attributes(ds):
 
 
 def _by_point(datasets, what):
-    found = {}
-    for ds in datasets:
-        key = contact_state_point(ds)
-        if key in found:
-            raise ValueError(f"{run_source(ds)}: {what} of design point {key[0]}, {key[1]:g} deg "
-                             f"already given by {run_source(found[key])}")
-        found[key] = ds
-    return found
+    return datasets_by_key(datasets, contact_state_point,
+                           lambda key, other: f"{what} of design point {key[0]}, {key[1]:g} deg "
+                                              f"already given by {other}")
 
 
 def _with_points(sweep, keys):
@@ -463,7 +458,7 @@ def add_contact_state(sweep, tcas=(), vh_maps=()) -> xr.Dataset:
         for a in axes})
     for name in names:
         attrs = {key: value for key, value in first[name].attrs.items()
-                 if key in ("units", "long_name", "standard_name")}
+                 if key in ("units", "long_name", "standard_name", "description")}
         attrs.setdefault("units", "1")
         attrs["long_name"] = f"V-H map: {attrs.get('long_name', name)}"
         out[f"{VH_PREFIX}{name}"] = (("trace", "spiral_angle", *axes), arrays[name], attrs)

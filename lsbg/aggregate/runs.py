@@ -26,8 +26,8 @@ from lsbg.dynamics.dataset import open_run
 __all__ = [
     "QUANTITIES", "QUANTITY_LABELS", "THEORY_ATTRIBUTES", "FULL_RATE_OF", "TYPE_ORDER",
     "open_pair", "select_runs", "gear_type", "run_spiral_angle", "run_source", "steady",
-    "quantity_label", "runs_by_type", "full_rate_series", "open_mesh", "records_by_type",
-    "run_theory"
+    "quantity_label", "datasets_by_key", "runs_by_type", "full_rate_series", "open_mesh",
+    "records_by_type", "run_theory"
 ]
 
 
@@ -149,7 +149,7 @@ def run_source(ds):
     return ds.encoding.get("source", "<dataset>")
 
 
-def steady(ds, name, start=0.2) -> np.ndarray:
+def steady(ds, name, start=None) -> np.ndarray:
     """Steady-state samples (time > ``start``) of a run variable [its units].
 
     Parameters
@@ -158,13 +158,18 @@ def steady(ds, name, start=0.2) -> np.ndarray:
         Run dataset.
     name : str
         Variable, e.g. ``'gear_speed'``.
-    start : float, default 0.2
-        End of the transient [s].
+    start : float, optional
+        End of the transient [s]: the study's ``statistics.steady_state_after_s``
+        (an extension: ``STUDY.config["statistics"]["steady_state_after_s"]``).
+        Default: the end of the run's own speed ramp (``solver_ramp_time_s``, the
+        paper's 0.2 s).
 
     Returns
     -------
     numpy.ndarray
     """
+    if start is None:
+        start = float(ds.attrs["solver_ramp_time_s"])
     return steady_state(ds[name].values, ds["time"].values, start)
 
 
@@ -173,18 +178,45 @@ def quantity_label(ds, name):
     return QUANTITY_LABELS.get(name, name.replace("_", " ")), ds[name].attrs.get("units", "")
 
 
+def datasets_by_key(datasets, key_of, clash):
+    """``{key: dataset}`` of datasets of which no two share a key.
+
+    Parameters
+    ----------
+    datasets : iterable of xarray.Dataset
+    key_of : callable
+        ``key_of(ds)``: the dataset's key (a gear type, a design point).
+    clash : callable
+        ``clash(key, other)``: the words of the error for a second dataset of
+        ``key``, ``other`` the source of the first.
+
+    Returns
+    -------
+    dict
+        In the order of ``datasets``.
+
+    Raises
+    ------
+    ValueError
+        ``"{source}: {clash(key, other)}"`` for the first dataset whose key
+        was taken.
+    """
+    found = {}
+    for ds in datasets:
+        key = key_of(ds)
+        if key in found:
+            raise ValueError(f"{run_source(ds)}: {clash(key, run_source(found[key]))}")
+        found[key] = ds
+    return found
+
+
 def runs_by_type(runs):
     """{gear type: dataset} in the paper's order, from a dict or a list of runs."""
     if isinstance(runs, dict):
         items = dict(runs)
     else:
-        items = {}
-        for ds in runs:
-            label = gear_type(ds)
-            if label in items:
-                raise ValueError(f"{run_source(ds)}: a second {label} run (also "
-                                 f"{run_source(items[label])})")
-            items[label] = ds
+        items = datasets_by_key(runs, gear_type,
+                                lambda label, other: f"a second {label} run (also {other})")
     order = [t for t in TYPE_ORDER if t in items] + [t for t in items if t not in TYPE_ORDER]
     return {t: items[t] for t in order}
 
