@@ -21,7 +21,7 @@ from pathlib import Path
 
 __all__ = ["InputError", "InputFileNotFoundError", "file_digest", "number_label",
            "label_clashes", "fill_template", "temporary_beside", "remove_stale_temporaries",
-           "write_atomically", "write_dataset", "as_path_list", "open_dataset", "load_yaml",
+           "write_atomically", "write_dataset", "as_path_list", "open_dataset", "short_labels", "load_yaml",
            "DuplicateKeyError", "duplicate_key_problems", "read_yaml_file"]
 
 
@@ -168,7 +168,40 @@ def write_dataset(ds, path):
             encoding[name] = {"fletcher32": True}
             if name in ds.data_vars and "time_full" in var.dims:
                 encoding[name].update(zlib=True, complevel=1, shuffle=True)
+    short_labels(ds)
     write_atomically(path, lambda tmp: ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding))
+
+
+#: The longest ``long_name`` of a variable [characters]: xarray's plots take it as the
+#: axis label.
+LABEL_WIDTH = 40
+
+
+def short_labels(ds, width=LABEL_WIDTH):
+    """Short ``long_name`` labels: a longer one moves to ``description``, in place.
+
+    A variable whose ``long_name`` is longer than ``width`` gets its name in words
+    (``transmission_error`` -> ``transmission error``) as its label, the full
+    definition kept as ``description``; xarray's plots then read
+    "transmission error [urad]".
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+    width : int
+        Characters [-].
+
+    Returns
+    -------
+    xarray.Dataset
+        ``ds``.
+    """
+    for name, variable in ds.variables.items():
+        text = variable.attrs.get("long_name")
+        if isinstance(text, str) and len(text) > width:
+            variable.attrs["description"] = text
+            variable.attrs["long_name"] = str(name).replace("_", " ")[:width]
+    return ds
 
 
 def as_path_list(value) -> list:

@@ -103,3 +103,37 @@ def test_the_old_per_key_options_are_named_nowhere():
              for cmd, options in named_commands(path.read_text(encoding="utf-8"))
              for opt in options if opt in old]
     assert not named, named
+
+
+def test_the_api_quick_start_runs(tmp_path, monkeypatch):
+    """docs/api.md's ten lines: the paper's pair, its TCA and loaded TCA, a labelled plot."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    text = (REPO / "docs" / "api.md").read_text(encoding="utf-8")
+    code = re.search(r"```python\n(.*?)```", text, re.S).group(1)
+    assert len([line for line in code.splitlines() if line.strip()]) <= 12
+    monkeypatch.chdir(tmp_path)
+    scope = {}
+    exec(compile(code, "docs/api.md", "exec"), scope)
+    assert (tmp_path / "transmission_error.png").stat().st_size > 1000
+    # the crowned pair: a parabolic unloaded TE of tens of urad, a larger loaded one
+    assert 20 < scope["tca"].attrs["transmission_error_peak_to_peak_urad"] < 100
+    assert (scope["ltca"].attrs["transmission_error_peak_to_peak_urad"]
+            > scope["tca"].attrs["transmission_error_peak_to_peak_urad"])
+    assert scope["axes"][0].axes.get_ylabel() == "transmission error [urad]"
+
+
+def test_every_dataset_label_is_short():
+    """xarray's plots label an axis with the variable's long_name: at most 40 characters,
+    the full definition kept as its description."""
+    import xarray as xr
+
+    from lsbg.files import short_labels
+
+    ds = xr.Dataset({"transmission_error": ("x", [1.0], {"units": "urad", "long_name": "x" * 90}),
+                     "speed": ("x", [1.0], {"units": "deg/s", "long_name": "gear speed"})})
+    short_labels(ds)
+    assert ds["transmission_error"].attrs == {"units": "urad", "long_name": "transmission error",
+                                              "description": "x" * 90}
+    assert ds["speed"].attrs["long_name"] == "gear speed" and "description" not in ds["speed"].attrs

@@ -23,6 +23,7 @@ import numpy as np
 import pandas as pd
 
 from lsbg import stats
+from lsbg.gear.design import CONFIG_KEYS
 from lsbg.aggregate.combine import open_tca, open_vh_map
 from lsbg.dynamics.dataset import VARIABLES, open_run
 from lsbg.files import as_path_list
@@ -329,14 +330,16 @@ def summary_table(paths, steady_state_after=0.2, window=(0.8, 1.0),
         :func:`quantity_summary`), then two per loaded TCA (see
         :func:`mesh_summary`), one per unloaded TCA (:func:`tca_summary`) and
         four per axis of each V-H map (:func:`vh_summary`); columns
-        :data:`SUMMARY_COLUMNS`.
+        :data:`SUMMARY_COLUMNS`, then the design keys (``design_*``, in the
+        configuration's units) and the load (``load_torque_N_m``) that are not
+        the same for every row.
 
     Raises
     ------
     ValueError
         Naming the file and quantity when a statistic cannot be computed.
     """
-    rows = []
+    rows, designs = [], []
     for path in as_path_list(paths):
         ds = open_run(path)
         for quantity in SUMMARY_QUANTITIES:
@@ -345,12 +348,36 @@ def summary_table(paths, steady_state_after=0.2, window=(0.8, 1.0),
                                              subgroup_size))
             except ValueError as err:
                 raise ValueError(f"{path}: {quantity}: {err}") from None
-    for path in as_path_list(meshes):
-        rows.extend(mesh_summary(open_mesh(path)))
-    for path in as_path_list(tca):
-        rows.extend(tca_summary(open_tca(path)))
-    for path in as_path_list(vh_maps):
-        rows.extend(vh_summary(open_vh_map(path)))
+            designs.append(_design_columns(ds))
+    for files, read, summarise in ((meshes, open_mesh, mesh_summary), (tca, open_tca, tca_summary),
+                                   (vh_maps, open_vh_map, vh_summary)):
+        for path in as_path_list(files):
+            ds = read(path)
+            found = summarise(ds)
+            rows.extend(found)
+            designs.extend([_design_columns(ds)] * len(found))
     table = pd.DataFrame(rows, columns=list(SUMMARY_COLUMNS))
     table["out_of_control"] = table["out_of_control"].astype("Int64")
-    return table
+    return _with_varying(table, pd.DataFrame(designs, index=table.index))
+
+
+#: The design keys a dataset records (``design_<key>``) beyond the trace and spiral angle,
+#: which the summary has as columns already.
+_DESIGN_COLUMNS = tuple(f"design_{key}" for key in CONFIG_KEYS
+                        if key not in ("trace", "spiral_angle_deg"))
+
+
+def _design_columns(ds):
+    """The design keys and the load a dataset records, as summary columns."""
+    columns = {k: ds.attrs[k] for k in _DESIGN_COLUMNS if k in ds.attrs}
+    load = ds.attrs.get("solver_load_torque_N_m", ds.attrs.get("load_torque_N_m"))
+    if load is not None:
+        columns["load_torque_N_m"] = load
+    return columns
+
+
+def _with_varying(table, designs):
+    """``table`` with the columns of ``designs`` whose value is not the same on every row
+    (a design or a load that varies across the study's runs), after its own."""
+    varying = [c for c in designs.columns if designs[c].dropna().astype(str).nunique() > 1]
+    return pd.concat([table, designs[varying]], axis=1) if varying else table

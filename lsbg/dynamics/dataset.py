@@ -16,7 +16,7 @@ import xarray as xr
 
 import lsbg
 from lsbg.gear import theory
-from lsbg.files import as_path_list, open_dataset
+from lsbg.files import as_path_list, open_dataset, short_labels
 
 #: Variables of a run dataset on ``time``: name -> (units, long_name).
 VARIABLES = {
@@ -149,7 +149,7 @@ def run_dataset(record, model, settings, command=""):
     attrs.update(_library_versions())
     ds.attrs.update({k: (float(v) if isinstance(v, (np.floating, np.integer)) else v)
                      for k, v in attrs.items()})
-    return ds
+    return short_labels(ds)
 
 
 #: Attributes every run dataset carries (checked by :func:`open_run`).
@@ -169,12 +169,13 @@ def open_run(path) -> xr.Dataset:
     Returns
     -------
     xarray.Dataset
-        Loaded (the file is closed); ``encoding['source']`` is the path.
+        As :func:`lsbg.files.open_dataset` returns it, with the variables of
+        a run and :data:`REQUIRED_ATTRIBUTES`.
 
     Raises
     ------
     lsbg.files.InputError
-        See :func:`open_dataset`.
+        See :func:`lsbg.files.open_dataset`.
     """
     return open_dataset(path, "run", ("time", "time_full", *VARIABLES, *FULL_RATE_VARIABLES),
                         REQUIRED_ATTRIBUTES, "a run dataset of lsbg.dynamics.dataset")

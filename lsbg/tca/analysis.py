@@ -38,6 +38,7 @@ from lsbg.tca.pattern import (MARKING_COMPOUND, bearing_pattern, chart_ellipses,
 from lsbg.tca.misalignment import Misalignment, member_frames
 from lsbg.tca.modification import FlankModification, flank_attributes, relieved_flank
 from lsbg.gear.flank import active_polar_range
+from lsbg.files import short_labels
 from lsbg.gear.vectors import unit
 
 #: Mesh positions over one mesh cycle.
@@ -338,7 +339,7 @@ def tooth_contact_analysis(pair, modification=None, misalignment=None, positions
     contact_rho, contact_theta = out[:, surface.O_R2], out[:, surface.O_THETA2]
     attrs = found["attrs"]
     phase = ("mesh_phase",)
-    return xr.Dataset(
+    return short_labels(xr.Dataset(
         {
             "transmission_error": (phase, te * 1e6, {
                 "units": "urad", "long_name": "unloaded transmission error, gear rotation "
@@ -403,7 +404,7 @@ def tooth_contact_analysis(pair, modification=None, misalignment=None, positions
                 "units": "mm", "long_name": "gear flank: height above the root cone"}),
         },
         attrs=attrs,
-    )
+    ))
 
 
 def tooth_contact_summary(pair, modification=None, misalignment=None, positions=POSITIONS,

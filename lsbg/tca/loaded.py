@@ -32,6 +32,7 @@ import numpy as np
 import lsbg
 from lsbg.contact import ContactParameters, MeshContact
 from lsbg.contact import kernels
+from lsbg.files import short_labels
 from lsbg.gear.flank import active_polar_range, mesh_phase_pinion_angle
 
 #: Default number of mesh phases over one base pitch.
@@ -216,7 +217,7 @@ def loaded_tca(contact: MeshContact, load_torque, phases=PHASES, profile_points=
     ratio = pair.contact_ratio()
     attrs.update(design_contact_ratio=ratio["total"], design_contact_ratio_profile=ratio["profile"],
                  design_contact_ratio_face=ratio["face"])
-    return xr.Dataset(
+    return short_labels(xr.Dataset(
         {
             "transmission_error": ("mesh_phase", te * 1e6, {
                 "units": "urad", "long_name": "loaded static transmission error, gear rotation "
@@ -255,7 +256,7 @@ def loaded_tca(contact: MeshContact, load_torque, phases=PHASES, profile_points=
         },
         attrs={k: (float(v) if isinstance(v, (np.floating, np.integer)) else v)
                for k, v in attrs.items()},
-    )
+    ))
 
 
 def loaded_pattern_extent(pattern, cone_distance, band_width, profile_angle):
@@ -375,9 +376,37 @@ def unloaded_transmission_error(pair, pinion_angles, side="drive", n_face=7):
     return np.asarray(out)
 
 
+def pair_loaded_tca(pair, load_torque, contact_params=None, flanks=None, phases=PHASES):
+    """:func:`loaded_tca` of a gear pair on its real flanks: the line model, uniform bed.
+
+    Parameters
+    ----------
+    pair : lsbg.gear.geometry.GearPair
+    load_torque : float
+        Torque on the gear [N m], >= 0.
+    contact_params : lsbg.contact.ContactParameters, optional
+        Its line-model fields are used (the model is set to "line"; default: the
+        study's defaults).
+    flanks : lsbg.tca.separation.RealFlanks, optional
+        Flank modification and assembly displacements (default: the conjugate,
+        aligned pair), e.g. ``RealFlanks.from_config({"lengthwise_crowning_um": 25},
+        {})``.
+    phases : int
+        Mesh positions over one base pitch [-].
+
+    Returns
+    -------
+    xarray.Dataset
+        As :func:`loaded_tca`.
+    """
+    params = (contact_params or ContactParameters()).replace(model="line")
+    separation = flanks.separation(pair) if flanks is not None else None
+    return loaded_tca(MeshContact(pair, params, separation=separation), load_torque, phases)
+
+
 def ltca_for_geometry(geometry_dir, load_torque, contact_params=None, phases=PHASES,
                       flanks=None):
-    """:func:`loaded_tca` of a geometry directory (``lsbg geometry``).
+    """:func:`pair_loaded_tca` of a geometry directory (``lsbg geometry``).
 
     Parameters
     ----------
@@ -395,11 +424,8 @@ def ltca_for_geometry(geometry_dir, load_torque, contact_params=None, phases=PHA
     -------
     xarray.Dataset
     """
-    from lsbg.solid.directory import read_design
     from lsbg.gear.geometry import GearPair
+    from lsbg.solid.directory import read_design
 
-    params = (contact_params or ContactParameters()).replace(model="line")
-    pair = GearPair(read_design(geometry_dir))
-    separation = flanks.separation(pair) if flanks is not None else None
-    contact = MeshContact(pair, params, separation=separation)
-    return loaded_tca(contact, load_torque, phases)
+    return pair_loaded_tca(GearPair(read_design(geometry_dir)), load_torque, contact_params,
+                           flanks, phases)

@@ -18,6 +18,7 @@ import math
 
 import numpy as np
 
+from lsbg.files import short_labels
 from lsbg.contact import ContactParameters, MeshContact
 from lsbg.tca.loaded import loaded_tca
 from lsbg.tca.analysis import MARKING_COMPOUND, tooth_contact_summary
@@ -185,9 +186,9 @@ def misalignment_map(pair, modification=None, axes=DEFAULT_AXES, values=None, lo
     dims = tuple(axes)
     coords = {a: (a, v, {"units": "degree" if a == "Sigma" else "mm", "long_name": AXIS_NAMES[a]})
               for a, v in zip(axes, values)}
-    return xr.Dataset({name: (dims, result[name], {"units": units, "long_name": text})
-                       for name, (units, text) in _VARIABLES.items()},
-                      coords=coords, attrs=attrs)
+    return short_labels(xr.Dataset(
+        {name: (dims, result[name], {"units": units, "long_name": text})
+         for name, (units, text) in _VARIABLES.items()}, coords=coords, attrs=attrs))
 
 
 #: Quantities whose change per 0.1 unit of each displacement is summarised.

@@ -20,6 +20,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from lsbg.files import short_labels
+
 __all__ = ["fe_ltca_for_geometry", "fe_ltca", "envelope_positions", "fe_envelope"]
 
 #: Variables of the complementarity LTCA that replace or join the line model's.
@@ -85,7 +87,7 @@ def fe_ltca(contact, compliance, load_torque, phases):
         source=ds.attrs["source"] + "; lsbg.tooth.analysis.fe_ltca (FE compliance + Hertz, "
                                     "complementarity per position)",
         slice_table_transmission_error_difference_urad=float(difference.max()))
-    return ds
+    return short_labels(ds)
 
 
 def fe_ltca_for_geometry(geometry_dir, load_torque, contact_params, compliance, phases=200,
@@ -169,9 +171,11 @@ def fe_envelope(pair, contact_params, compliance, load_torque, phases, modificat
     modification, misalignment : dict
         The ``flank_modification`` and ``misalignment`` sections (config units).
     axes : sequence of str
-        Displacement letters (``E``, ``P``, ``G``, ``Sigma``).
+        The displacements of the corners (``misalignment_map.axes``, letters
+        of ``E``, ``P``, ``G``, ``Sigma``).
     half_range : float
-        Largest displacement either way [mm; deg for Sigma].
+        The corners' displacement either way (``misalignment_map.range``)
+        [mm; deg for Sigma].
 
     Returns
     -------

@@ -40,3 +40,13 @@ def test_open_pair_checks_the_gear_types(runs):
         open_pair(runs["lsbg35"], runs["sbg35"])
     with pytest.raises(ValueError, match="both"):
         open_pair(runs["sbg35"], "")
+
+
+def test_steady_starts_at_the_runs_own_ramp_end_unless_told(runs):
+    """The conftest's short runs ramp up in 0.01 s: steady() without a start keeps the
+    samples after it (a fixed 0.2 s would keep none of a 0.05-s run)."""
+    ds = open_run(runs["lsbg35"])
+    time = ds["time"].values
+    assert float(ds.attrs["solver_ramp_time_s"]) == pytest.approx(0.01)
+    assert steady(ds, "gear_speed").size == np.count_nonzero(time > 0.01) == 20
+    assert steady(ds, "gear_speed", 0.03).size == np.count_nonzero(time > 0.03)

@@ -155,7 +155,7 @@ def test_spiral_angle_is_rounded_in_tables(runs, windows):
 def test_contact_state_rows_of_tcas_and_maps(runs, tmp_path, windows):
     from lsbg.files import write_dataset
     from lsbg.aggregate.summary import CONTACT_STATE_QUANTITIES, tca_summary, vh_summary
-    from test_combine import synthetic_tca, synthetic_vh_map
+    from tests.aggregate.test_combine import synthetic_tca, synthetic_vh_map
 
     tca = synthetic_tca("circular", 35.0, te_pp=50.0)
     (row,) = tca_summary(tca)
@@ -175,7 +175,7 @@ def test_contact_state_rows_of_tcas_and_maps(runs, tmp_path, windows):
         assert np.isnan(r["std"]) and np.isnan(r["peak_to_peak"])
     # the units the combined dataset writes (lsbg.aggregate.combine.add_contact_state)
     from lsbg.aggregate.combine import add_contact_state
-    from test_combine import _points
+    from tests.aggregate.test_combine import _points
 
     combined = add_contact_state(_points(), [tca], [vh])
     for quantity in [r["quantity"] for r in rows]:
@@ -205,3 +205,21 @@ def test_contact_state_rows_of_tcas_and_maps(runs, tmp_path, windows):
     assert (written.engine == "tca").sum() == len(state)
     value = written[written.quantity == "transmission_error_loaded_pp_per_0_1_Sigma"]["mean"]
     assert float(value.iloc[0]) == vh.attrs["transmission_error_loaded_pp_per_0_1_Sigma"]
+
+
+def test_the_design_and_the_load_that_vary_are_columns(runs, windows, tmp_path):
+    """summary.csv names what differs between the runs: a face width or a load that is not
+    the same for every row is a column; the same design everywhere adds none."""
+    from lsbg.dynamics.dataset import open_run
+    from lsbg.files import write_dataset
+
+    same = summary_table([runs["lsbg35"], runs["sbg35"]], **windows)
+    assert list(same.columns) == list(SUMMARY_COLUMNS)
+    other = open_run(runs["lsbg35"])
+    other.attrs.update(design_face_width_mm=30.0, solver_load_torque_N_m=1000.0)
+    write_dataset(other, tmp_path / "wider.nc")
+    table = summary_table([runs["lsbg35"], tmp_path / "wider.nc"], **windows)
+    assert list(table.columns) == [*SUMMARY_COLUMNS, "design_face_width_mm", "load_torque_N_m"]
+    rows = len(SUMMARY_QUANTITIES)
+    assert table["design_face_width_mm"].tolist() == [25.0] * rows + [30.0] * rows
+    assert table["load_torque_N_m"].tolist() == [1964.99] * rows + [1000.0] * rows
