@@ -144,5 +144,5 @@ def load_sweep_moved(section):
              "contact_model": section.get("contact_model", "point")}  # its old default
     entry.update({k: section[k] for k in ("traces", "engine") if k in section})
     text = ", ".join(f"{k}: {v!r}".replace("'", "") for k, v in entry.items())
-    return (f"load_sweep: replaced by the sweeps section (README, \"Sweeping any setting\"); "
+    return (f"load_sweep: replaced by the sweeps section (docs/usage.md, \"Sweeping any setting\"); "
             f"write instead  sweeps: {{load: {{{text}}}}}  (results in results/sweeps/load.nc)")

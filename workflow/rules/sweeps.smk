@@ -1,4 +1,4 @@
-# Parameter sweeps of any setting (the `sweeps` section; lsbg.experiments.sweeps, README
+# Parameter sweeps of any setting (the `sweeps` section; lsbg.experiments.sweeps, docs/usage.md
 # "Sweeping any setting"). Per sweep: its points (a Paramspace: one row per
 # point, a column per swept key, the instance patterns name the files) run in
 # batches of `batch_size` points per job and design point (`lsbg sweep-run`: one
