@@ -36,7 +36,7 @@ import os
 from pathlib import Path
 
 __all__ = ["PACKAGE", "module_files", "module_imports", "module_closure", "function_closure",
-           "notebook_closure", "closure_files", "sources_digest", "cached_answer"]
+           "notebook_closure", "closure_files", "sources_listing", "write_if_changed", "sources_digest", "cached_answer"]
 
 #: The lsbg package directory.
 PACKAGE = Path(__file__).resolve().parents[1]
@@ -281,6 +281,62 @@ def closure_files(modules, root=None, package=PACKAGE):
     root = Path(root).resolve()
     return sorted(f.relative_to(root).as_posix() if f.is_relative_to(root) else str(f)
                   for f in files)
+
+
+@functools.lru_cache(maxsize=None)
+def _file_digest(path, mtime_ns, size):
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+def sources_listing(modules, package=PACKAGE):
+    """The source files of ``modules`` with their SHA-256, as ``sha256sum`` prints them.
+
+    Parameters
+    ----------
+    modules : iterable of str
+    package : pathlib.Path
+
+    Returns
+    -------
+    str
+        One line per file, ``<hex digest>  lsbg/<path>`` (relative to the repository),
+        sorted.
+    """
+    lines = []
+    for name in closure_files(modules, package=package):
+        path = Path(name)
+        stat = path.stat()
+        digest = _file_digest(str(path), stat.st_mtime_ns, stat.st_size)
+        lines.append(f"{digest}  {path.relative_to(package.parent).as_posix()}")
+    return "\n".join(lines) + "\n"
+
+
+def write_if_changed(path, text):
+    """Write ``text`` to ``path`` (atomically) only if it holds something else.
+
+    The file's time stamp then moves only when its content changes: a rule that
+    takes it as an input reruns exactly then.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+    text : str
+
+    Returns
+    -------
+    pathlib.Path
+    """
+    path = Path(path)
+    try:
+        if path.read_text(encoding="utf-8") == text:
+            return path
+    except OSError:
+        pass
+    path.parent.mkdir(parents=True, exist_ok=True)
+    part = path.with_name(f".{path.name}.{os.getpid()}.part")
+    part.write_text(text, encoding="utf-8")
+    part.replace(path)
+    return path
 
 
 # ------------------------------------------------------ answers of some code

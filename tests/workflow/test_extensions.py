@@ -89,7 +89,8 @@ def test_a_new_stage_is_one_subcommand_and_one_rule_file(new_stage, tmp_path):
     # its command line from the rule's names, its sources from the handler's imports
     assert "lsbg -v contact-ratio --geometry results/geometry/" in block
     assert "--config results/config.yaml --out results/extensions/contact_ratio.csv" in block
-    sources = block.split("input:", 1)[1].split("\n", 1)[0]
+    assert ".snakemake/lsbg-sources/contact-ratio.sha256" in block.split("output:")[0]
+    sources = (root / ".snakemake" / "lsbg-sources" / "contact-ratio.sha256").read_text()
     assert "lsbg/cli/contact_ratio.py" in sources and "lsbg/gear/geometry.py" in sources
     assert "lsbg/dynamics/model.py" not in sources and "lsbg/tca/loaded.py" not in sources
     # a priority from the rule graph: not measured, nothing waits for it (Snakemake prints

@@ -103,11 +103,12 @@ _COMMAND = re.compile(r"lsbg -v (report \w+|[\w-]+) ")
 
 
 def test_rules_list_the_lsbg_files_they_run(tmp_path):
-    """A rule's source inputs are the files its command's handler reaches (and a report's
-    notebook's imports): derived from the imports (lsbg.study.stages), checked here against
-    the command each job runs."""
+    """A rule's sources are the files its command's handler reaches (and a report's
+    notebook's imports): derived from the imports (lsbg.study.stages), listed with their
+    digests in one input per job (.snakemake/lsbg-sources/), checked here against the
+    command each job runs."""
     from lsbg.cli import handler_of
-    from lsbg.study.stages import PACKAGE, closure_files, function_closure, notebook_closure
+    from lsbg.study.stages import function_closure, notebook_closure, sources_listing
 
     proc = snakemake("-n", "-p", "--snakefile", SNAKEFILE, cwd=tmp_path, check=True)
     inputs = job_inputs(proc.output)
@@ -118,24 +119,25 @@ def test_rules_list_the_lsbg_files_they_run(tmp_path):
         if rule and command:
             commands.setdefault(rule.group(1), command.group(1))
     assert set(commands) == set(inputs) - {"all"}
-
-    def in_package(name):
-        # by location, not by name: the checkout itself may sit in a folder called lsbg
-        return (tmp_path / name).resolve().is_relative_to(PACKAGE)
-
+    listed = {}
     for rule, command in commands.items():
         name, _, notebook = command.partition(" ")
+        listing = [f for f in inputs[rule] if f.startswith(".snakemake/lsbg-sources/")]
+        assert listing == [f".snakemake/lsbg-sources/{name}{'-' + notebook if notebook else ''}"
+                           f".sha256"], rule
+        assert not any(f.startswith("lsbg/") for f in inputs[rule]), rule   # one input only
         handler = handler_of(name)
         modules = function_closure(handler.__module__.removeprefix("lsbg."), handler.__name__)
         if notebook:
             modules |= notebook_closure(REPO / "workflow" / "notebooks" / f"{notebook}.ipynb")
-        listed = set(filter(in_package, inputs[rule]))
-        assert listed == set(closure_files(modules, root=tmp_path)), rule
+        text = (tmp_path / listing[0]).read_text(encoding="utf-8")
+        assert text == sources_listing(modules), rule
+        listed[rule] = {line.split("  ", 1)[1] for line in text.splitlines()}
     # precise: the geometry does not rerun for the dynamics or the statistics
     assert not any(f.endswith(("verification.py", "summary.py", "pybullet_engine.py"))
-                   for f in inputs["paper_geometry"])
-    assert any(f.endswith("tca/vh_map.py") for f in inputs["contact_state"])
-    assert not any(f.endswith("tca/vh_map.py") for f in inputs["convergence_line"])
+                   for f in listed["paper_geometry"])
+    assert "lsbg/tca/vh_map.py" in listed["contact_state"]
+    assert "lsbg/tca/vh_map.py" not in listed["convergence_line"]
     for name in ("paper", "sweep", "verification"):
         assert any(f.endswith(f"workflow/notebooks/{name}.ipynb")
                    for f in inputs[f"report_{name}"])

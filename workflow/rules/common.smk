@@ -36,7 +36,7 @@ REPO = Path(workflow.basedir).resolve()
 SCHEMA = REPO / "workflow" / "schemas" / "config.schema.yaml"
 #: Software of every rule (with --software-deployment-method conda).
 CONDA_ENV = (REPO / "workflow" / "envs" / "lsbg.yaml").as_posix()
-#: Extensions: the repository's, then the study folder's own (README, "Your own study").
+#: Extensions: the repository's, then the study folder's own (docs/usage.md, "A study of your own").
 EXTENSION_DIRS = (REPO / "workflow" / "extensions", Path("workflow") / "extensions")
 
 
@@ -227,18 +227,32 @@ def repo_path(relative):
     return path.as_posix() if inside.startswith("..") else Path(inside).as_posix()
 
 
+#: Where each command's sources are listed with their digests (one input per rule).
+SOURCES = Path(".snakemake") / "lsbg-sources"
+
+
 @lru_cache(maxsize=None)
 def sources(name, notebook=None):
-    """The sources that ``lsbg <name>`` runs, as a rule's inputs; every lsbg file its handler reaches (and,
-    for a report, the notebook's code; lsbg.study.stages), so that editing one reruns it."""
+    """The input that reruns a rule when a source that ``lsbg <name>`` runs changes.
+
+    Every lsbg file its handler reaches by its imports (and, for a report, the
+    notebook's code; lsbg.study.stages), listed with its SHA-256 in one file,
+    ``.snakemake/lsbg-sources/<name>.sha256``, rewritten only when a digest
+    changes: one input per job instead of the files themselves (``snakemake -n``
+    stays readable), and ``sha256sum -c`` on it names the changed file.
+    """
     from lsbg.cli import handler_of
-    from lsbg.study.stages import closure_files, function_closure, notebook_closure
+    from lsbg.study.stages import (function_closure, notebook_closure, sources_listing,
+                                   write_if_changed)
 
     handler = handler_of(name)
     modules = function_closure(handler.__module__.removeprefix("lsbg."), handler.__name__)
     if notebook:
         modules |= notebook_closure(REPO / "workflow" / "notebooks" / f"{notebook}.ipynb")
-    return closure_files(modules, root=os.getcwd())
+    path = SOURCES / (f"{name}-{notebook}.sha256" if notebook else f"{name}.sha256")
+    if workflow.remote_exec or workflow.subprocess_exec:
+        return path.as_posix()  # the submitting Snakemake wrote it
+    return write_if_changed(path, sources_listing(modules)).as_posix()
 
 
 def runtime(runs=1):
