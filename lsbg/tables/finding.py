@@ -251,7 +251,7 @@ def _by_angle_text(table):
 
 
 def scope_text(spiral_angle, load_torque, cases, flanks, vh_maps, sweep_scope=None,
-               contact_by_angle=None):
+               contact_by_angle=None, parameter_sweeps=()):
     """Where the finding's answers hold: the load, crowning, displacements and angles.
 
     Parameters
@@ -271,6 +271,9 @@ def scope_text(spiral_angle, load_torque, cases, flanks, vh_maps, sweep_scope=No
         quantity; None where the study ran no other angle under the line model.
     contact_by_angle : pandas.DataFrame, optional
         :func:`lsbg.tables.claims.contact_state_by_angle` of the sweep.
+    parameter_sweeps : sequence of xarray.Dataset
+        The study's parameter sweeps (:func:`lsbg.aggregate.sweep_dataset.sweep_dataset`):
+        a sweep of the load names the loads it ran.
 
     Returns
     -------
@@ -294,8 +297,7 @@ def scope_text(spiral_angle, load_torque, cases, flanks, vh_maps, sweep_scope=No
              f"{float(flanks.get('flank_modification_lengthwise_crowning_um', 0)):g} µm, "
              f"profile {float(flanks.get('flank_modification_profile_crowning_um', 0)):g} µm; "
              f"×0: conjugate flanks) and {displacement_text}, in the cells of each claim's "
-             "sensitivity table. No other load was run (a sweep of simulation.load_torque_N_m "
-             "runs others: README, \"Sweeping any setting\")."]
+             f"sensitivity table. {other_loads_text(parameter_sweeps, load_torque)}"]
     if sweep_scope is None:
         lines.append("This study ran no other spiral angle under the line model.")
     else:
@@ -312,6 +314,36 @@ def scope_text(spiral_angle, load_torque, cases, flanks, vh_maps, sweep_scope=No
                  "(contact.compliance: fe computes them everywhere); ISO 10300 rates the two "
                  "types alike at every spiral angle (sweep.html, its service-life section).")
     return " ".join(lines)
+
+
+#: The swept key of the load (lsbg.experiments.sweeps: a section's key by its path).
+LOAD_KEY = "simulation.load_torque_N_m"
+
+
+def other_loads_text(parameter_sweeps, load_torque):
+    """The other loads the study ran, from its parameter sweeps, or that it ran none.
+
+    Parameters
+    ----------
+    parameter_sweeps : sequence of xarray.Dataset
+        The study's parameter sweeps (a coordinate per swept key).
+    load_torque : float
+        The load of the claims' cells [N m].
+
+    Returns
+    -------
+    str
+        One sentence.
+    """
+    loads = {float(v) for ds in parameter_sweeps if LOAD_KEY in ds.coords
+             for v in np.atleast_1d(ds[LOAD_KEY].values)} - {float(load_torque)}
+    if not loads:
+        return (f"No other load was run (a sweep of {LOAD_KEY} runs others: docs/usage.md, "
+                f"\"Sweeping any setting\").")
+    names = [ds.attrs.get("sweep_name", "?") for ds in parameter_sweeps if LOAD_KEY in ds.coords]
+    return (f"Other loads ran in the parameter sweep{'s' if len(names) > 1 else ''} "
+            f"{', '.join(repr(n) for n in names)} ({', '.join(f'{v:g}' for v in sorted(loads))} "
+            f"N·m: sweep.html, its parameter sweeps), outside the claims' cells.")
 
 
 def load_ratio_text(ratings):
@@ -407,3 +439,48 @@ def integrator_sentence(speed_ratio, force_ratio):
                      "it.")
         return text
     return "Our force fluctuations are of the same order as the paper's."
+
+
+def angles_words(angles):
+    """The spiral angles a study ran, in words: "one spiral angle, 35°" or "11 spiral
+    angles, 20–45°".
+
+    Parameters
+    ----------
+    angles : sequence of float
+        [deg]
+
+    Returns
+    -------
+    str
+    """
+    angles = sorted(set(float(a) for a in angles))
+    if len(angles) == 1:
+        return f"one spiral angle, {angles[0]:g}°"
+    return f"{len(angles)} spiral angles, {angles[0]:g}–{angles[-1]:g}°"
+
+
+def ranking_words(scope, angles):
+    """What the sweep's rankings say across its angles: whether they depend on the angle.
+
+    Parameters
+    ----------
+    scope : pandas.DataFrame
+        :func:`lsbg.tables.line_model.calmer_by_angle`: per quantity, the angles where
+        the LSBG, the SBG and neither is calmer (``"none"`` where none).
+    angles : sequence of float
+        The sweep's spiral angles [deg].
+
+    Returns
+    -------
+    str
+        A sentence, or ``""`` where one angle ran (nothing to say across angles).
+    """
+    if len(set(angles)) < 2 or scope.empty:
+        return ""
+    outcomes = [sum(getattr(row, c) != "none" for c in ("LSBG", "SBG", "neither"))
+                for row in scope.itertuples()]
+    if any(n > 1 for n in outcomes):
+        return ("So the ranking depends on the spiral angle: a statement about one design "
+                "point does not carry over to the others.")
+    return "The ranking is the same at every spiral angle of the sweep."

@@ -19,6 +19,8 @@ References
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pandas as pd
 
@@ -90,6 +92,59 @@ _DESIGN_ROWS = [
     ("axial_inertia_pinion_kg_m2", "axial moment of inertia, pinion", "kg m²", "measured"),
     ("axial_inertia_gear_kg_m2", "axial moment of inertia, gear", "kg m²", "measured"),
 ]
+
+
+#: The paper's Table 1 keys (the configuration's design keys, the paper's values).
+TABLE1_KEYS = ("pinion_teeth", "gear_teeth", "module_mm", "shaft_angle_deg", "pinion_hand",
+               "normal_pressure_angle_deg", "spiral_angle_deg", "addendum_mm", "dedendum_mm")
+#: What the paper leaves open and lsbg assumes.
+ASSUMED_KEYS = ("face_width_mm", "cutter_radius_mm", "backlash_mm", "base_cone_rule")
+
+
+def design_words(record, spiral_angle=True):
+    """A design in words, saying where it departs from the paper's Table 1.
+
+    Parameters
+    ----------
+    record : dict
+        ``design.json`` of a geometry directory (:func:`lsbg.solid.directory.read_record`),
+        or a dataset's ``design_*`` attributes without the prefix.
+    spiral_angle : bool
+        Name the spiral angle (not for a sweep over it).
+
+    Returns
+    -------
+    (str, bool)
+        ``("the paper's Table 1 (9:37 teeth, module 4.5 mm, spiral angle 35°; face
+        width 25 mm)", True)``, or ``("a pair modified from the paper's Table 1
+        (module 5 mm; ...)", False)`` naming every key that differs from the paper's
+        (and from lsbg's assumptions for what the paper leaves open).
+    """
+    from lsbg.gear.design import GearPairDesign
+
+    paper = GearPairDesign().to_config()
+
+    def value(key):
+        text = f"{record[key]:g}" if isinstance(record[key], float) else str(record[key])
+        unit = {"_mm": " mm", "_deg": "°"}.get(next((u for u in ("_mm", "_deg")
+                                                      if key.endswith(u)), ""), "")
+        return f"{key.removesuffix('_mm').removesuffix('_deg').replace('_', ' ')} {text}{unit}"
+
+    def differs(key):
+        mine, theirs = record[key], paper[key]
+        if isinstance(mine, (int, float)) and isinstance(theirs, (int, float)):
+            return not math.isclose(mine, theirs, rel_tol=1e-9)  # (mm from SI and back)
+        return mine != theirs
+
+    changed = [key for key in (*TABLE1_KEYS, *ASSUMED_KEYS)
+               if key in record and key != "spiral_angle_deg" and differs(key)]
+    angle = f", spiral angle {record['spiral_angle_deg']:g}°" if spiral_angle else ""
+    basics = (f"{record['pinion_teeth']}:{record['gear_teeth']} teeth, module "
+              f"{record['module_mm']:g} mm{angle}; face width {record['face_width_mm']:g} mm")
+    if not changed:
+        return f"the paper's Table 1 ({basics})", True
+    return (f"a pair modified from the paper's Table 1 ({basics}; changed: "
+            f"{', '.join(value(k) for k in changed)})", False)
 
 
 def design_table(geometry_dirs) -> pd.DataFrame:

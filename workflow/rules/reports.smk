@@ -21,6 +21,7 @@ rule report_paper:
         fe_case_files=STUDY.fe_cases(),
         rating_files=STUDY.rating_files,
         checks_files=PAPER_CHECKS,
+        parameter_sweep_files=[FILES["sweep_dataset"].format(name=s.name) for s in STUDY.sweeps],
         sources=sources("report", "paper"),
     output:
         report(STUDY.reports["paper"], caption="../report/reports.rst", category="Reports",

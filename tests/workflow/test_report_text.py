@@ -1,0 +1,74 @@
+"""The reports say what ran: design values, loads and angles from the study's files.
+
+Three altered studies beside the session's (tests/workflow/conftest.py, the test
+configuration: one spiral angle, the paper's pair): a load sweep on top of it, and
+a pair with another face width in a study folder of its own.
+"""
+
+import re
+
+import pytest
+
+from tests.workflow.helpers import TEST_CONFIG, snakemake, write_yaml
+
+
+def report_text(path):
+    """A rendered report's visible text, one line."""
+    text = path.read_text(encoding="utf-8")
+    text = re.sub(r"<style.*?</style>|<script.*?</script>", "", text, flags=re.S)
+    text = re.sub(r"data:[\w/+]+;base64,[A-Za-z0-9+/=]+", "", text)
+    return " ".join(re.sub(r"<[^>]+>", " ", text).split())
+
+
+def first_screen(text):
+    return text[text.index("Compared"):][:2500]
+
+
+@pytest.mark.slow
+def test_one_spiral_angle_and_the_papers_pair(study):
+    root, _ = study
+    paper, sweep = (report_text(root / "reports" / f"{n}.html") for n in ("paper", "sweep"))
+    assert ("of the paper's Table 1 (9:37 teeth, module 4.5 mm, spiral angle 35°; face width "
+            "25 mm)") in first_screen(paper)
+    assert "gear loaded with 1964.99 N·m" in first_screen(paper)
+    assert "No other load was run" in paper
+    # one angle ran: no statement across angles
+    assert "at one spiral angle, 35°" in first_screen(sweep)
+    assert "depends on the spiral angle" not in sweep and "35–35" not in sweep
+    assert "spiral angles" not in first_screen(sweep).split("(compiled engine)")[0]
+
+
+@pytest.mark.slow
+def test_a_load_sweep_is_named_where_the_loads_are_stated(study, tmp_path):
+    root, env = study
+    extra = write_yaml(tmp_path / "loads.yaml", {"sweeps": {"load": {
+        "simulation.load_torque_N_m": [1000, 3000], "contact_model": "point"}}})
+    try:
+        snakemake("-j2", "--configfile", TEST_CONFIG, extra, cwd=root, env=env, check=True)
+        paper = report_text(root / "reports" / "paper.html")
+        assert "No other load was run" not in paper
+        assert "Other loads ran in the parameter sweep 'load' (1000, 3000 N·m" in paper
+    finally:
+        # the session's study as it was: its reports without the sweep
+        snakemake("-j2", "--configfile", TEST_CONFIG, cwd=root, env=env, check=True)
+    assert "No other load was run" in report_text(root / "reports" / "paper.html")
+
+
+@pytest.mark.slow
+def test_another_face_width_is_stated_as_a_change(study, tmp_path):
+    """A study of its own (-d): the face width 30 mm, stated as a change from Table 1 in
+    every report; the design values the reports name are the ones that ran."""
+    root, env = study
+    mine = tmp_path / "face30"
+    mine.mkdir()
+    config = write_yaml(mine / "config.yaml", {"design": {"face_width_mm": 30}})
+    snakemake("-j2", "-s", root / "Snakefile", "-d", mine, "--configfile", root / TEST_CONFIG,
+              config, cwd=tmp_path, env=env, check=True)
+    paper, sweep = (report_text(mine / "reports" / f"{n}.html") for n in ("paper", "sweep"))
+    for text in (paper, sweep):
+        assert "modified from the paper's Table 1" in first_screen(text)
+        assert "face width 30 mm" in first_screen(text)
+        assert "25-mm" not in text and "face width 25 mm" not in text
+    assert "face width 30 mm" in paper[paper.index("Where the study's load stands"):][:400]
+    # and the repository's own study is untouched
+    assert "face width 25 mm" in report_text(root / "reports" / "paper.html")
