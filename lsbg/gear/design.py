@@ -24,6 +24,7 @@ TRACES = ("logarithmic", "circular")
 TRACE_LABELS = {"logarithmic": "LSBG", "circular": "SBG"}
 BASE_CONE_RULES = ("involute", "paper")
 HANDS = ("left", "right")
+UNDERCUT = ("accept", "refuse")
 
 #: Density of steel [kg/m^3], used for the mass properties of the solids.
 STEEL_DENSITY = 7850.0
@@ -90,6 +91,24 @@ class GearPairDesign:
         Density of both gears [kg/m^3].
     pinion_bore, gear_bore : float
         Bore diameters of the pinion and gear hubs [m].
+    profile_shift : float
+        Mean profile shift coefficient of the pinion x_hm1 (ISO 23509), the gear's
+        x_hm2 = -x_hm1 [-]: the basic crown gear moved x_hm1 m_mn towards the
+        pinion's tip. It moves depth from the gear's addendum to the pinion's
+        (and back at the roots) and thickens the pinion's tooth by
+        2 x_hm1 m_mn tan(alpha_n) in the normal section, on the same flank
+        surfaces (the rolling plane is the same: only where the teeth are cut
+        and how far apart their flanks stand change).
+    thickness_modification : float
+        Thickness modification coefficient of the pinion x_smn1 (ISO 23509), the
+        gear's -x_smn1 [-]: the pinion's mean normal tooth thickness grows by
+        2 x_smn1 m_mn, the gear's shrinks by as much.
+    undercut : {"accept", "refuse"}
+        Whether a pinion or gear whose root cone cuts into the path of contact
+        (undercut, :attr:`lsbg.gear.geometry.GearPair.undercut`) is a design
+        lsbg builds. The paper's pair is undercut at 35 deg and below (its
+        9-tooth pinion is unshifted), so its design accepts it; a practice
+        design refuses it.
     """
 
     pinion_teeth: int = 9
@@ -109,6 +128,9 @@ class GearPairDesign:
     density: float = STEEL_DENSITY
     pinion_bore: float = 12e-3
     gear_bore: float = 60e-3
+    profile_shift: float = 0.0
+    thickness_modification: float = 0.0
+    undercut: str = "accept"
 
     def __post_init__(self):
         self._validate()
@@ -160,8 +182,21 @@ class GearPairDesign:
         if self.face_width > self.outer_cone_distance / 2:
             fail("face_width", self.face_width,
                  f"exceeds half the outer cone distance R_e/2 = {self.outer_cone_distance / 2:.6g} m")
+        for name in ("profile_shift", "thickness_modification"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not (np.isfinite(value) and abs(value) < 1.5):
+                fail(name, value, "must be a number of mean normal modules in (-1.5, 1.5)")
+        if self.undercut not in UNDERCUT:
+            fail("undercut", self.undercut, f"must be one of {UNDERCUT}")
         if self.addendum > 1.25 * self.module:
             fail("addendum", self.addendum, f"exceeds 1.25 module = {1.25 * self.module:.6g} m")
+        for member in (1, 2):
+            name = "pinion" if member == 1 else "gear"
+            if self.outer_dedendum(member) <= 0 or self.outer_addendum(member) <= 0:
+                fail("profile_shift", self.profile_shift,
+                     f"leaves the {name} no addendum or dedendum (outer addendum "
+                     f"{self.outer_addendum(member):.6g} m, dedendum "
+                     f"{self.outer_dedendum(member):.6g} m)")
         if self.dedendum <= self.addendum:
             fail("dedendum", self.dedendum,
                  f"must exceed the addendum {self.addendum:.6g} m to leave tip clearance")
@@ -322,27 +357,77 @@ class GearPairDesign:
         """Mean pitch radius r_m,i = R_m sin delta_i [m]."""
         return self.mean_cone_distance * math.sin(self.pitch_angle(member))
 
+    @property
+    def mean_normal_module(self) -> float:
+        """Mean normal module m_mn = m_m cos(beta_m) [m] (ISO 23509's unit of a shift)."""
+        return self.mean_module * math.cos(self.spiral_angle)
+
+    def _shift_sign(self, member):
+        return 1.0 if member == 1 else -1.0
+
+    def outer_shift(self, member: int) -> float:
+        """The profile shift's depth at the outer cone distance, +-x_hm1 m_mn R_e/R_m [m].
+
+        The teeth taper to the apex (their depth is proportional to the cone
+        distance), so the shift x_hm1 m_mn at the mean point is
+        x_hm1 m_mn R_e / R_m = x_hm1 m cos(beta_m) at the heel.
+        """
+        return (self._shift_sign(member) * self.profile_shift * self.mean_normal_module
+                * self.outer_cone_distance / self.mean_cone_distance)
+
+    def outer_addendum(self, member: int) -> float:
+        """Outer addendum of a member, h_a +- the profile shift [m]."""
+        return self.addendum + self.outer_shift(member)
+
+    def outer_dedendum(self, member: int) -> float:
+        """Outer dedendum of a member, h_f -+ the profile shift [m]."""
+        return self.dedendum - self.outer_shift(member)
+
     def mean_tooth_thickness(self, member: int) -> float:
-        """Circular tooth thickness on the mean pitch circle, (pi m_m - j)/2 [m]."""
-        return (self.mean_circular_pitch - self.backlash) / 2
+        """Circular tooth thickness on the mean pitch circle [m].
+
+        (pi m_m - j)/2, with the backlash j split between the two members,
+        +- 2 m_mn (x_hm1 tan(alpha_n) + x_smn1) / cos(beta_m): the profile shift
+        and the thickness modification in the normal section (ISO 23509),
+        carried to the transverse circle at the mean point.
+        """
+        change = (2 * self.mean_normal_module * (self.profile_shift
+                                                 * math.tan(self.normal_pressure_angle)
+                                                 + self.thickness_modification)
+                  / math.cos(self.spiral_angle))
+        return (self.mean_circular_pitch - self.backlash) / 2 + self._shift_sign(member) * change
+
+    def mean_normal_tooth_thickness(self, member: int) -> float:
+        """Normal tooth thickness at the mean point, s_m cos(beta_m) [m] (ISO 23509's
+        s_mn, less half the backlash's normal share)."""
+        return self.mean_tooth_thickness(member) * math.cos(self.spiral_angle)
 
     @property
     def addendum_angle(self) -> float:
-        """Addendum angle theta_a = atan(h_a / R_e) [rad] (depth tapers to the apex)."""
+        """Addendum angle of the unshifted teeth, atan(h_a / R_e) [rad] (depth tapers
+        to the apex); a member's own: :meth:`member_addendum_angle`."""
         return math.atan(self.addendum / self.outer_cone_distance)
 
     @property
     def dedendum_angle(self) -> float:
-        """Dedendum angle theta_f = atan(h_f / R_e) [rad]."""
+        """Dedendum angle of the unshifted teeth, atan(h_f / R_e) [rad]."""
         return math.atan(self.dedendum / self.outer_cone_distance)
 
+    def member_addendum_angle(self, member: int) -> float:
+        """Addendum angle theta_a,i = atan(h_a,i / R_e) of a member [rad]."""
+        return math.atan(self.outer_addendum(member) / self.outer_cone_distance)
+
+    def member_dedendum_angle(self, member: int) -> float:
+        """Dedendum angle theta_f,i = atan(h_f,i / R_e) of a member [rad]."""
+        return math.atan(self.outer_dedendum(member) / self.outer_cone_distance)
+
     def tip_angle(self, member: int) -> float:
-        """Face (tip) cone angle delta_a,i = delta_i + theta_a [rad]."""
-        return self.pitch_angle(member) + self.addendum_angle
+        """Face (tip) cone angle delta_a,i = delta_i + theta_a,i [rad]."""
+        return self.pitch_angle(member) + self.member_addendum_angle(member)
 
     def root_angle(self, member: int) -> float:
-        """Root cone angle delta_f,i = delta_i - theta_f [rad]."""
-        return self.pitch_angle(member) - self.dedendum_angle
+        """Root cone angle delta_f,i = delta_i - theta_f,i [rad]."""
+        return self.pitch_angle(member) - self.member_dedendum_angle(member)
 
     @property
     def plane_of_action_tilt(self) -> float:
@@ -410,13 +495,18 @@ class GearPairDesign:
             out[f"tip_angle_{name}_deg"] = math.degrees(self.tip_angle(member))
             out[f"root_angle_{name}_deg"] = math.degrees(self.root_angle(member))
             out[f"outer_tip_diameter_{name}_mm"] = 2e3 * self.outer_cone_distance * math.sin(
-                self.tip_angle(member)) / math.cos(self.addendum_angle)
+                self.tip_angle(member)) / math.cos(self.member_addendum_angle(member))
             out[f"mean_tooth_thickness_{name}_mm"] = 1e3 * self.mean_tooth_thickness(member)
+            out[f"outer_addendum_{name}_mm"] = 1e3 * self.outer_addendum(member)
+            out[f"outer_dedendum_{name}_mm"] = 1e3 * self.outer_dedendum(member)
+            out[f"mean_normal_tooth_thickness_{name}_mm"] = (
+                1e3 * self.mean_normal_tooth_thickness(member))
         out.update(
             outer_cone_distance_mm=1e3 * self.outer_cone_distance,
             mean_cone_distance_mm=1e3 * self.mean_cone_distance,
             inner_cone_distance_mm=1e3 * self.inner_cone_distance,
             mean_module_mm=1e3 * self.mean_module,
+            mean_normal_module_mm=1e3 * self.mean_normal_module,
             addendum_angle_deg=math.degrees(self.addendum_angle),
             dedendum_angle_deg=math.degrees(self.dedendum_angle),
             base_cone_constant=self.base_cone_constant,
@@ -439,7 +529,8 @@ CONFIG_KEYS = (
     "pinion_teeth", "gear_teeth", "module_mm", "shaft_angle_deg",
     "normal_pressure_angle_deg", "spiral_angle_deg", "pinion_hand", "addendum_mm",
     "dedendum_mm", "trace", "face_width_mm", "cutter_radius_mm", "base_cone_rule",
-    "backlash_mm", "density_kg_m3", "pinion_bore_mm", "gear_bore_mm",
+    "backlash_mm", "density_kg_m3", "pinion_bore_mm", "gear_bore_mm", "profile_shift",
+    "thickness_modification", "undercut",
 )
 
 

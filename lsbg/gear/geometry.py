@@ -285,19 +285,30 @@ class GearPair:
         tip = d.tip_angle(member)
         return self.angular_thickness(member, cone_distance, tip) * np.asarray(cone_distance) * math.sin(tip)
 
+    #: The narrowest top land lsbg builds, in mean normal modules (ISO 23509 and AGMA
+    #: 929-A06 take about 0.2-0.3 m_mn as the least a case-hardened tip stands: a
+    #: narrower one through-hardens and chips).
+    MIN_TOP_LAND = 0.2
+
     def _check_tooth_form(self):
         d = self.design
         distances = np.linspace(d.inner_cone_distance, d.outer_cone_distance, 5)
+        least = self.MIN_TOP_LAND * d.mean_normal_module
         for member in MEMBERS:
             land = self.top_land(member, distances)
-            if np.min(land) <= 0:
+            # (the least land at the toe, where it is least; the paper's pair has
+            # 0.66 m_mn on the pinion)
+            if np.min(land) < least:
                 name = MEMBER_NAMES[member]
                 at = distances[np.argmin(land)]
                 culprit = ("base_cone_rule", d.base_cone_rule) if d.base_cone_rule == "paper" \
-                    else ("addendum", d.addendum)
+                    else (("profile_shift", d.profile_shift) if d.profile_shift
+                          or d.thickness_modification else ("addendum", d.addendum))
+                shape = "come out pointed" if np.min(land) <= 0 else "get too narrow a top land"
                 raise DesignError(
-                    f"{culprit[0]} = {culprit[1]!r}: the {name} teeth come out pointed "
-                    f"(top land {1e3 * np.min(land):.3f} mm at cone distance {1e3 * at:.2f} mm; "
+                    f"{culprit[0]} = {culprit[1]!r}: the {name} teeth {shape} "
+                    f"(top land {1e3 * np.min(land):.3f} mm at cone distance {1e3 * at:.2f} mm, "
+                    f"the least is {self.MIN_TOP_LAND:g} m_mn = {1e3 * least:.3f} mm; "
                     f"normal pressure angle at the mean point "
                     f"{math.degrees(d.mean_normal_pressure_angle):.2f} deg)")
         ratio = self.contact_ratio()
@@ -306,6 +317,13 @@ class GearPair:
                 f"addendum = {d.addendum!r}: interference limits the path of contact to a "
                 f"total contact ratio of {ratio['total']:.3f} < 1 (undercut "
                 f"{ {k: round(math.degrees(v), 3) for k, v in self.undercut['drive'].items()} } deg)")
+        undercut = {k: v for k, v in self.undercut["drive"].items() if v > 0}
+        if undercut and d.undercut == "refuse":
+            member, roll = max(undercut.items(), key=lambda item: item[1])
+            raise DesignError(
+                f"profile_shift = {d.profile_shift!r}: the {member} is undercut: its root cone "
+                f"cuts {math.degrees(roll):.3f} deg of roll off the path of contact (a larger "
+                f"pinion profile shift moves its root out; undercut: accept builds it)")
 
     # ---------------------------------------------------------- measurements
     def contact_ratio(self, side="drive"):

@@ -92,9 +92,11 @@ def rating_geometry(design, tool_edge_radius=0.25, effective_face_width=0.85):
     """The ISO 10300 description of one of lsbg's designs.
 
     lsbg's teeth have tapered depth (addendum and dedendum angles to the
-    apex), equal addenda on both members (so x_hm = 0 and the basic crown
-    gear's addendum factor is h_am / m_mn) and the backlash split between
-    the two tooth thicknesses (x_sm < 0). The tooth trace's curvature at the
+    apex); the design's profile shift x_hm1 moves depth between the members'
+    addenda and dedenda (the basic crown gear's dedendum factor is
+    h_fm1 / m_mn + x_hm1) and, with the thickness modification x_smn1,
+    their thicknesses; the backlash is split between the two tooth
+    thicknesses (each thinner by j/2 in the transverse section). The tooth trace's curvature at the
     mean point: the cutter radius for the circular trace; for the
     logarithmic spiral, whose tangent keeps the angle beta_p to the ray in
     the plane of action, R_m / sin(beta_m) on the pitch cone (Eq. 12-13 of
@@ -115,9 +117,12 @@ def rating_geometry(design, tool_edge_radius=0.25, effective_face_width=0.85):
     d = design
     scale = d.mean_cone_distance / d.outer_cone_distance
     m_mn = d.mean_module * math.cos(d.spiral_angle)
-    h_am, h_fm = d.addendum * scale, d.dedendum * scale
-    # s_mn = m_mn (pi/2 + 2 x_sm) with x_hm = 0: each tooth thinner by j/2 (transverse)
+    h_am = tuple(d.outer_addendum(i) * scale for i in (1, 2))
+    h_fm = tuple(d.outer_dedendum(i) * scale for i in (1, 2))
+    # s_mn = m_mn (pi/2 + 2 (x_hm tan(alpha_n) + x_sm)): each tooth thinner by j/2
+    # (transverse), the pinion's thicker by x_smn1 and the gear's thinner
     x_sm = -d.backlash * math.cos(d.spiral_angle) / (4 * m_mn)
+    x_s = (x_sm + d.thickness_modification, x_sm - d.thickness_modification)
     if d.trace == "circular":
         curvature = d.cutter_radius
     else:
@@ -128,11 +133,12 @@ def rating_geometry(design, tool_edge_radius=0.25, effective_face_width=0.85):
         pitch_angle=tuple(d.pitch_angle(i) for i in (1, 2)),
         mean_normal_module=m_mn, mean_spiral_angle=d.spiral_angle,
         normal_pressure_angle=d.normal_pressure_angle,
-        mean_addendum=(h_am, h_am), mean_dedendum=(h_fm, h_fm), profile_shift=0.0,
-        thickness_modification=(x_sm, x_sm), face_width=d.face_width,
+        mean_addendum=h_am, mean_dedendum=h_fm, profile_shift=float(d.profile_shift),
+        thickness_modification=x_s, face_width=d.face_width,
         effective_face_width=effective_face_width * d.face_width,
         tool_edge_radius=(tool_edge_radius * m_mn,) * 2,
-        crown_dedendum_factor=h_fm / m_mn, mean_cone_distance=d.mean_cone_distance,
+        crown_dedendum_factor=h_fm[0] / m_mn + d.profile_shift,
+        mean_cone_distance=d.mean_cone_distance,
         outer_cone_distance=d.outer_cone_distance, lengthwise_curvature_radius=curvature)
 
 

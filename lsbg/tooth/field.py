@@ -145,7 +145,7 @@ def generated_flank_start(pair, member, edge_radius, cone_distance):
     gamma = d.plane_of_action_tilt
     delta = d.pitch_angle(member)
     radius = np.atleast_1d(np.asarray(cone_distance, float))
-    addendum = radius * d.dedendum_angle
+    addendum = radius * d.member_dedendum_angle(member)  # the rack cuts the member's root
     straight = addendum - edge_radius * (1 - math.sin(gamma))
     tangency, toward_pitch = plane.tangency_angle[member], plane.roll_sign[member]
     side = math.copysign(1.0, tangency)

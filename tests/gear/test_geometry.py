@@ -10,9 +10,18 @@ from lsbg.gear.geometry import GearPair
 from lsbg.gear.vectors import rotate
 
 
-@pytest.fixture(scope="module", params=["logarithmic", "circular"])
+#: The practice design's shift and thickness (lsbg.rating.practice, the paper's pair): the
+#: flanks' checks below hold on a shifted pair as on the published one.
+PRACTICE = dict(profile_shift=0.44793242616994483, thickness_modification=0.006073268534624095,
+                undercut="refuse")
+
+
+@pytest.fixture(scope="module", params=[("logarithmic", {}), ("circular", {}),
+                                        ("logarithmic", PRACTICE), ("circular", PRACTICE)],
+                ids=["lsbg", "sbg", "lsbg-practice", "sbg-practice"])
 def pair(request):
-    return GearPair(GearPairDesign(trace=request.param))
+    trace, shift = request.param
+    return GearPair(GearPairDesign(trace=trace, **shift))
 
 
 @pytest.fixture(scope="module")
