@@ -48,8 +48,7 @@ def modification_problems(pair, modification):
     if largest <= limit:
         return []
     config = modification.to_config()
-    key = max(("lengthwise_crowning_um", "profile_crowning_um", "bias_um"),
-              key=lambda k: abs(config[k]))
+    key = max((k for k in config if k.endswith("_um")), key=lambda k: abs(config[k]))
     if modification.topography_file is not None and abs(config[key]) * 1e-6 < limit:
         key = "topography_file"
     return [f"flank_modification.{key} = {config[key]!r}: the largest relief of the pinion flank, "

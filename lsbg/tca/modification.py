@@ -21,13 +21,21 @@ bevel-gear tool plots it in:
 
 The relief is
 
-    delta(u, v) = C_L u^2 + C_P v^2 + B u v + topography(u, v),
+    delta(u, v) = C_L u^2 + C_P v^2 + B u v + topography(u, v)
+                  + C_a1 <1 - w_1 / L_1>  + C_a2 <1 - w_2 / L_2>,
 
 with C_L the lengthwise crowning and C_P the profile crowning (reliefs at the
 toe and heel on the middle of the profile, and at the ends of the active
 profile in the middle of the face), B the bias (a twist: +B at the (u, v) =
-(+1, +1) and (-1, -1) corners, -B at the other two) and an optional measured
-or designed topography on a (u, v) grid. The same definition applies to both
+(+1, +1) and (-1, -1) corners, -B at the other two), an optional measured
+or designed topography on a (u, v) grid, and the linear tip reliefs of both
+members: C_a1 at the pinion's tip end of the active profile, running out
+over the fraction L_1 of the active profile (w_1 = (1 - s v) / 2 its
+distance from that end, s = -1 or +1 the end the pinion's tip is at,
+:func:`pinion_tip_end`; <x> = max(x, 0)), and the gear's C_a2 over L_2 from
+the other end (w_2 = 1 - w_1), where the gear's tip meets the pinion. The
+ease-off is relative: a relief of the gear's tip is carried by the pinion's
+flank points it meets, which gives the same gap at every mesh position. The same definition applies to both
 gear types, so their comparison is fair. All amounts are in metres inside and
 in micrometres in the configuration (``flank_modification:``).
 """
@@ -36,13 +44,13 @@ from __future__ import annotations
 
 import math
 import weakref
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
 
 __all__ = ["FlankModification", "TopographyError", "MODIFICATION_CONFIG_KEYS",
-           "read_topography", "profile_coordinate", "lengthwise_coordinate", "pinion_relief",
+           "read_topography", "profile_coordinate", "pinion_tip_end", "lengthwise_coordinate", "pinion_relief",
            "relieved_flank", "flank_attributes"]
 
 _UM = 1e-6
@@ -53,7 +61,15 @@ MODIFICATION_CONFIG_KEYS = {
     "profile_crowning_um": "profile_crowning",
     "bias_um": "bias",
     "topography_file": "topography_file",
+    "pinion_tip_relief_um": "pinion_tip_relief",
+    "pinion_tip_relief_length": "pinion_tip_relief_length",
+    "gear_tip_relief_um": "gear_tip_relief",
+    "gear_tip_relief_length": "gear_tip_relief_length",
 }
+
+#: Keys of :data:`MODIFICATION_CONFIG_KEYS` that are fractions of the active profile,
+#: not micrometres.
+_FRACTION_KEYS = ("pinion_tip_relief_length", "gear_tip_relief_length")
 
 
 class TopographyError(ValueError):
@@ -82,6 +98,12 @@ class FlankModification:
     topography : tuple or None
         The file's grid once read: (u [-], v [-], relief [m]); set by
         :meth:`load`.
+    pinion_tip_relief, gear_tip_relief : float
+        C_a1, C_a2: the linear tip relief of each member at its tip's end of
+        the active profile [m], >= 0.
+    pinion_tip_relief_length, gear_tip_relief_length : float
+        L_1, L_2: the fraction of the active profile (in roll, from the tip's
+        end) over which each relief runs out to zero [-], 0 < L <= 1.
     """
 
     lengthwise_crowning: float = 0.0
@@ -89,9 +111,14 @@ class FlankModification:
     bias: float = 0.0
     topography_file: str | None = None
     topography: tuple | None = field(default=None, compare=False, repr=False)
+    pinion_tip_relief: float = 0.0
+    pinion_tip_relief_length: float = 0.25
+    gear_tip_relief: float = 0.0
+    gear_tip_relief_length: float = 0.25
 
     def __post_init__(self):
-        for name in ("lengthwise_crowning", "profile_crowning"):
+        for name in ("lengthwise_crowning", "profile_crowning", "pinion_tip_relief",
+                     "gear_tip_relief"):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, (int, float)) \
                     or not math.isfinite(value) or value < 0:
@@ -101,6 +128,12 @@ class FlankModification:
                 or not math.isfinite(self.bias):
             raise ValueError(f"flank_modification.bias_um = {_um(self.bias)}: must be a "
                              f"finite number [um]")
+        for name in _FRACTION_KEYS:
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, float)) \
+                    or not (0.0 < value <= 1.0):
+                raise ValueError(f"flank_modification.{name} = {value!r}: must be a fraction "
+                                 f"of the active profile, 0 < L <= 1")
 
     # ------------------------------------------------------------- config
     @classmethod
@@ -141,32 +174,64 @@ class FlankModification:
                 kwargs[name] = value
                 continue
             if isinstance(value, bool) or not isinstance(value, (int, float)):
-                raise ValueError(f"flank_modification.{key} = {value!r}: must be a number [um]")
-            kwargs[name] = float(value) * _UM
+                raise ValueError(f"flank_modification.{key} = {value!r}: must be a number"
+                                 + ("" if key in _FRACTION_KEYS else " [um]"))
+            kwargs[name] = float(value) * (1.0 if key in _FRACTION_KEYS else _UM)
         return cls(**kwargs).load()
 
     def to_config(self):
         """The ``flank_modification:`` keys in micrometres (inverse of :meth:`from_config`)."""
-        return {"lengthwise_crowning_um": self.lengthwise_crowning / _UM,
-                "profile_crowning_um": self.profile_crowning / _UM,
-                "bias_um": self.bias / _UM,
-                "topography_file": self.topography_file}
+        out = {"lengthwise_crowning_um": self.lengthwise_crowning / _UM,
+               "profile_crowning_um": self.profile_crowning / _UM,
+               "bias_um": self.bias / _UM,
+               "topography_file": self.topography_file}
+        if self.has_tip_relief:  # the keys of a study without tip relief stay as they were
+            out.update({"pinion_tip_relief_um": self.pinion_tip_relief / _UM,
+                        "pinion_tip_relief_length": self.pinion_tip_relief_length,
+                        "gear_tip_relief_um": self.gear_tip_relief / _UM,
+                        "gear_tip_relief_length": self.gear_tip_relief_length})
+        return out
 
     def load(self):
         """This modification with its topography file read (itself if none)."""
         if self.topography_file is None or self.topography is not None:
             return self
-        return FlankModification(self.lengthwise_crowning, self.profile_crowning, self.bias,
-                                 self.topography_file, read_topography(self.topography_file))
+        return replace(self, topography=read_topography(self.topography_file))
 
     @property
     def is_zero(self):
         """True when the flank is the conjugate one (no relief anywhere)."""
         return (self.lengthwise_crowning == 0.0 and self.profile_crowning == 0.0
-                and self.bias == 0.0 and self.topography_file is None)
+                and self.bias == 0.0 and self.topography_file is None
+                and not self.has_tip_relief)
+
+    @property
+    def has_tip_relief(self):
+        """True when either member's tip is relieved."""
+        return self.pinion_tip_relief > 0.0 or self.gear_tip_relief > 0.0
+
+    def relief_starts(self, pinion_tip=-1.0):
+        """Profile coordinates v where the tip reliefs start (the kinks of the flank) [-].
+
+        Parameters
+        ----------
+        pinion_tip : {-1, 1}
+            The end of the active profile the pinion's tip is at (:func:`pinion_tip_end`).
+
+        Returns
+        -------
+        dict
+            ``{"pinion": v, "gear": v}`` for each member whose tip is relieved.
+        """
+        out = {}
+        if self.pinion_tip_relief > 0.0:
+            out["pinion"] = pinion_tip * (1.0 - 2.0 * self.pinion_tip_relief_length)
+        if self.gear_tip_relief > 0.0:
+            out["gear"] = -pinion_tip * (1.0 - 2.0 * self.gear_tip_relief_length)
+        return out
 
     # ---------------------------------------------------------- evaluation
-    def relief(self, u, v):
+    def relief(self, u, v, pinion_tip=-1.0):
         """Relief delta(u, v) of the pinion flank, normal to it [m].
 
         Parameters
@@ -175,6 +240,10 @@ class FlankModification:
             Lengthwise coordinate, -1 at the toe, +1 at the heel [-].
         v : array_like
             Profile coordinate, -1 and +1 at the ends of the active profile [-].
+        pinion_tip : {-1, 1}
+            The end of the active profile the pinion's tip is at
+            (:func:`pinion_tip_end`; -1 on the drive side of every lsbg pair
+            so far), which places the tip reliefs.
 
         Returns
         -------
@@ -184,6 +253,12 @@ class FlankModification:
         u = np.asarray(u, dtype=float)
         v = np.asarray(v, dtype=float)
         out = self.lengthwise_crowning * u**2 + self.profile_crowning * v**2 + self.bias * u * v
+        if self.has_tip_relief:
+            from_pinion_tip = 0.5 * (1.0 - pinion_tip * v)
+            out = out + self.pinion_tip_relief * np.maximum(
+                1.0 - from_pinion_tip / self.pinion_tip_relief_length, 0.0)
+            out = out + self.gear_tip_relief * np.maximum(
+                1.0 - (1.0 - from_pinion_tip) / self.gear_tip_relief_length, 0.0)
         if self.topography_file is not None:
             grid_u, grid_v, relief = self.load().topography
             from scipy.interpolate import RegularGridInterpolator
@@ -246,6 +321,18 @@ def profile_coordinate(pair, polar_angle, side="drive"):
     return field_profile_coordinate(plane, psi)
 
 
+def pinion_tip_end(pair, side="drive"):
+    """The end of the active profile, v = -1 or +1, that the pinion's tip is at [-].
+
+    Parameters
+    ----------
+    pair : lsbg.gear.geometry.GearPair
+    side : {"drive", "coast"}
+    """
+    tip = profile_coordinate(pair, pair.design.tip_angle(1), side)
+    return -1.0 if float(tip) < 0 else 1.0
+
+
 def field_profile_coordinate(plane, psi):
     """v of a polar angle psi in the plane of action (-1..+1 over the field) [-]."""
     psi_lo, psi_hi = plane.field[:2]
@@ -266,7 +353,7 @@ def pinion_relief(pair, modification, cone_distance, polar_angle):
         theta, about the pinion axis [rad].
     """
     return modification.relief(lengthwise_coordinate(pair.design, cone_distance),
-                               profile_coordinate(pair, polar_angle))
+                               profile_coordinate(pair, polar_angle), pinion_tip_end(pair))
 
 
 def relieved_flank(pair, modification, cone_distance, psi, side="drive", polar_range=None):
@@ -326,7 +413,7 @@ def _relieved_flank(pair, modification, rho, psi, side, polar_range):
         theta = np.clip(theta, *polar_range)
     points, normals = pair.flank(1, side, rho, theta)
     relief = (modification.relief(lengthwise_coordinate(pair.design, rho),
-                                  field_profile_coordinate(plane, psi))
+                                  field_profile_coordinate(plane, psi), pinion_tip_end(pair))
               if side == "drive" else np.zeros(rho.shape))
     return points - relief[..., None] * normals, normals, relief
 

@@ -26,7 +26,9 @@ __all__ = ["fe_ltca_for_geometry", "fe_ltca", "envelope_positions", "fe_envelope
 
 #: Variables of the complementarity LTCA that replace or join the line model's.
 _FE_VARIABLES = ("transmission_error", "mesh_stiffness", "max_contact_pressure",
-                 "root_stress_pinion", "root_stress_gear", "contact_pressure", "slice_stiffness")
+                 "root_stress_pinion", "root_stress_gear", "contact_pressure", "slice_stiffness",
+                 "max_flank_pressure", "edge_load_share", "edge_line_load",
+                 "relief_start_load_share", "relief_start_line_load")
 
 
 def fe_ltca(contact, compliance, load_torque, phases):
@@ -77,7 +79,7 @@ def fe_ltca(contact, compliance, load_torque, phases):
     difference = np.abs(ds["transmission_error_slices"].values - fe["transmission_error"].values)
     summary = {key: value for key, value in fe.attrs.items()
                if key.startswith(("transmission_error_", "mesh_stiffness_", "max_"))
-               or key in ("compliance_inputs_hash",)}
+               or key in ("compliance_inputs_hash", "tip_relief")}
     ds.attrs.update(summary)
     # the FE model behind the numbers (mesh, material) travels with them
     ds.attrs.update({key: value for key, value in compliance.attrs.items()

@@ -75,12 +75,21 @@ class ContactPoints:
     turn : numpy.ndarray or None
         Turn Psi of each point's contact line [rad]; the lines of one tooth
         pair at two mesh positions differ by the change of the mismatch turn.
+    edge : numpy.ndarray of int or None
+        -1 or +1 where the point's band reaches the end of the field at
+        psi_lo or psi_hi (its contact line ends on a member's tip or on the
+        start of a generated flank inside the band: the load there is an edge
+        contact's, not Hertz's between two flanks), 0 inside [-].
+    psi_from, psi_to : numpy.ndarray or None
+        The part of the field the band's line segment spans [rad].
     """
 
-    def __init__(self, pair, rho, psi, lever, length, separation, band=None, turn=None):
+    def __init__(self, pair, rho, psi, lever, length, separation, band=None, turn=None,
+                 edge=None, psi_from=None, psi_to=None):
         self.pair, self.rho, self.psi = pair, rho, psi
         self.lever, self.length, self.separation = lever, length, separation
         self.band, self.turn = band, turn
+        self.edge, self.psi_from, self.psi_to = edge, psi_from, psi_to
 
 
 def contact_points(contact, mismatch_turn, field=None):
@@ -130,9 +139,12 @@ def contact_points(contact, mismatch_turn, field=None):
             length = fraction * band[:, k.B_LENGTH]
             s = (contact.separation(np.full(rho.size, turn), rho)
                  if contact.separation is not None else np.zeros(rho.size))
+            # the end of the field inside the band: an edge (the line's end)
+            edge = np.where(lo < psi_lo, -1, 0) + np.where(hi > psi_hi, 1, 0)
             rows.append(tuple(np.asarray(v)[inside] for v in (
                 np.full(rho.size, n), rho, psi, lever, length, np.asarray(s, float),
-                np.arange(rho.size), np.full(rho.size, turn))))
+                np.arange(rho.size), np.full(rho.size, turn), edge,
+                np.broadcast_to(bottom, rho.shape), np.broadcast_to(top, rho.shape))))
         turn += pitch
         n += 1
     if not rows:

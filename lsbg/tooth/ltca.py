@@ -43,7 +43,7 @@ from lsbg.contact import kernels as k
 from lsbg.tooth.contact_points import FECompliance, contact_points
 from lsbg.tooth.field import active_field
 
-__all__ = ["solve_contact", "fe_loaded_tca"]
+__all__ = ["solve_contact", "fe_loaded_tca", "EdgeLoads"]
 
 #: Relative change of the loads at which the Hertz fixed point stops [-].
 TOLERANCE = 1e-10
@@ -159,6 +159,90 @@ def solve_contact(compliance, points, torque, e2, local, tangent=None, start=Non
                        f"(torque {torque!r} N m)")
 
 
+class EdgeLoads:
+    """The load an LTCA's points carry at the ends of the active profile and at the
+    starts of tip reliefs, per mesh position.
+
+    A point whose band reaches the end of the field
+    (:attr:`lsbg.tooth.contact_points.ContactPoints.edge`) is carried by a
+    member's tip edge, or by the start of a generated flank: Hertz's contact of
+    two flanks (the ``pressure`` there) does not hold at such an edge, whose
+    own radius the model does not know, so the load is reported as what it
+    is, a share of the load and a line load. A point whose band spans the
+    start of a tip relief (:meth:`lsbg.tca.modification.FlankModification.relief_starts`)
+    sits on the kink of the relieved profile. The largest Hertz pressure off
+    both is the flank's (``max_flank_pressure``).
+
+    Parameters
+    ----------
+    contact : lsbg.contact.MeshContact
+        Its separation field's modification places the reliefs' starts.
+    phases : int
+        Mesh positions [-].
+    """
+
+    def __init__(self, contact, phases):
+        from lsbg.tca.modification import pinion_tip_end
+
+        plane = contact.pair.planes["drive"]
+        centre = 0.5 * (plane.field[0] + plane.field[1])
+        half = 0.5 * (plane.field[1] - plane.field[0])
+        modification = getattr(contact.separation, "modification", None)
+        starts = ({} if modification is None
+                  else modification.relief_starts(pinion_tip_end(contact.pair)))
+        #: psi of each relief's start [rad]
+        self.starts = np.array([centre + v * half for v in starts.values()])
+        self.relieved = ", ".join(f"{name}'s tip" for name in starts) or "none"
+        self.share = np.zeros(phases)
+        self.line_load = np.zeros(phases)
+        self.kink_share = np.zeros(phases)
+        self.kink_line_load = np.zeros(phases)
+        self.flank_pressure = np.zeros(phases)
+
+    def add(self, n, points, loads, pressure):
+        """Record position n: its points, loads [N] and Hertz pressures [Pa]."""
+        total = loads.sum()
+        q = loads / points.length
+        edge = points.edge != 0
+        kink = np.zeros(loads.size, bool)
+        for psi in self.starts:
+            kink |= (points.psi_from < psi) & (psi < points.psi_to)
+        for mask, share, line in ((edge, self.share, self.line_load),
+                                  (kink & ~edge, self.kink_share, self.kink_line_load)):
+            if np.any(mask):
+                share[n] = loads[mask].sum() / total
+                line[n] = q[mask].max()
+        flank = ~(edge | kink)
+        self.flank_pressure[n] = pressure[flank].max() if np.any(flank) else 0.0
+
+    def variables(self):
+        """The dataset's variables on ``mesh_phase``."""
+        return {
+            "edge_load_share": ("mesh_phase", self.share, {
+                "units": "1", "long_name": "share of the load at profile edges",
+                "description": "share of the normal load carried by the bands whose contact "
+                               "line ends on a tip or a generated flank's start"}),
+            "edge_line_load": ("mesh_phase", self.line_load * 1e-3, {
+                "units": "N/mm", "long_name": "largest line load at a profile edge"}),
+            "relief_start_load_share": ("mesh_phase", self.kink_share, {
+                "units": "1", "long_name": "share of the load at tip relief starts"}),
+            "relief_start_line_load": ("mesh_phase", self.kink_line_load * 1e-3, {
+                "units": "N/mm", "long_name": "largest line load at a tip relief start"}),
+            "max_flank_pressure": ("mesh_phase", self.flank_pressure * 1e-6, {
+                "units": "MPa", "long_name": "largest Hertz pressure off the edges",
+                "description": "largest Hertz peak pressure of the bands that neither reach "
+                               "an end of the active profile nor span a tip relief's start"}),
+        }
+
+    def attrs(self):
+        """The cycle's figures as dataset attributes."""
+        return {"max_edge_load_share": float(self.share.max()),
+                "max_edge_line_load_N_mm": float(self.line_load.max() * 1e-3),
+                "max_relief_start_line_load_N_mm": float(self.kink_line_load.max() * 1e-3),
+                "max_flank_pressure_MPa": float(self.flank_pressure.max() * 1e-6),
+                "tip_relief": self.relieved}
+
+
 def _slice_records(points, nominal, loads, eps, bands):
     """The line model's slices at one position: the FE load each carries.
 
@@ -249,7 +333,8 @@ def fe_loaded_tca(contact, compliance, load_torque, phases=200, form_limit=True)
         largest Hertz pressure met at each point of the field over the cycle;
         ``slice_stiffness`` (line_turn, cone_distance) [N/(mm um)], the line
         model's stiffness per slice that carries these loads
-        (:mod:`lsbg.tooth.slices`).
+        (:mod:`lsbg.tooth.slices`); the load at the profile's ends and at tip
+        reliefs' starts and the largest pressure off them (:class:`EdgeLoads`).
         Attributes: peak-to-peak TE, mean mesh stiffness (and per unit face
         width), the maxima of pressure and root stresses, the compliance's
         inputs hash, ``form_limit`` and the field's outer bounds across the
@@ -299,6 +384,7 @@ def fe_loaded_tca(contact, compliance, load_torque, phases=200, form_limit=True)
     root = {"pinion": np.zeros(phases), "gear": np.zeros(phases)}
     lines = MAX_PAIRS
     pair_load = np.zeros((phases, lines))
+    edges = EdgeLoads(contact, phases)
     previous = None  # keys and loads of the last position's points
     grid_loads = []  # (position, loads of each tooth pair on the flank grid) [N]
     records = []     # the line model's slices at each position (lsbg.tooth.slices)
@@ -337,6 +423,7 @@ def fe_loaded_tca(contact, compliance, load_torque, phases=200, form_limit=True)
         q = loads / points.length
         pressure = peak_pressure(q, curvature, fe.young, fe.poisson)
         pressure_max[n] = pressure.max()
+        edges.add(n, points, loads, pressure)
         line, which = np.unique(points.pair, return_inverse=True)
         kept = line < lines
         pair_load[n, line[kept]] = np.bincount(which, loads, line.size)[kept]
@@ -370,6 +457,7 @@ def fe_loaded_tca(contact, compliance, load_torque, phases=200, form_limit=True)
         "max_contact_pressure_MPa": float(pressure_max.max() * 1e-6),
         "max_root_stress_pinion_MPa": float(root["pinion"].max() * 1e-6),
         "max_root_stress_gear_MPa": float(root["gear"].max() * 1e-6),
+        **edges.attrs(),
         "form_limit": "generated flanks" if form_limit else "lsbg field",
         "field_psi_lo_deg": float(np.degrees(np.min(field[0] if form_limit else psi_lo))),
         "field_psi_hi_deg": float(np.degrees(np.max(field[1] if form_limit else psi_hi))),
@@ -387,6 +475,7 @@ def fe_loaded_tca(contact, compliance, load_torque, phases=200, form_limit=True)
             "root_stress_gear": ("mesh_phase", root["gear"] * 1e-6, {
                 "units": "MPa", "long_name": "largest tensile principal stress in the "
                                              "gear's root fillets"}),
+            **edges.variables(),
             "pair_load": (("mesh_phase", "tooth_pair"), pair_load, {"units": "N"}),
             "contact_pressure": (("cone_distance", "profile_angle"), pattern * 1e-6, {
                 "units": "MPa", "long_name": "largest Hertz pressure over the mesh cycle"}),

@@ -65,6 +65,65 @@ def test_is_zero_and_largest_relief():
     assert FlankModification().largest_relief() == 0.0
 
 
+def test_tip_reliefs_run_out_linearly_from_each_tip():
+    """C_a1 at the pinion's tip end (v = -1 here), 0 from L_1 of the profile on; the
+    gear's C_a2 from the other end; worked out by hand."""
+    mod = FlankModification(pinion_tip_relief=20e-6, pinion_tip_relief_length=0.25,
+                            gear_tip_relief=10e-6, gear_tip_relief_length=0.5)
+    # v = -1: w_1 = 0 -> 20; v = -0.75: w_1 = 0.125 -> 10; v = -0.5: w_1 = 0.25 -> 0
+    # gear: w_2 = (1 + v) / 2, relief 10 (1 - w_2 / 0.5) where w_2 < 0.5
+    cases = {-1.0: 20.0, -0.75: 10.0, -0.5: 0.0, 0.0: 0.0, 0.5: 5.0, 1.0: 10.0}
+    for v, expected in cases.items():
+        assert mod.relief(0.3, v) == pytest.approx(expected * 1e-6, abs=1e-18)
+    # the other sense: the pinion's tip at v = +1
+    assert mod.relief(0.0, 1.0, pinion_tip=1.0) == pytest.approx(20e-6)
+    assert mod.relief(0.0, -1.0, pinion_tip=1.0) == pytest.approx(10e-6)
+    assert mod.relief_starts() == {"pinion": pytest.approx(-0.5), "gear": pytest.approx(0.0)}
+    assert not mod.is_zero and mod.has_tip_relief
+    assert mod.largest_relief() == pytest.approx(20e-6)
+
+
+def test_the_pinion_tip_relief_sits_on_the_pinion_tip(pair):
+    """On the real flank: the point at the pinion's tip angle carries C_a1, the one
+    at the start of the active profile C_a2 (the gear's tip meets it there)."""
+    from lsbg.tca.modification import pinion_relief, pinion_tip_end, profile_coordinate
+
+    assert pinion_tip_end(pair) == -1.0
+    mod = FlankModification(pinion_tip_relief=12e-6, gear_tip_relief=7e-6)
+    rho = pair.design.mean_cone_distance
+    assert pinion_relief(pair, mod, rho, pair.design.tip_angle(1)) == pytest.approx(12e-6)
+    # the polar angle at which the field's other end (v = +1) meets the pinion
+    plane = pair.planes["drive"]
+    chi = plane.roll_sign[1] * (plane.field[1] - plane.tangency_angle[1])
+    theta = math.acos(math.cos(pair.design.base_cone_angle(1)) * math.cos(chi))
+    assert float(profile_coordinate(pair, theta)) == pytest.approx(1.0, abs=1e-9)
+    assert pinion_relief(pair, mod, rho, theta) == pytest.approx(7e-6, rel=1e-6)
+
+
+def test_tip_relief_config_round_trip():
+    config = {"pinion_tip_relief_um": 15, "pinion_tip_relief_length": 0.3,
+              "gear_tip_relief_um": 25, "gear_tip_relief_length": 0.2}
+    mod = FlankModification.from_config(config)
+    assert (mod.pinion_tip_relief, mod.gear_tip_relief) == (pytest.approx(15e-6),
+                                                            pytest.approx(25e-6))
+    assert (mod.pinion_tip_relief_length, mod.gear_tip_relief_length) == (0.3, 0.2)
+    assert FlankModification.from_config(mod.to_config()) == mod
+    # without tip relief the keys stay the four they were
+    assert set(FlankModification(25e-6).to_config()) == {
+        "lengthwise_crowning_um", "profile_crowning_um", "bias_um", "topography_file"}
+
+
+@pytest.mark.parametrize("config, key, shown", [
+    ({"pinion_tip_relief_um": -1}, "pinion_tip_relief_um", "-1"),
+    ({"gear_tip_relief_um": "a lot"}, "gear_tip_relief_um", "'a lot'"),
+    ({"gear_tip_relief_length": 0}, "gear_tip_relief_length", "0.0"),
+    ({"pinion_tip_relief_length": 1.5}, "pinion_tip_relief_length", "1.5"),
+])
+def test_bad_tip_relief_names_key_and_value(config, key, shown):
+    with pytest.raises(ValueError, match=re.escape(f"flank_modification.{key} = {shown}")):
+        FlankModification.from_config(config)
+
+
 # ------------------------------------------------------------------ configuration
 def test_config_round_trip_in_micrometres():
     config = {"lengthwise_crowning_um": 25, "profile_crowning_um": 5.5, "bias_um": -2,

@@ -15,6 +15,7 @@ from lsbg.tooth.contact_points import FECompliance, contact_points
 from lsbg.tooth.ltca import fe_loaded_tca, solve_contact
 
 TORQUE = 1964.99  # the paper's gear torque [N m]
+RATED = 480.0  # about the pair's rated pitting torque on the gear (ISO 10300) [N m]
 
 
 @pytest.fixture(scope="module")
@@ -226,6 +227,49 @@ def test_fe_mesh_stiffness_lies_in_the_iso_band(contact, compliance):
     # the tooth's compliance adds to the uniform bed's transmission error
     assert out.attrs["transmission_error_mean_urad"] > 0
     assert np.all(out["root_stress_pinion"].values > 0)
+
+
+def test_points_know_where_their_band_reaches_the_field_end(contact):
+    """A band cut by the field's end is an edge point (its line ends on a tip), on
+    the side it is cut; inside the field no band is."""
+    psi_lo, psi_hi = contact.pair.planes["drive"].field[:2]
+    for turn in np.linspace(0, contact.pitch, 9):
+        points = contact_points(contact, turn)
+        assert set(np.unique(points.edge)) <= {-1, 0, 1}
+        low, high = points.edge == -1, points.edge == 1
+        np.testing.assert_allclose(points.psi_from[low], psi_lo, atol=1e-15)
+        np.testing.assert_allclose(points.psi_to[high], psi_hi, atol=1e-15)
+        inside = points.edge == 0
+        assert np.all((points.psi_from[inside] > psi_lo) & (points.psi_to[inside] < psi_hi))
+
+
+def test_tip_relief_takes_the_load_off_the_profile_ends(pair, compliance):
+    """Without relief the bands at the ends of the active profile carry load (an edge
+    load, named as such); a tip relief of both members larger than the pairs'
+    deflection at its rated torque leaves them unloaded, and the largest pressure
+    falls."""
+    from lsbg.tca.modification import FlankModification
+    from lsbg.tca.separation import separation_field
+
+    crowned = FlankModification(25e-6, 5e-6)
+    relieved = FlankModification(25e-6, 5e-6, pinion_tip_relief=40e-6, gear_tip_relief=40e-6)
+    out = {}
+    for name, modification in (("crowned", crowned), ("relieved", relieved)):
+        contact = MeshContact(pair, ContactParameters(model="line"),
+                              separation=separation_field(pair, modification))
+        out[name] = fe_loaded_tca(contact, compliance, RATED, phases=16)
+    edge = out["crowned"]
+    assert edge.attrs["max_edge_load_share"] > 0.02
+    assert edge.attrs["max_edge_line_load_N_mm"] > 100
+    assert edge.attrs["tip_relief"] == "none"
+    # off the edges the pressure is Hertz's between flanks, never above the largest
+    assert np.all(edge["max_flank_pressure"].values <= edge["max_contact_pressure"].values)
+    free = out["relieved"]
+    assert free.attrs["max_edge_load_share"] == 0.0
+    assert free.attrs["tip_relief"] == "pinion's tip, gear's tip"
+    assert free.attrs["max_contact_pressure_MPa"] < edge.attrs["max_contact_pressure_MPa"]
+    # the relieved flank is still in equilibrium: the same torque on fewer points
+    assert free.attrs["max_relief_start_line_load_N_mm"] > 0
 
 
 def test_nodal_cholesky_solves_a_block_system():
