@@ -21,13 +21,16 @@ bevel-gear tool plots it in:
 
 The relief is
 
-    delta(u, v) = C_L u^2 + C_P v^2 + B u v + topography(u, v)
+    delta(u, v) = C_L u^2 + C_P v^2 + B u v + C_beta u + C_alpha v + topography(u, v)
                   + C_a1 <1 - w_1 / L_1>  + C_a2 <1 - w_2 / L_2>,
 
 with C_L the lengthwise crowning and C_P the profile crowning (reliefs at the
 toe and heel on the middle of the profile, and at the ends of the active
 profile in the middle of the face), B the bias (a twist: +B at the (u, v) =
-(+1, +1) and (-1, -1) corners, -B at the other two), an optional measured
+(+1, +1) and (-1, -1) corners, -B at the other two), the first-order
+corrections of the spiral angle C_beta u and of the pressure angle C_alpha v
+(the flank turned about the mean point lengthwise and across the profile:
+C_beta relieves the heel and adds at the toe), an optional measured
 or designed topography on a (u, v) grid, and the linear tip reliefs of both
 members: C_a1 at the pinion's tip end of the active profile, running out
 over the fraction L_1 of the active profile (w_1 = (1 - s v) / 2 its
@@ -61,6 +64,8 @@ MODIFICATION_CONFIG_KEYS = {
     "profile_crowning_um": "profile_crowning",
     "bias_um": "bias",
     "topography_file": "topography_file",
+    "spiral_angle_correction_um": "spiral_angle_correction",
+    "pressure_angle_correction_um": "pressure_angle_correction",
     "pinion_tip_relief_um": "pinion_tip_relief",
     "pinion_tip_relief_length": "pinion_tip_relief_length",
     "gear_tip_relief_um": "gear_tip_relief",
@@ -98,6 +103,9 @@ class FlankModification:
     topography : tuple or None
         The file's grid once read: (u [-], v [-], relief [m]); set by
         :meth:`load`.
+    spiral_angle_correction, pressure_angle_correction : float
+        C_beta, C_alpha: the relief of the linear terms at the heel (u = +1)
+        and at v = +1 [m], either sign.
     pinion_tip_relief, gear_tip_relief : float
         C_a1, C_a2: the linear tip relief of each member at its tip's end of
         the active profile [m], >= 0.
@@ -111,6 +119,8 @@ class FlankModification:
     bias: float = 0.0
     topography_file: str | None = None
     topography: tuple | None = field(default=None, compare=False, repr=False)
+    spiral_angle_correction: float = 0.0
+    pressure_angle_correction: float = 0.0
     pinion_tip_relief: float = 0.0
     pinion_tip_relief_length: float = 0.25
     gear_tip_relief: float = 0.0
@@ -124,10 +134,12 @@ class FlankModification:
                     or not math.isfinite(value) or value < 0:
                 raise ValueError(f"flank_modification.{name}_um = {_um(value)}: must be a "
                                  f"number >= 0 [um]")
-        if isinstance(self.bias, bool) or not isinstance(self.bias, (int, float)) \
-                or not math.isfinite(self.bias):
-            raise ValueError(f"flank_modification.bias_um = {_um(self.bias)}: must be a "
-                             f"finite number [um]")
+        for name in ("bias", "spiral_angle_correction", "pressure_angle_correction"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, float)) \
+                    or not math.isfinite(value):
+                raise ValueError(f"flank_modification.{name}_um = {_um(value)}: must be a "
+                                 f"finite number [um]")
         for name in _FRACTION_KEYS:
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, (int, float)) \
@@ -185,7 +197,10 @@ class FlankModification:
                "profile_crowning_um": self.profile_crowning / _UM,
                "bias_um": self.bias / _UM,
                "topography_file": self.topography_file}
-        if self.has_tip_relief:  # the keys of a study without tip relief stay as they were
+        if self.has_linear_terms:  # the keys of a study without them stay as they were
+            out.update({"spiral_angle_correction_um": self.spiral_angle_correction / _UM,
+                        "pressure_angle_correction_um": self.pressure_angle_correction / _UM})
+        if self.has_tip_relief:
             out.update({"pinion_tip_relief_um": self.pinion_tip_relief / _UM,
                         "pinion_tip_relief_length": self.pinion_tip_relief_length,
                         "gear_tip_relief_um": self.gear_tip_relief / _UM,
@@ -203,7 +218,12 @@ class FlankModification:
         """True when the flank is the conjugate one (no relief anywhere)."""
         return (self.lengthwise_crowning == 0.0 and self.profile_crowning == 0.0
                 and self.bias == 0.0 and self.topography_file is None
-                and not self.has_tip_relief)
+                and not self.has_tip_relief and not self.has_linear_terms)
+
+    @property
+    def has_linear_terms(self):
+        """True when the spiral or pressure angle is corrected."""
+        return self.spiral_angle_correction != 0.0 or self.pressure_angle_correction != 0.0
 
     @property
     def has_tip_relief(self):
@@ -253,6 +273,8 @@ class FlankModification:
         u = np.asarray(u, dtype=float)
         v = np.asarray(v, dtype=float)
         out = self.lengthwise_crowning * u**2 + self.profile_crowning * v**2 + self.bias * u * v
+        if self.has_linear_terms:
+            out = out + self.spiral_angle_correction * u + self.pressure_angle_correction * v
         if self.has_tip_relief:
             from_pinion_tip = 0.5 * (1.0 - pinion_tip * v)
             out = out + self.pinion_tip_relief * np.maximum(

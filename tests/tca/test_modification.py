@@ -100,6 +100,18 @@ def test_the_pinion_tip_relief_sits_on_the_pinion_tip(pair):
     assert pinion_relief(pair, mod, rho, theta) == pytest.approx(7e-6, rel=1e-6)
 
 
+def test_first_order_corrections_tilt_the_flank():
+    mod = FlankModification(spiral_angle_correction=4e-6, pressure_angle_correction=-3e-6)
+    # C_beta u + C_alpha v [um], by hand
+    for (u, v), expected in {(1, 0): 4, (-1, 0): -4, (0, 1): -3, (0.5, -1): 5}.items():
+        assert mod.relief(u, v) == pytest.approx(expected * 1e-6)
+    back = FlankModification.from_config(mod.to_config())
+    assert back == mod and not mod.is_zero and mod.has_linear_terms
+    with pytest.raises(ValueError, match=re.escape(
+            "flank_modification.pressure_angle_correction_um = inf")):
+        FlankModification.from_config({"pressure_angle_correction_um": float("inf")})
+
+
 def test_tip_relief_config_round_trip():
     config = {"pinion_tip_relief_um": 15, "pinion_tip_relief_length": 0.3,
               "gear_tip_relief_um": 25, "gear_tip_relief_length": 0.2}
