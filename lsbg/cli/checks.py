@@ -25,8 +25,10 @@ def add_checks_parser(subparsers):
                     "(the line model and load of --mesh), the tooth contact analysis from the "
                     "surfaces on the conjugate, the crowned (--mesh's crowning) and a displaced "
                     "pair, and the gear's torsional resonance on the point model's linearised "
-                    "contact (the contact law and load of --run); write them to --out (NetCDF) "
-                    "for the verification and paper reports.")
+                    "contact (the contact law and load of --run), with what their bounds need "
+                    "(the surface TCA on a coarser grid and at half the crowning, the slices' "
+                    "and the mesh phases' errors of --mesh's stiffness); write them to --out "
+                    "(NetCDF) for the verification and paper reports.")
     add_geometry_input(parser)
     parser.add_argument("--mesh", required=True, metavar="MESH.nc",
                         help="the design point's loaded TCA (lsbg ltca)")

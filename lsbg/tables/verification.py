@@ -12,10 +12,14 @@
   the checks of a design point that ``lsbg checks`` computed
   (:mod:`lsbg.experiments.point_checks`), read and tabulated;
 * :func:`setting_label`, :func:`convergence_display` and :func:`by_gear_type`:
-  the tables as the verification report shows them (narrow; nothing computed).
+  the tables as the verification report shows them (narrow; nothing computed);
+* :func:`verification_checks`: every check's value against a bound derived from
+  its discretisation, with the reason.
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 import pandas as pd
@@ -30,7 +34,8 @@ __all__ = [
     "convergence_table",
     "pressure_angle_table", "read_checks", "ltca_check_table", "contact_state_check_table",
     "conjugacy_table", "check_settings", "resonance_of", "setting_label",
-    "CONVERGENCE_DISPLAY_COLUMNS", "convergence_display", "by_gear_type"
+    "CONVERGENCE_DISPLAY_COLUMNS", "convergence_display", "by_gear_type",
+    "verification_checks"
 ]
 
 
@@ -485,3 +490,124 @@ def by_gear_type(table, rows, types=("SBG", "LSBG")) -> pd.DataFrame:
     for gear in present:
         out[gear] = [float(by_type.at[gear, column]) for column, _, _ in rows]
     return out
+
+
+# ------------------------------------ the checks, each against a derived bound
+def _engine_rows(add, convergence, agreement):
+    """The engines' checks: each difference against both runs' integration errors."""
+    stats = ["gear_speed_std_rel_diff_percent", "tangential_force_std_rel_diff_percent"]
+
+    def error(part, value):   # [%] the change from the next coarser setting; first-order
+        row, coarser = part[np.isclose(part.value, value)], part[part.value > value * 1.000001]
+        if row.empty or coarser.empty:   # Richardson (over 2 - 1) for a time step
+            return float("nan")
+        coarse = coarser.sort_values("value").iloc[0]
+        change = max(abs(float(row[q].iloc[0]) - float(coarse[q])) for q in stats)
+        return change / (coarse.value / value - 1) if coarse.parameter == "time_step_s" \
+            else change
+
+    errors = {}   # (trace, model, engine): its default run's error, the reference's [%]
+    for (trace, model), part in convergence.groupby(["trace", "contact_model"]):
+        ref = str(part.reference.iloc[0]).split() or ["", "", "nan"]
+        own = error(part[part.engine == ref[0]], float(ref[2]))
+        for r in part[part.is_default].itertuples():
+            errors[trace, model, r.engine] = (error(part[part.engine == r.engine], r.value), own)
+    default = convergence[convergence.is_default]
+    pybullet = default[default.engine == "pybullet"].groupby("contact_model", sort=False)
+    for model, part in [*pybullet, (None, default[default.engine == "compiled"])]:
+        if not part.empty:
+            add(f"pybullet_{model}" if model else "compiled",
+                (f"{model} model: PyBullet at its default time step" if model else
+                 "compiled engine at its default rtol") + " agrees with the reference run",
+                part[stats].abs().max(axis=1),
+                [sum(errors[r.trace, r.contact_model, r.engine]) for r in part.itertuples()],
+                " %", ("first-order time-step error, by Richardson from twice the step" if model
+                       else "the change from 100 rtol") + ", plus the reference run's own")
+    if agreement is not None and not agreement.empty:
+        trace = {label: t for t, label in TRACE_LABELS.items()}
+        add("agreement", "engines agree on the standard deviations",
+            100 * (agreement.std_ratio - 1).abs(),
+            [sum(errors.get((trace.get(r.gear_type), r.contact_model, e), (np.nan,))[0]
+                 for e in (r.engine, r.reference)) for r in agreement.itertuples()], " %",
+            "both engines' errors as above: one model from one state differs by integration "
+            "error, not by sampling (Section 2: the study's 3 % band)")
+
+
+def verification_checks(checks, meshes, records, convergence=None, agreement=None):
+    """The verification report's checks, each value against its bound and the reason.
+
+    Parameters
+    ----------
+    checks, meshes, records : dict
+        ``{gear type: ...}``: the checks (:func:`read_checks`), loaded TCAs
+        (``lsbg ltca``) and design records (``lsbg geometry``); may be empty.
+    convergence, agreement : pandas.DataFrame, optional
+        :func:`convergence_table`, :func:`agreement_by_model` (the engines').
+
+    Returns
+    -------
+    pandas.DataFrame
+        Per check (docs/model.md, "The verification checks' bounds"): ``key``,
+        ``check``, ``value``, ``bound`` [``unit``] of the case shown (the
+        largest, or the worst failing), ``result``, ``bound_text`` as shown,
+        ``reason``, ``pass`` (every case within its bound).
+    """
+    from lsbg.experiments.point_checks import EPS, ROUNDINGS, point_check_rows
+
+    columns = ["key", "check", "value", "bound", "unit", "result", "bound_text", "reason",
+               "pass"]
+    rows, eps = [], ROUNDINGS * EPS   # float64 round-off of a computed point, normal or angle
+
+    def add(key, what, values, bounds, unit, reason, result=None, bound_text=None, ok=None):
+        values = np.atleast_1d(np.asarray(values, float))
+        bounds = np.broadcast_to(np.asarray(bounds, float), values.shape)
+        good = values <= bounds
+        i = int(np.argmax(values if good.all() else np.where(good, -np.inf, values / bounds)))
+        rows.append({"key": key, "check": what, "value": values[i], "bound": bounds[i],
+                     "unit": unit.strip(), "result": result or f"{_number(values[i])}{unit}",
+                     "bound_text": bound_text or (f"≤ {_number(bounds[i])}{unit}" if np.isfinite(
+                         bounds[i]) else "none: what it needs is missing"),
+                     "reason": reason, "pass": bool(good.all() if ok is None else ok)})
+
+    if convergence is not None and not convergence.empty:
+        _engine_rows(add, convergence, agreement)
+    for label, r in records.items():   # the trace's closed form, sin beta_p(rho) of a circle
+        rho, beta = np.asarray(r["cone_distance_along_face_mm"]), r["spiral_angle_along_face_deg"]
+        plane, rm, rc = (math.radians(abs(r["plane_spiral_angle_mean_deg"])) + 0 * rho,
+                         r["mean_cone_distance_mm"], r["cutter_radius_mm"])
+        if r["trace"] == "circular":
+            plane = np.arcsin((rho**2 - rm**2 + 2 * rm * rc * np.sin(plane)) / (2 * rho * rc))
+        closed = np.ptp(np.degrees(np.arctan(np.tan(plane) / math.cos(
+            math.radians(r["plane_of_action_tilt_deg"])))))
+        # the tangent: a central difference over +-1e-6 R_e of points off by eps R_e
+        bound = 2 * math.degrees((eps * 1e6 + 2 * EPS) / math.sin(math.radians(min(beta)))
+                                 + (1e-6 * r["outer_cone_distance_mm"] / rho.min())**2)
+        add(f"spiral_{label}", f"{label} spiral angle " + ("varies along the face as its "
+            "cutter's circle" if closed else "constant along the face"),
+            abs(np.ptp(beta) - closed), bound, "°", "closed form tan β = tan β_p(ρ)/cos γ, ± "
+            "twice the round-off of an arccos of points 16 ε R_e off, ±10⁻⁶ R_e apart",
+            result=f"{_number(np.ptp(beta), 3 if closed else 2)}°",
+            bound_text=f"{_number(closed, 6)} ± {_number(bound)}°" if closed else None)
+    if not checks:
+        return pd.DataFrame(rows, columns=columns)
+    names = [f"normal_pressure_angle_mean_{m}_{s}_deg" for m in ("pinion", "gear")
+             for s in ("drive", "coast")]
+    add("pressure_angle", "normal pressure angle equals the design value",
+        [abs(r[n] - r["normal_pressure_angle_deg"]) for r in records.values() for n in names],
+        [math.degrees(eps / math.cos(math.radians(r["normal_pressure_angle_deg"])))
+         for r in records.values() for n in names], "°",
+        "round-off: the arcsin of a dot product of unit vectors 16 ε off, over cos α_n")
+    r = [records[label] for label in checks]
+    add("conjugacy", "flanks conjugate: distance to the contact line",
+        [max(d.conjugacy_pinion_distance.max(), d.conjugacy_gear_distance.max())
+         for d in checks.values()],
+        [(eps + 2 * EPS / math.sin(math.radians(x["base_cone_angle_pinion_deg"])))
+         * x["outer_cone_distance_mm"] * 1e-3 for x in r], " m", "round-off at the flank's "
+        "scale: 16 ε R_e, and 2 ε R_e / sin δ_b1 from the polar angle's arccos")
+    point_check_rows(add, checks, meshes, r, eps, _number)
+    return pd.DataFrame(rows, columns=columns)
+
+
+def _number(value, digits=2):
+    return format_number(float(value), digits)
+
