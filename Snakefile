@@ -48,6 +48,11 @@ if STUDY.sweeps:
     include: "workflow/rules/sweeps.smk"
 
 
+if STUDY.practice:
+
+    include: "workflow/rules/practice.smk"
+
+
 for extension in config["extensions"]:
 
     include: extension_file(extension)

@@ -23,6 +23,7 @@ LAYERS = (
     ("tca",),
     ("tooth",),
     ("rating",),
+    ("practice",),
     ("stats",),
     ("experiments",),
     ("aggregate",),

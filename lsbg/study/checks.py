@@ -58,6 +58,8 @@ configuration that returns its problem lines):
     sweep through the schema and steps 4, 6 and 7 as if its values were set in
     their own sections, at the sweep's own design points; points that give one
     file name; the number of runs against the resource guard.
+12. the practice design (:func:`lsbg.practice.checks.practice_problems`): the
+    design its rules make, its pairs and relieved flanks, its load spectrum.
 
 A ``load_sweep`` section (the former extension) gets one line naming the
 ``sweeps`` entry that replaces it (:func:`lsbg.study.sweep_checks.load_sweep_moved`).
@@ -138,6 +140,10 @@ def check_config(config, schema):
         config, pairs, *memory_limit_gb(config)) + rating_problems(config, pairs)
     if not problems and config.get("sweeps"):
         problems += _sweeps_problems(config, schema, pairs)
+    if not problems and "line" in config["sweep"]["contact_models"]:
+        from lsbg.practice.checks import practice_problems
+
+        problems += practice_problems(config)
     return list(dict.fromkeys(problems))
 
 

@@ -28,7 +28,7 @@ FLANK_SECTIONS = ("flank_modification", "misalignment")
 CONTACT_STATE_SECTIONS = (*FLANK_SECTIONS, "tca", "misalignment_map")
 #: Sections of the configuration that lsbg's commands read from results/config.yaml.
 STUDY_SECTIONS = ("design", "simulation", "contact", *CONTACT_STATE_SECTIONS, "statistics",
-                  "tooth", "rating")
+                  "tooth", "rating", "practice")
 
 
 #: Simulation keys that only some engines read.

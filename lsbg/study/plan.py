@@ -32,7 +32,11 @@ __all__ = ["PAPER_TRACES", "CONTACT_MODELS", "REPORT_NAMES", "STUDY_SECTIONS", "
            "design_points", "speed_labels", "canonical", "yaml_text",
            "write_study_config", "simulation_params", "simulation_runtime", "map_steps",
            "CONTACT_STATE_SECTIONS", "contact_state_params", "JOB_SECONDS",
-           "assign_priorities", "Study"]
+           "assign_priorities", "DESIGN_SETS", "Study"]
+
+
+#: The designs of the load curves: the pair as published, and as practice makes it.
+DESIGN_SETS = ("paper", "practice")
 
 
 # ---------------------------------------------------------------- the study
@@ -313,6 +317,34 @@ class Study:
         return [_format(FILES["speed_run"], trace=t, spiral=self.speed_spiral, speed=v)
                 for t in self.speed_traces for v in self.speeds]
 
+    # ------------------------------------------------------ practice design
+    @property
+    def practice(self):
+        """Whether the study makes the practice design and the load curves (the
+        ``practice`` section's ``enabled``; its stability claim needs line-model runs)."""
+        return bool(self.config["practice"]["enabled"]) and "line" in self.sweep_models
+
+    def practice_file(self, kind, trace):
+        """A practice design point's file: ``kind`` one of geometry, compliance,
+        fe_ltca, fe_envelope, tca, vh_map, run, rating (``FILES["practice_<kind>"]``)."""
+        return _format(FILES[f"practice_{kind}"], trace=trace, spiral=self.paper_spiral,
+                       engine=self.sweep_engine)
+
+    def practice_files(self, kind):
+        """:meth:`practice_file` of both traces (none without the practice design)."""
+        return [self.practice_file(kind, t) for t in PAPER_TRACES] if self.practice else []
+
+    def load_curve(self, design_set, trace):
+        return _format(FILES["load_curve"], design_set=design_set, trace=trace,
+                       spiral=self.paper_spiral)
+
+    @property
+    def load_curves(self):
+        """The load curves of both designs (``paper``, ``practice``) and both traces."""
+        if not self.practice:
+            return []
+        return [self.load_curve(d, t) for d in DESIGN_SETS for t in PAPER_TRACES]
+
     # -------------------------------------------------------------- targets
     @property
     def reports(self):
@@ -324,7 +356,9 @@ class Study:
         extra = [FILES["speed_curve"]] if self.speed_sweep else []
         return [*self.reports.values(), FILES["sweep"], FILES["summary"], *self.tca_files,
                 *self.vh_maps, *self.vh_cases(), *self.tooth_files, *self.fe_cases(),
-                *self.rating_files, *self.sweep_files, *extra]
+                *self.rating_files, *self.sweep_files, *extra,
+                *self.practice_files("rating"), *self.practice_files("vh_map"),
+                *self.load_curves]
 
     # ------------------------------------------------------------ wildcards
     @property
@@ -344,6 +378,7 @@ class Study:
             "model": "|".join(CONTACT_MODELS),
             "case": "|".join(map(re.escape, self.sensitivity)) or "none",
             "speed": r"\d+(\.\d+)?",
+            "design_set": "|".join(DESIGN_SETS),
         }
 
     @property

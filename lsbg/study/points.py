@@ -40,6 +40,18 @@ FILES = {
     "sweep_dataset": "results/sweeps/{name}.nc",
     "sweep_table": "results/sweeps/{name}.csv",
     "report": "reports/{name}.html",
+    # the pair as a designer would make it (lsbg practice, rules/practice.smk)
+    "practice_design": "results/practice/design.yaml",
+    "practice_geometry": "results/practice/geometry/{trace}_beta{spiral}",
+    "practice_compliance": "results/practice/tooth/{trace}_beta{spiral}_compliance.nc",
+    "practice_fe_ltca": "results/practice/tooth/{trace}_beta{spiral}_ltca.nc",
+    "practice_fe_envelope": "results/practice/tooth/{trace}_beta{spiral}_envelope.nc",
+    "practice_tca": "results/practice/tca/{trace}_beta{spiral}.nc",
+    "practice_vh_map": "results/practice/vh/{trace}_beta{spiral}.nc",
+    "practice_run": "results/practice/runs/{trace}_beta{spiral}_line_{engine}.nc",
+    "practice_rating": "results/practice/rating/{trace}_beta{spiral}.nc",
+    # stresses, TE and pattern against torque (lsbg load-curve), design_set: paper or practice
+    "load_curve": "results/load_curves/{design_set}_{trace}_beta{spiral}.nc",
 }
 
 #: Both traces run at the paper's design point (the paper compares them).

@@ -64,6 +64,10 @@ LOAD_SUBDIVISION = 4
 #: thickness at the mean point, about pi/2 m_mn (a pair's own thickness is
 #: checked by :func:`mesh_sizes`).
 MAX_TOOTH_SIZE = math.pi / 6
+#: Fewest elements across a member's own normal tooth thickness at the mean point
+#: (:func:`mesh_sizes`; 2.9: the paper's teeth are a little thinner than the
+#: nominal pi/2 m_mn of MAX_TOOTH_SIZE, and keep the size they were converged at) [-].
+MIN_ACROSS = 2.9
 
 
 @dataclass(frozen=True)
@@ -298,23 +302,23 @@ def mesh_sizes(pair, member, settings):
         ``across``, the elements across the member's normal tooth thickness at
         the mean point [-].
 
-    Raises
-    ------
-    ValueError
-        Naming ``tooth_size`` and its value, if it leaves fewer than about
-        three elements across the tooth (2.9: the pair's own teeth can be a
-        little thinner than the nominal pi/2 m_mn that FEMeshSettings checks).
+    Notes
+    -----
+    A member whose teeth would get fewer than :data:`MIN_ACROSS` elements
+    across at ``tooth_size`` (a tooth thinned by the design's thickness
+    modification) is meshed at its thickness over :data:`MIN_ACROSS` instead.
     """
     d = pair.design
     normal_module = d.mean_module * math.cos(d.spiral_angle)
     tooth = settings.tooth_size * normal_module
     fillet = FILLET_REFINEMENT * settings.tooth_size * settings.fillet_radius * normal_module
     thickness = d.mean_tooth_thickness(member) * math.cos(d.spiral_angle)
+    if thickness / tooth < MIN_ACROSS:
+        # a member thinned by its design (the gear of a shifted pair, ISO 23509's
+        # x_smn) keeps three elements across its own teeth; the other keeps its size
+        tooth = thickness / MIN_ACROSS
+        fillet = FILLET_REFINEMENT * tooth * settings.fillet_radius
     across = thickness / tooth
-    if across < 2.9:
-        raise ValueError(f"tooth_size = {settings.tooth_size!r}: leaves {across:.2f} elements "
-                         f"across the {('pinion', 'gear')[member - 1]}'s teeth at the mean point "
-                         f"(normal thickness {thickness * 1e3:.3g} mm); at least 3 are needed")
     return {"tooth": tooth, "fillet": fillet, "coast_fillet": COAST_FILLET * fillet,
             "body": settings.body_size * tooth, "across": across}
 

@@ -17,7 +17,8 @@ FILES = ("design.json", "flanks.nc", "pinion.stl", "gear.stl",
 UNIT_SUFFIXES = ("_mm", "_mm3", "_deg", "_kg", "_kg_m2", "_kg_m3")
 UNITLESS = {"pinion_teeth", "gear_teeth", "pinion_hand", "trace", "base_cone_rule",
             "base_cone_constant", "gear_ratio", "contact_ratio", "contact_ratio_profile",
-            "contact_ratio_face", "lsbg_version", "mesh_triangles_pinion", "mesh_triangles_gear"}
+            "contact_ratio_face", "lsbg_version", "mesh_triangles_pinion", "mesh_triangles_gear",
+            "profile_shift", "thickness_modification", "undercut"}
 
 
 @pytest.fixture(scope="module")

@@ -137,6 +137,8 @@ def bad_values(schema):
         return out
     if kind == "object":
         return [("wrong type", [1, 2])]
+    if kind == "boolean":
+        return [("wrong type", "yes"), ("wrong type", 1)]
     if kind == "string" and "pattern" in schema:
         return [("wrong type", 7), ("not matching its pattern", "no such/name")]
     raise AssertionError(f"no invalid values for {schema}")

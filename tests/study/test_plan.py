@@ -72,7 +72,16 @@ def test_every_run_and_file_of_the_default_study_is_planned_once(default):
     assert study.targets == [*study.reports.values(), plan.FILES["sweep"],
                              plan.FILES["summary"], *study.tca_files, *study.vh_maps,
                              *study.vh_cases(), *study.tooth_files, *study.fe_cases(),
-                             *study.rating_files]
+                             *study.rating_files, *study.practice_files("rating"),
+                             *study.practice_files("vh_map"), *study.load_curves]
+    # the practice design point of each trace and the load curves of both designs
+    assert study.practice_files("rating") == ["results/practice/rating/logarithmic_beta35.nc",
+                                              "results/practice/rating/circular_beta35.nc"]
+    assert study.load_curves == [f"results/load_curves/{d}_{t}_beta35.nc"
+                                 for d in ("paper", "practice")
+                                 for t in ("logarithmic", "circular")]
+    assert study.practice_file("run", "circular") == \
+        "results/practice/runs/circular_beta35_line_compiled.nc"
     # the sensitivity cases: every case's run; the V-H maps and FE loaded TCAs of the
     # cases that reach them (crowning and line stiffness; crowning)
     assert len(study.sensitivity_runs()) == 2 * len(study.sensitivity) == 2 * 13
