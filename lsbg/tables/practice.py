@@ -17,9 +17,10 @@ import pandas as pd
 from lsbg.aggregate.runs import TYPE_ORDER, gear_type
 from lsbg.tables import claims as claim_tables
 
-__all__ = ["PRACTICE_CELL", "practice_claims", "practice_design_table", "design_words",
-           "load_curve_table", "fe_iso_ratio_table", "spectrum_life_table", "FE_ISO_BAND",
-           "SPECTRUM_QUANTITIES"]
+__all__ = ["PRACTICE_CELL", "FE_ISO_BAND", "SPECTRUM_QUANTITIES", "by_type", "practice_claims",
+           "practice_design_table", "design_words", "load_curve_table", "fe_iso_ratio_table",
+           "spectrum_life_table", "read_practice", "practice_load", "practice_text",
+           "with_practice_answers"]
 
 #: The practice design's stability cell.
 PRACTICE_CELL = "line model, the practice design at its load"
@@ -258,3 +259,110 @@ def spectrum_life_table(curves, load_torque, torque_fractions, cycle_shares, res
                      "life ratio LSBG/SBG": life["ratio"], "least": life["low"],
                      "most": life["high"], "better": claim_tables.better_type(sbg, lsbg, resolution)})
     return pd.DataFrame(rows)
+
+
+# ------------------------------------------------------------ in the paper report
+def read_practice(runs, vh_maps, ratings, fe_ltcas, geometry_dirs, load_curves, engine):
+    """The practice design point's files, read: ``{gear type: dataset}`` of each kind.
+
+    Parameters
+    ----------
+    runs, vh_maps, ratings, fe_ltcas, geometry_dirs, load_curves : sequence of str
+        The files (``results/practice/``, ``results/load_curves/``); any may be empty.
+    engine : str
+        The engine of the line-model runs.
+
+    Returns
+    -------
+    dict
+        ``runs``, ``vh_maps``, ``ratings``, ``fe_ltcas``, ``records`` (design.json),
+        ``curves`` (``{(design set, gear type): load curve}``); empty dicts where no file.
+    """
+    import xarray as xr
+
+    from lsbg.aggregate.runs import select_runs
+    from lsbg.dynamics.dataset import open_runs
+    from lsbg.files import as_path_list
+    from lsbg.gear.design import TRACE_LABELS
+    from lsbg.solid.directory import read_record
+
+    def load(paths):
+        return by_type([xr.load_dataset(p) for p in as_path_list(paths)])
+
+    records = {TRACE_LABELS[r["trace"]]: r for r in map(read_record, as_path_list(geometry_dirs))}
+    curves = {}
+    for path in as_path_list(load_curves):
+        ds = xr.load_dataset(path)
+        curves[(ds.attrs["design_set"], gear_type(ds))] = ds
+    run_files = as_path_list(runs)
+    return {"runs": select_runs(open_runs(run_files), "line", engine) if run_files else {},
+            "vh_maps": load(vh_maps), "ratings": load(ratings), "fe_ltcas": load(fe_ltcas),
+            "records": {t: records[t] for t in TYPE_ORDER if t in records},
+            "curves": dict(sorted(curves.items(), key=lambda kv: (kv[0][0] != "paper",
+                                                                  TYPE_ORDER.index(kv[0][1]))))}
+
+
+def practice_load(practice):
+    """The practice design's load on the gear [N m] (its runs', else its ratings'), or None."""
+    for ds in practice["runs"].values():
+        return float(ds.attrs["solver_load_torque_N_m"])
+    for ds in practice["ratings"].values():
+        return float(ds["gear_torque"])
+    return None
+
+
+def practice_text(claims, practice, where):
+    """The finding's paragraph on the practice design: what it is, each claim's answer.
+
+    Parameters
+    ----------
+    claims : dict
+        :func:`practice_claims`.
+    practice : dict
+        :func:`read_practice`.
+    where : str
+        The design point and load in words ("at 35°, 585 N·m").
+
+    Returns
+    -------
+    str
+        Markdown; empty without a practice design.
+    """
+    if not claims or not practice["records"]:
+        return ""
+    record = next(iter(practice["records"].values()))
+    flanks = next(iter(practice["runs"].values())).attrs if practice["runs"] else {}
+    relief = flanks.get("flank_modification_pinion_tip_relief_um")
+    relief_words = (f", both tips relieved by {float(relief):.3g} µm" if relief is not None
+                    else "")
+    lines = [f"**As a designer would make it** ({design_words(record)}{relief_words}), "
+             f"{where}, its rated pitting torque:"]
+    for name, verdict in claims.items():
+        lines.append(f"- **{name.capitalize()}**: {claim_tables.claim_answer(verdict)}. "
+                     + " ".join(verdict["sentences"].values()))
+    return "\n".join(lines)
+
+
+def with_practice_answers(table, claims, load):
+    """The finding's claims table with the practice design's answer beside the paper pair's.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        :func:`lsbg.tables.finding.claims_table`.
+    claims : dict
+        :func:`practice_claims` (may be empty).
+    load : float or None
+        The practice design's load [N m].
+    """
+    if not claims or load is None:
+        return table
+    from lsbg.tables.finding import CLAIMED
+
+    names = {text: name for name, text in CLAIMED.items()}
+    out = table.copy()
+    column = f"as a designer would make it, at {load:.0f} N·m"
+    out.insert(2, column, [claim_tables.claim_answer(claims[names[c]]).replace("**", "")
+                           if names.get(c) in claims else "—"
+                           for c in out["the paper's claim"]])
+    return out

@@ -22,6 +22,13 @@ rule report_paper:
         rating_files=STUDY.rating_files,
         checks_files=PAPER_CHECKS,
         parameter_sweep_files=[FILES["sweep_dataset"].format(name=s.name) for s in STUDY.sweeps],
+        # the pair as a designer would make it (rules/practice.smk)
+        practice_run_files=STUDY.practice_files("run"),
+        practice_vh_files=STUDY.practice_files("vh_map"),
+        practice_rating_files=STUDY.practice_files("rating"),
+        practice_fe_ltca_files=STUDY.practice_files("fe_ltca"),
+        practice_geometry_dirs=STUDY.practice_files("geometry"),
+        load_curve_files=STUDY.load_curves,
         sources=sources("report", "paper"),
     output:
         report(STUDY.reports["paper"], caption="../report/reports.rst", category="Reports",
@@ -31,7 +38,10 @@ rule report_paper:
                           steady_state_after_s=STATISTICS["steady_state_after_s"],
                           chart_window_start_s=STATISTICS["control_chart_window_s"][0],
                           chart_window_stop_s=STATISTICS["control_chart_window_s"][1],
-                          subgroup_size=STATISTICS["subgroup_size"]),
+                          subgroup_size=STATISTICS["subgroup_size"],
+                          load_spectrum_fractions=config["practice"]["load_spectrum"][
+                              "torque_fractions"],
+                          load_spectrum_shares=config["practice"]["load_spectrum"]["cycle_shares"]),
     log:
         "logs/report_paper/paper.log",
     shell:
