@@ -251,7 +251,7 @@ class FECompliance:
             ``pinion``, ``gear``: shape (phases,) [Pa], 0 where no fillet point
             is in tension.
         """
-        from lsbg.tooth.elasticity import largest_principal
+        from lsbg.tooth.elasticity import largest_principal_over_points
 
         # every tooth pair's loads at every position in one product per member
         position = np.concatenate([g[0] for g in grid_loads])
@@ -260,5 +260,5 @@ class FECompliance:
         for name in ("pinion", "gear"):
             stress = np.moveaxis(self.stress[name] @ on_grid.T, -1, 0)  # (lines, q, 3, 3)
             root[name] = np.zeros(phases)
-            np.maximum.at(root[name], position, largest_principal(stress).max(axis=1))
+            np.maximum.at(root[name], position, largest_principal_over_points(stress))
         return root
