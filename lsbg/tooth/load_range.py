@@ -18,8 +18,9 @@ The mesh stiffness is no further solve either (:func:`fe_loaded_tca`'s central
 difference of the torque over the mismatch costs two per position and
 torque): at a solution the active set's linear system gives the derivative
 itself, dT2/d eps = e2 l_A . (C_AA + D_A)^-1 l_A with D_A the tangents of
-Hertz's approach (:func:`tangent_stiffness`), which the central difference
-approximates (to about 1e-6 relative at its 0.1 % step).
+Hertz's approach (:func:`tangent_stiffness`). The central difference at
++-0.1 % of the torque matches it to 1e-7 at the median position, to 0.4 %
+where a point enters contact within the difference's step.
 
 SI inside; the dataset speaks µrad, N/µm, MPa, N/mm and mm.
 """
@@ -110,6 +111,7 @@ class _Pattern:
         self.psi = [math.inf, -math.inf]
 
     def add(self, points, loads):
+        """Take in one position's points and their loads [N]."""
         loaded = loads > 0
         band = points.band[loaded]
         self.rho = [min(self.rho[0], self.inner[band].min()),
