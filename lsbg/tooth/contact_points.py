@@ -232,3 +232,33 @@ class FECompliance:
         radius = np.array([np.interp(s, self.curvature_psi, self.radius[b])
                            for b, s in zip(band, points.psi)])
         return 1.0 / radius, w @ self.depth["pinion"], w @ self.depth["gear"]
+
+    def root_stresses(self, grid_loads, phases):
+        """Largest tensile principal stress in both members' fillets at each position.
+
+        Parameters
+        ----------
+        grid_loads : list of (numpy.ndarray, numpy.ndarray)
+            Per position: its index once per tooth pair [-] and the pairs' loads
+            on the flank grid, shape (pairs, f * p) [N]
+            (:meth:`lsbg.tooth.ltca.Position.pair_loads`).
+        phases : int
+            Positions [-].
+
+        Returns
+        -------
+        dict
+            ``pinion``, ``gear``: shape (phases,) [Pa], 0 where no fillet point
+            is in tension.
+        """
+        from lsbg.tooth.elasticity import largest_principal_over_points
+
+        # every tooth pair's loads at every position in one product per member
+        position = np.concatenate([g[0] for g in grid_loads])
+        on_grid = np.concatenate([g[1] for g in grid_loads])  # (lines, f * p)
+        root = {}
+        for name in ("pinion", "gear"):
+            stress = np.moveaxis(self.stress[name] @ on_grid.T, -1, 0)  # (lines, q, 3, 3)
+            root[name] = np.zeros(phases)
+            np.maximum.at(root[name], position, largest_principal_over_points(stress))
+        return root

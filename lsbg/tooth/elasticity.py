@@ -22,7 +22,7 @@ import scipy.sparse as sp
 from lsbg.tooth.cholesky import NodalCholesky, single_threaded_blas
 
 __all__ = ["ElasticSegment", "NodalCholesky", "single_threaded_blas", "element_stiffness",
-           "largest_principal", "check_material"]
+           "largest_principal", "largest_principal_over_points", "check_material"]
 
 
 def element_stiffness(mesh, lam, mu):
@@ -288,6 +288,44 @@ def largest_principal(stress):
     numpy.ndarray, shape (...)
     """
     return np.linalg.eigvalsh(stress)[..., -1]
+
+
+def largest_principal_over_points(stress):
+    """The largest of the largest principal stresses of each row's points [Pa].
+
+    ``largest_principal(stress).max(axis=1)`` to the last bit, with the
+    eigenvalues of only the points that can hold the maximum. With m the
+    mean normal stress and J = |S - m I|^2 (the deviator's squared norm), the
+    deviatoric principal stresses s_k (sum 0, sum of squares J) have
+    sqrt(J/6) <= max s_k <= sqrt(2 J/3); a diagonal entry, a Rayleigh
+    quotient, is a lower bound too. A point whose upper bound m + sqrt(2 J/3)
+    lies below its row's largest lower bound (less 1e-12 of the row's largest
+    tensor norm, for rounding) cannot hold the row's maximum and is left out: in a
+    loaded tooth's fillets 80-90 % of them.
+
+    Parameters
+    ----------
+    stress : numpy.ndarray, shape (rows, points, 3, 3)
+        Symmetric stress tensors [Pa].
+
+    Returns
+    -------
+    numpy.ndarray, shape (rows,)
+    """
+    stress = np.asarray(stress, float)
+    # entry by entry, each (rows, points) in the caller's memory order
+    xx, yy, zz = (stress[..., i, i] for i in range(3))
+    shear = stress[..., 0, 1] ** 2 + stress[..., 0, 2] ** 2 + stress[..., 1, 2] ** 2
+    mean = (xx + yy + zz) / 3
+    # the deviator's norm from its entries (no difference of large squares)
+    j2 = (xx - mean) ** 2 + (yy - mean) ** 2 + (zz - mean) ** 2 + 2 * shear
+    largest = np.maximum(np.maximum(xx, yy), zz)
+    lower = np.maximum(largest, mean + np.sqrt(j2 / 6)).max(axis=1)
+    size = np.sqrt(3 * mean**2 + j2).max(axis=1)  # Frobenius norm: >= every entry
+    row, point = np.nonzero(mean + np.sqrt(2 * j2 / 3) >= (lower - 1e-12 * size)[:, None])
+    out = np.full(stress.shape[0], -np.inf)
+    np.maximum.at(out, row, largest_principal(stress[row, point]))
+    return out
 
 
 def check_material(young_modulus, poisson_ratio):

@@ -43,7 +43,8 @@ from lsbg.contact import kernels as k
 from lsbg.tooth.contact_points import FECompliance, contact_points
 from lsbg.tooth.field import active_field
 
-__all__ = ["solve_contact", "fe_loaded_tca", "EdgeLoads"]
+__all__ = ["EdgeLoads", "MeshCycle", "Position", "fe_loaded_tca", "position_setup",
+           "solve_contact"]
 
 #: Relative change of the loads at which the Hertz fixed point stops [-].
 TOLERANCE = 1e-10
@@ -243,6 +244,156 @@ class EdgeLoads:
                 "tip_relief": self.relieved}
 
 
+class MeshCycle:
+    """What an FE loaded TCA needs before any position, whatever the torque: checked
+    inputs, the field of contact, the points' compliance and the mesh positions.
+
+    Parameters
+    ----------
+    contact : lsbg.contact.MeshContact
+        Line model of the pair (bands, separation of real flanks).
+    compliance : xarray.Dataset
+        :func:`lsbg.tooth.compliance.tooth_compliance` of the same design.
+    phases : int
+        Mesh positions over one base pitch [-] (at least 8).
+    form_limit : bool
+        Bound the field by the generated flanks' starts (:func:`active_field`)
+        or keep lsbg's.
+
+    Raises
+    ------
+    ValueError
+        ``phases`` not a whole number >= 8, or a compliance of another design.
+    """
+
+    def __init__(self, contact, compliance, phases, form_limit=True):
+        from lsbg.gear.flank import mesh_phase_pinion_angle
+
+        if isinstance(phases, bool) or int(phases) != phases or phases < 8:
+            raise ValueError(f"phases = {phases!r}: must be a whole number >= 8")
+        design = contact.pair.design
+        # the compliance holds only for the design it was computed for: every key
+        difference = design.attrs_difference(compliance.attrs)
+        if difference is not None:
+            key, stored, value = difference
+            raise ValueError(f"the compliance dataset has design {key} = {stored!r}, the "
+                             f"contact's design {value!r}: compute it for this design point")
+        self.contact, self.inputs_hash = contact, compliance.attrs.get("inputs_hash")
+        self.bands = contact.params.slices
+        self.band_rho = contact.arrays[2][0, :self.bands, k.B_RHO]  # band centres [m]
+        self.psi_lo, self.psi_hi = contact.pair.planes["drive"].field[:2]  # lsbg's [rad]
+        self.form_limit = bool(form_limit)
+        self.field = None  # (psi_lo, psi_hi) per band [rad], None: lsbg's
+        if form_limit:
+            # the rack's edge: the FE segment's root fillet (lsbg.tooth.segment)
+            edge = float(compliance.attrs.get("fe_fillet_radius", 0.25)) * design.mean_module \
+                * math.cos(design.spiral_angle)
+            self.field = active_field(contact.pair, edge, self.band_rho)
+        self.fe = FECompliance(compliance, contact.pair, contact.orientation, self.band_rho,
+                               self.field)
+        self.phases = int(phases)
+        self.fraction = np.arange(self.phases) / self.phases  # mesh phase [-]
+        self.pinion = mesh_phase_pinion_angle(contact.pair, self.fraction)  # [rad]
+
+    def field_attrs(self):
+        """The field's attributes: form limit, outer bounds across the profile [deg]."""
+        lo, hi = self.field if self.form_limit else (self.psi_lo, self.psi_hi)
+        return {"form_limit": "generated flanks" if self.form_limit else "lsbg field",
+                "field_psi_lo_deg": float(np.degrees(np.min(lo))),
+                "field_psi_hi_deg": float(np.degrees(np.max(hi)))}
+
+
+class Position:
+    """One mesh position's contact problem, all of it that the torque leaves alone
+    (:func:`position_setup`).
+
+    Attributes
+    ----------
+    cycle : MeshCycle
+    mismatch_turn : float
+        Line turn of tooth pair 0 [rad].
+    points : lsbg.tooth.contact_points.ContactPoints
+    weights : numpy.ndarray, shape (n, f * p)
+        Bilinear weights of the points on the flank grid [-].
+    matrix : numpy.ndarray, shape (n, n)
+        Their symmetric FE compliance [m/N].
+    curvature : numpy.ndarray
+        Relative curvature across the contact lines [1/m].
+    hertz : lsbg.tooth.local.HertzLines
+    key : numpy.ndarray of int
+        Tooth pair times the bands plus the band: a point's from one position
+        to the next [-].
+    """
+
+    def __init__(self, cycle, mismatch_turn, points, weights, matrix, curvature, hertz, key):
+        self.cycle, self.mismatch_turn, self.points = cycle, mismatch_turn, points
+        self.weights, self.matrix, self.curvature = weights, matrix, curvature
+        self.hertz, self.key = hertz, key
+
+    def start(self, previous):
+        """Loads [N] of the same tooth pairs and bands at the last position, given its
+        ``(key, loads)`` (0 for a point new in mesh); None without one."""
+        if previous is None:
+            return None
+        at = np.clip(np.searchsorted(previous[0], self.key), 0, previous[0].size - 1)
+        return np.where(previous[0][at] == self.key, previous[1][at], 0.0)
+
+    def solve(self, torque, start=None):
+        """:func:`solve_contact` at a gear torque [N m]: loads [N], mismatch [rad]."""
+        return solve_contact(self.matrix, self.points, torque, self.cycle.contact.e2,
+                             self.hertz.approach, self.hertz.tangent, start=start)
+
+    def pressure(self, loads):
+        """Hertz peak pressure of each point [Pa] under its load [N]."""
+        from lsbg.tooth.local import peak_pressure
+
+        fe = self.cycle.fe
+        return peak_pressure(loads / self.points.length, self.curvature, fe.young, fe.poisson)
+
+    def pair_loads(self, loads):
+        """Per tooth pair in mesh under the points' loads [N]: its line [-], its load
+        [N], its loads on the flank grid, shape (pairs, f * p) [N], and the index
+        into the lines of each point [-]."""
+        line, which = np.unique(self.points.pair, return_inverse=True)
+        each = np.zeros((line.size, self.points.pair.size))
+        each[which, np.arange(self.points.pair.size)] = loads
+        return line, np.bincount(which, loads, line.size), each @ self.weights, which
+
+
+def position_setup(cycle, pinion_angle):
+    """The contact problem at one mesh position, as far as it does not depend on the torque.
+
+    The line model's points inside the cycle's field, their weights on the
+    flank grid, their FE compliance, the relative curvature and both half
+    thicknesses under them (Hertz's approach), and their keys.
+
+    Parameters
+    ----------
+    cycle : MeshCycle
+    pinion_angle : float
+        Pinion angle of the position [rad] (:attr:`MeshCycle.pinion`).
+
+    Returns
+    -------
+    Position
+    """
+    from lsbg.tooth.local import HertzLines
+
+    contact, fe = cycle.contact, cycle.fe
+    mismatch_turn = contact.orientation * pinion_angle * contact.e1
+    points = contact_points(contact, mismatch_turn, cycle.field)
+    w = fe.weights(points)
+    curvature, h1, h2 = fe.point_values(points, w)
+    hertz = HertzLines(points.length, curvature, h1, h2, fe.young, fe.poisson)
+    # a point keeps its tooth pair (line turn less the mismatch turn, in
+    # pitches) and band from one position to the next: the last position's
+    # loads start this one's Newton iteration near its solution (which is
+    # unique, the local approach being monotone: lsbg.tooth.local)
+    key = np.rint((points.turn - mismatch_turn) / contact.pitch).astype(int) * cycle.bands \
+        + points.band
+    return Position(cycle, mismatch_turn, points, w, fe.matrix(points, w), curvature, hertz, key)
+
+
 def _slice_records(points, nominal, loads, eps, bands):
     """The line model's slices at one position: the FE load each carries.
 
@@ -344,103 +495,51 @@ def fe_loaded_tca(contact, compliance, load_torque, phases=200, form_limit=True)
     import xarray as xr
 
     from lsbg.contact.mesh import MAX_PAIRS
-    from lsbg.gear.flank import mesh_phase_pinion_angle
     from lsbg.tca.loaded import transmission_error_summary
-    from lsbg.tooth.elasticity import largest_principal
-    from lsbg.tooth.local import HertzLines, peak_pressure
     from lsbg.tooth.slices import slice_stiffness_grid
 
     if not (math.isfinite(load_torque) and load_torque > 0):
         raise ValueError(f"load_torque = {load_torque!r}: must be a number > 0 [N m]")
-    if isinstance(phases, bool) or int(phases) != phases or phases < 8:
-        raise ValueError(f"phases = {phases!r}: must be a whole number >= 8")
+    cycle = MeshCycle(contact, compliance, phases, form_limit)
     design = contact.pair.design
-    hash_ = compliance.attrs.get("inputs_hash")
-    # the compliance holds only for the design it was computed for: every key
-    difference = design.attrs_difference(compliance.attrs)
-    if difference is not None:
-        key, stored, value = difference
-        raise ValueError(f"the compliance dataset has design {key} = {stored!r}, the "
-                         f"contact's design {value!r}: compute it for this design point")
-    bands = contact.params.slices
-    band_rho = contact.arrays[2][0, :bands, k.B_RHO]
-    psi_lo, psi_hi = contact.pair.planes["drive"].field[:2]
-    field = None
-    if form_limit:
-        # the rack's edge: the FE segment's root fillet (lsbg.tooth.segment)
-        edge = float(compliance.attrs.get("fe_fillet_radius", 0.25)) * design.mean_module \
-            * math.cos(design.spiral_angle)
-        field = active_field(contact.pair, edge, band_rho)
-    fe = FECompliance(compliance, contact.pair, contact.orientation, band_rho, field)
-    e2 = contact.e2
+    bands, band_rho, field, e2 = cycle.bands, cycle.band_rho, cycle.field, contact.e2
     z1, z2 = design.teeth
-    fraction = np.arange(int(phases)) / int(phases)
-    pinion = mesh_phase_pinion_angle(contact.pair, fraction)
-    pattern_psi = np.linspace(psi_lo, psi_hi, 61)
+    fraction = cycle.fraction
+    pattern_psi = np.linspace(cycle.psi_lo, cycle.psi_hi, 61)
     pattern = np.zeros((bands, pattern_psi.size))
-    te = np.zeros(phases)
-    stiffness = np.zeros(phases)
-    pressure_max = np.zeros(phases)
-    root = {"pinion": np.zeros(phases), "gear": np.zeros(phases)}
+    te, stiffness, pressure_max = np.zeros(phases), np.zeros(phases), np.zeros(phases)
     lines = MAX_PAIRS
     pair_load = np.zeros((phases, lines))
     edges = EdgeLoads(contact, phases)
     previous = None  # keys and loads of the last position's points
     grid_loads = []  # (position, loads of each tooth pair on the flank grid) [N]
     records = []     # the line model's slices at each position (lsbg.tooth.slices)
-    for n, phi1 in enumerate(pinion):
-        mismatch_turn = contact.orientation * phi1 * contact.e1
-        points = contact_points(contact, mismatch_turn, field)
-        w = fe.weights(points)
-        matrix = fe.matrix(points, w)
-        curvature, h1, h2 = fe.point_values(points, w)
-        hertz = HertzLines(points.length, curvature, h1, h2, fe.young, fe.poisson)
-        # a point keeps its tooth pair (line turn less the mismatch turn, in
-        # pitches) and band from one position to the next: the last position's
-        # loads start this one's Newton iteration near its solution (which is
-        # unique, the local approach being monotone: lsbg.tooth.local)
-        key = np.rint((points.turn - mismatch_turn) / contact.pitch).astype(int) * bands \
-            + points.band
-        start = None
-        if previous is not None:
-            at = np.clip(np.searchsorted(previous[0], key), 0, previous[0].size - 1)
-            start = np.where(previous[0][at] == key, previous[1][at], 0.0)
-        loads, eps = solve_contact(matrix, points, load_torque, e2, hertz.approach,
-                                   hertz.tangent, start=start)
-        previous = key, loads
-        nominal = points if field is None else contact_points(contact, mismatch_turn)
+    for n, phi1 in enumerate(cycle.pinion):
+        position = position_setup(cycle, phi1)
+        points = position.points
+        loads, eps = position.solve(load_torque, position.start(previous))
+        previous = position.key, loads
+        nominal = points if field is None else contact_points(contact, position.mismatch_turn)
         records.append(_slice_records(points, nominal, loads, eps, bands))
         # mesh stiffness: central difference of the torque over the mismatch;
         # from the solution at the torque itself Newton needs one or two steps
         step = 1e-3 * load_torque
-        _, eps_hi = solve_contact(matrix, points, load_torque + step, e2, hertz.approach,
-                                  hertz.tangent, start=loads)
-        _, eps_lo = solve_contact(matrix, points, load_torque - step, e2, hertz.approach,
-                                  hertz.tangent, start=loads)
+        _, eps_hi = position.solve(load_torque + step, loads)
+        _, eps_lo = position.solve(load_torque - step, loads)
         # T2 = f(eps), phi2 = phi1 e1/e2 - eps/e2: -dT2/dphi2 = e2 dT2/deps
         stiffness[n] = e2 * 2 * step / (eps_hi - eps_lo) / contact.base_radius**2
         te[n] = eps / e2
-        q = loads / points.length
-        pressure = peak_pressure(q, curvature, fe.young, fe.poisson)
+        pressure = position.pressure(loads)
         pressure_max[n] = pressure.max()
         edges.add(n, points, loads, pressure)
-        line, which = np.unique(points.pair, return_inverse=True)
+        line, total, on_grid, _ = position.pair_loads(loads)
         kept = line < lines
-        pair_load[n, line[kept]] = np.bincount(which, loads, line.size)[kept]
-        each = np.zeros((line.size, points.pair.size))
-        each[which, np.arange(points.pair.size)] = loads
-        grid_loads.append((np.full(line.size, n), each @ w))
+        pair_load[n, line[kept]] = total[kept]
+        grid_loads.append((np.full(line.size, n), on_grid))
         band = np.argmin(np.abs(points.rho[:, None] - band_rho[None]), axis=1)
         column = np.clip(np.searchsorted(pattern_psi, points.psi), 0, pattern_psi.size - 1)
         np.maximum.at(pattern, (band, column), pressure)
-    # root stress: every tooth pair's loads at every position in one product
-    # and one eigenvalue call per member
-    position = np.concatenate([g[0] for g in grid_loads])
-    on_grid = np.concatenate([g[1] for g in grid_loads])  # (lines, f * p)
-    for name in ("pinion", "gear"):
-        stress = np.moveaxis(fe.stress[name] @ on_grid.T, -1, 0)  # (lines, q, 3, 3)
-        largest = largest_principal(stress).max(axis=1)
-        np.maximum.at(root[name], position, largest)
+    root = cycle.fe.root_stresses(grid_loads, phases)
     turn, band, force, approach, length, present = (np.concatenate(c) for c in zip(*records))
     line_turn, slice_k = slice_stiffness_grid(turn, band, force, approach, length, present,
                                               contact.pitch, phases, bands)
@@ -450,7 +549,7 @@ def fe_loaded_tca(contact, compliance, load_torque, phases=200, form_limit=True)
         "source": "lsbg.tooth.ltca.fe_loaded_tca: FE influence coefficients + Hertz line "
                   "contact, complementarity per position",
         "compliance": "fe",
-        "compliance_inputs_hash": str(hash_),
+        "compliance_inputs_hash": str(cycle.inputs_hash),
         "load_torque_N_m": float(load_torque),
         "phases": int(phases),
         **transmission_error_summary(te, stiffness, design.face_width),
@@ -458,9 +557,7 @@ def fe_loaded_tca(contact, compliance, load_torque, phases=200, form_limit=True)
         "max_root_stress_pinion_MPa": float(root["pinion"].max() * 1e-6),
         "max_root_stress_gear_MPa": float(root["gear"].max() * 1e-6),
         **edges.attrs(),
-        "form_limit": "generated flanks" if form_limit else "lsbg field",
-        "field_psi_lo_deg": float(np.degrees(np.min(field[0] if form_limit else psi_lo))),
-        "field_psi_hi_deg": float(np.degrees(np.max(field[1] if form_limit else psi_hi))),
+        **cycle.field_attrs(),
         **(contact.separation.attrs if contact.separation is not None else {}),
     }
     return xr.Dataset(

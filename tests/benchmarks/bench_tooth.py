@@ -9,7 +9,11 @@ gmsh and scikit-fem are imported before the clock starts, about 0.5 s):
 
 * the FE compliance of a design point, both members, the default mesh
   (:class:`lsbg.tooth.compliance.FEMeshSettings`): <= 10 s;
-* one FE loaded TCA over a mesh cycle, 200 positions: <= 3 s.
+* one FE loaded TCA over a mesh cycle, 200 positions: <= 3 s;
+* the FE loaded TCA over a load range (:func:`lsbg.tooth.load_range.fe_load_range`),
+  11 torques (10 % to 150 % of the rated torque and the paper's), 200
+  positions: <= 1 s per torque (issue 39), beside the single-torque run's
+  time, which a load range of single runs costs per torque.
 
 Each figure is the median of ``--repeat`` runs (the machine may be shared),
 with the fastest and slowest beside it, and the compliance's degrees of
@@ -32,13 +36,19 @@ from lsbg.contact import ContactParameters, MeshContact  # noqa: E402
 from lsbg.gear.design import GearPairDesign  # noqa: E402
 from lsbg.gear.geometry import GearPair  # noqa: E402
 from lsbg.tooth.compliance import FEMeshSettings, tooth_compliance  # noqa: E402
-from lsbg.tooth.resources import fe_resource_estimate  # noqa: E402
+from lsbg.tooth.load_range import fe_load_range  # noqa: E402
 from lsbg.tooth.ltca import fe_loaded_tca  # noqa: E402
+from lsbg.tooth.resources import fe_resource_estimate  # noqa: E402
 
 COMPLIANCE_TARGET_S = 10.0
 LTCA_TARGET_S = 3.0
+LOAD_RANGE_TARGET_S = 1.0
 #: The paper's gear torque [N m].
 LOAD = 1964.99
+#: About the pair's rated pitting torque on the gear (ISO 10300) [N m].
+RATED = 480.0
+#: The load range: ten torques from 10 % to 150 % of the rated one, and the paper's [N m].
+TORQUES = [RATED * (0.1 + 0.14 * i) for i in range(10)] + [LOAD]
 
 
 def timed(repeat, function):
@@ -93,6 +103,19 @@ def main(argv=None):
               f"{out.attrs['max_root_stress_pinion_MPa']:.0f} / "
               f"{out.attrs['max_root_stress_gear_MPa']:.0f} MPa (pinion / gear)")
         rows.append(figure(f"FE loaded TCA, 200 positions, {trace}", median, "s", LTCA_TARGET_S))
+        single = median
+        median, least, most, out = timed(
+            args.repeat, lambda: fe_load_range(contact, compliance, TORQUES, phases=200))
+        count = len(TORQUES)
+        print(f"{trace:12s} FE load range, {count} torques, 200 positions: "
+              f"{median / count:.3f} s per torque (target <= {LOAD_RANGE_TARGET_S:g} s; "
+              f"{least / count:.3f}-{most / count:.3f}; {median:.2f} s in all) against "
+              f"{single:.3f} s per single-torque fe_loaded_tca ({count} of them: "
+              f"{count * single:.1f} s), {single * count / median:.1f} times faster; root "
+              f"stress {float(out['cycle_max_root_stress_pinion'][0]):.0f}-"
+              f"{float(out['cycle_max_root_stress_pinion'][-1]):.0f} MPa (pinion)")
+        rows.append(figure(f"FE load range per torque ({count} x 200 positions), {trace}",
+                           median / count, "s", LOAD_RANGE_TARGET_S))
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
     print(f"peak memory of the process: {peak / 1e9:.2f} GB")
     return rows
