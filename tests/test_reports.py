@@ -185,9 +185,9 @@ def test_paper_report(study_files, tmp_path):
     # conclusion, from its model-form table (here the baseline's cell alone)
     assert html.count(f"the <strong>{steadier}</strong>'s bearing pattern moves less") == 1
     assert html.count("<strong>Contact state</strong> (the LSBG's tooth contact state is better; "
-                      "1 cells, Section 16)") == 2
+                      "1 cell, Section 16)") == 2
     assert (f"bearing pattern's movement per 0.1 mm of displacement</strong> at 35°: the "
-            f"<strong>{steadier}</strong> is lower in every one of the 1 cells") in html
+            f"<strong>{steadier}</strong> is lower in its only cell") in html
     assert "<strong>Answer (claim 1):</strong>" in html and "<strong>Answer (claim 2):</strong>" in html
     # no rating in this study: the third claim is said to be untested, not answered
     assert html.count("<strong>Service life</strong>: not tested by this study") == 2

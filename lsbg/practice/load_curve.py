@@ -133,7 +133,6 @@ def load_curve(contact, compliance, config, fractions, others=(), phases=100,
         "rated_torque_bending_N_m": float(rated["rated_bending"]),
         "load_fractions": [float(f) for f in fractions],
         "other_loads_N_m": [float(t) for t in others],
-        "design_profile_shift": float(design.profile_shift),
-        "design_thickness_modification": float(design.thickness_modification),
+        **{f"design_{k}": v for k, v in design.to_config().items()},
     })
     return short_labels(ds)

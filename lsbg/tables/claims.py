@@ -362,8 +362,9 @@ def claim_verdict(table, better_words, where=""):
         winners = [t for t in ("SBG", "LSBG") if counts.get(t, 0) == n]
         if winners:
             holds[quantity] = winners[0]
+            cells = "in its only cell" if n == 1 else f"in every one of the {n} cells"
             sentences[quantity] = (f"**{quantity}**{where_text}: the **{winners[0]}** "
-                                   f"{better_words} in every one of the {n} cells.")
+                                   f"{better_words} {cells}.")
             continue
         order = sorted(("LSBG", "SBG", "tie"), key=lambda t: -counts.get(t, 0))
         parts = []

@@ -229,7 +229,8 @@ def claim_bullets(claims, counts):
     point) gets its bullet saying so.
     """
     bullets = "\n".join(
-        f"- **{name.capitalize()}** ({CLAIMED[name]}; {counts[name]} cells, Section "
+        f"- **{name.capitalize()}** ({CLAIMED[name]}; {counts[name]} "
+        f"cell{'' if counts[name] == 1 else 's'}, Section "
         f"{CLAIM_SECTIONS[name]}): {claim_tables.claim_answer(verdict)}. "
         + " ".join(verdict["sentences"].values())
         for name, verdict in claims.items())

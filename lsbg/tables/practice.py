@@ -218,10 +218,10 @@ def fe_iso_ratio_table(fe_ltcas, ratings):
     return pd.DataFrame(rows)
 
 
-#: The spectrum's quantities: load-curve variable, words, Basquin line.
-SPECTRUM_QUANTITIES = {"max_contact_pressure": ("contact pressure", "contact"),
-                       "root_stress_pinion": ("root stress, pinion", "bending"),
-                       "root_stress_gear": ("root stress, gear", "bending")}
+#: The spectrum's quantities: load-curve variable -> the life table's quantity
+#: (:data:`lsbg.tables.claims.LIFE_QUANTITIES`: its words and Basquin line).
+SPECTRUM_QUANTITIES = {"max_contact_pressure": "contact", "root_stress_pinion": "root_pinion",
+                       "root_stress_gear": "root_gear"}
 
 
 def spectrum_life_table(curves, load_torque, torque_fractions, cycle_shares, resolution):
@@ -250,7 +250,8 @@ def spectrum_life_table(curves, load_torque, torque_fractions, cycle_shares, res
     levels, shares = check_spectrum(torque_fractions, cycle_shares)
     torques = levels * float(load_torque)
     rows = []
-    for variable, (words, kind) in SPECTRUM_QUANTITIES.items():
+    for variable, quantity in SPECTRUM_QUANTITIES.items():
+        words, kind = claim_tables.LIFE_QUANTITIES[quantity]
         stress = {t: spectrum_stresses(curves[t], variable, torques) for t in ("SBG", "LSBG")}
         life = spectrum_life_ratio(stress["LSBG"], stress["SBG"], shares, kind)
         sbg, lsbg = life["reference_equivalent"], life["equivalent"]
