@@ -162,7 +162,8 @@ def test_paper_report(study_files, tmp_path):
               "11. Agreement", "12. What the paper", "13. The line model",
               "14. Dynamics under the line model", "15. Claim 1, transmission stability",
               "16. Claim 2, the contact state", "17. The tooth itself", "18. Claim 3, service life",
-              "19. Conclusion", "Appendix A. The summary statistics",
+              "19. The pair as a designer would make it", "20. Conclusion",
+              "Appendix A. The summary statistics",
               "Appendix B. Inputs and settings"],
         # pair picture, Fig. 8, 9-10, 11, 12, 13, 14, 15 (2), 16, 17 (2), 18 (2); sampling
         # luck, spectrum, full-rate stretch; TE and stiffness, load sharing, contact
@@ -333,7 +334,10 @@ def test_notebooks_declare_the_interface_parameters():
                   "line_engine", "steady_state_after_s", "chart_window_start_s",
                   "chart_window_stop_s", "subgroup_size", "sweep_file", "tca_files", "vh_files",
                   "fe_ltca_files", "rating_files", "vh_case_files", "fe_case_files",
-                  "checks_files"},
+                  "checks_files", "parameter_sweep_files", "practice_run_files",
+                  "practice_vh_files", "practice_rating_files", "practice_fe_ltca_files",
+                  "practice_geometry_dirs", "load_curve_files", "load_spectrum_fractions",
+                  "load_spectrum_shares"},
         "sweep": {"sweep_file", "summary_file", "speed_curve_file", "steady_state_after_s",
                   "vh_files", "rating_sweep_file", "parameter_sweep_files"},
         "verification": {"convergence_files", "geometry_dirs", "runs", "mesh_files",

@@ -2,10 +2,22 @@
 
 from __future__ import annotations
 
-from lsbg.cli.options import (CommandError, add_case_options, add_config_options,
-                              add_geometry_input, add_output, add_result_inputs, checked,
-                              command_line, contact_of, flank_sections_of, flanks_of,
-                              load_torque_of, read_results)
+from lsbg.cli.options import (
+    CommandError,
+    add_case_options,
+    add_config_options,
+    add_geometry_input,
+    add_output,
+    add_result_inputs,
+    checked,
+    command_line,
+    contact_of,
+    fe_compliance_of,
+    flank_sections_of,
+    flanks_of,
+    load_torque_of,
+    read_results,
+)
 
 __all__ = ["add_ltca_parser", "add_combine_parser", "add_summary_parser", "add_report_parser"]
 
@@ -57,7 +69,7 @@ def run_ltca(args):
     cases = sensitivity_cases(args, "fe_ltca", args.case_out)
     compliance, positions = None, settings["tca"]["loaded_positions"]
     if params.compliance == "fe":
-        compliance, positions = _compliance(args)
+        compliance, positions = fe_compliance_of(args)
     if args.envelope:  # (its cases at the envelope's positions too: one job, one resolution)
         from lsbg.tooth.analysis import envelope_positions
 
@@ -70,21 +82,6 @@ def run_ltca(args):
         lines += _write_ltca(args, case_params.replace(compliance=params.compliance), load,
                              case_flanks, compliance, positions, path, case=name)
     return lines
-
-
-def _compliance(args):
-    """The FE compliance of ``--compliance-file`` (reused or computed) and its LTCA positions."""
-    from lsbg.gear.geometry import GearPair
-    from lsbg.solid.directory import read_design
-    from lsbg.tooth.config import compliance_for_design, tooth_from_config
-
-    material, mesh, positions = checked(lambda: tooth_from_config(args.settings["tooth"]))
-    if not args.compliance_file:
-        raise CommandError("contact.compliance = 'fe' needs --compliance-file (where the "
-                           "design point's FE compliance is, or goes)")
-    pair = GearPair(read_design(args.geometry))
-    compliance, _ = compliance_for_design(pair, material, mesh, args.compliance_file)
-    return compliance, positions
 
 
 def _write_ltca(args, params, load, flanks, compliance, positions, path, case=None):

@@ -28,7 +28,7 @@ from pathlib import Path
 __all__ = ["CommandError", "check_output", "check_outputs", "add_config_options", "settings_of",
            "add_output", "add_geometry_input", "add_engine_option", "command_line", "design_of",
            "contact_of", "simulation_of", "flanks_of", "flank_sections_of", "load_torque_of",
-           "add_fe_ltca_option", "slice_stiffness_of", "add_case_options", "parse_pairs",
+           "add_fe_ltca_option", "fe_compliance_of", "slice_stiffness_of", "add_case_options", "parse_pairs",
            "checked", "RESULT_FILES", "add_result_inputs", "read_results"]
 
 
@@ -317,6 +317,32 @@ def parse_pairs(texts, option, keys=None):
 
 
 # ------------------------------------------------- the tooth's slice stiffness
+def fe_compliance_of(args):
+    """The FE compliance of ``--compliance-file`` (reused if it holds these inputs, else
+    computed and written there) and the FE loaded TCA's positions of the ``tooth`` section.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        With ``settings``, ``geometry`` and ``compliance_file``.
+
+    Returns
+    -------
+    (xarray.Dataset, int)
+    """
+    from lsbg.gear.geometry import GearPair
+    from lsbg.solid.directory import read_design
+    from lsbg.tooth.config import compliance_for_design, tooth_from_config
+
+    material, mesh, positions = checked(lambda: tooth_from_config(args.settings["tooth"]))
+    if not args.compliance_file:
+        raise CommandError("contact.compliance = 'fe' needs --compliance-file (where the "
+                           "design point's FE compliance is, or goes)")
+    pair = GearPair(read_design(args.geometry))
+    compliance, _ = compliance_for_design(pair, material, mesh, args.compliance_file)
+    return compliance, positions
+
+
 def add_fe_ltca_option(parser):
     """Add ``--fe-ltca``: the slice stiffness of a line-model run under compliance fe."""
     parser.add_argument("--fe-ltca", metavar="MESH.nc",

@@ -9,8 +9,18 @@ the study's.
 
 from __future__ import annotations
 
-from lsbg.cli.options import (CommandError, add_config_options, add_geometry_input, add_output,
-                              checked, command_line, contact_of, design_of, flanks_of)
+from lsbg.cli.options import (
+    CommandError,
+    add_config_options,
+    add_geometry_input,
+    add_output,
+    checked,
+    command_line,
+    contact_of,
+    design_of,
+    fe_compliance_of,
+    flanks_of,
+)
 
 __all__ = ["add_practice_parser", "add_load_curve_parser"]
 
@@ -37,6 +47,8 @@ def add_practice_parser(subparsers):
 
 def run_practice(args):
     """Handler of ``lsbg practice``: its summary lines."""
+    from pathlib import Path
+
     from lsbg.files import write_atomically
     from lsbg.practice.design import practice_overlay
     from lsbg.study.params import yaml_text
@@ -49,7 +61,7 @@ def run_practice(args):
                f"pair's {figures['published_rated_torque_pitting_N_m']:.1f} and "
                f"{figures['published_rated_torque_bending_N_m']:.1f} N m")
     text = yaml_text(overlay, comment)
-    write_atomically(args.out, lambda tmp: open(tmp, "w", encoding="utf-8").write(text))
+    write_atomically(args.out, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
     return [f"x_hm1 = {figures['profile_shift']:.4f}, x_smn1 = "
             f"{figures['thickness_modification']:.4f}, rated torque "
             f"{figures['rated_torque_pitting_N_m']:.1f} N m (published pair "
@@ -100,7 +112,6 @@ def run_load_curve(args):
     from lsbg.gear.geometry import GearPair
     from lsbg.practice.load_curve import load_curve
     from lsbg.solid.directory import read_design
-    from lsbg.tooth.config import compliance_for_design, tooth_from_config
 
     settings = args.settings
     flanks = flanks_of(settings)
@@ -108,9 +119,8 @@ def run_load_curve(args):
     bad = [t for t in args.also_at if not t > 0]
     if bad:
         raise CommandError(f"--also-at {bad[0]!r}: must be a gear torque > 0 [N m]")
-    material, mesh, _ = checked(lambda: tooth_from_config(settings["tooth"]))
+    compliance, _ = fe_compliance_of(args)
     pair = GearPair(read_design(args.geometry))
-    compliance, _ = compliance_for_design(pair, material, mesh, args.compliance_file)
     contact = MeshContact(pair, params, separation=flanks.separation(pair))
     section = settings["practice"]
     ds = checked(lambda: load_curve(contact, compliance, settings, section["load_range"],

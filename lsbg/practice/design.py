@@ -173,7 +173,10 @@ def deflection_tip_relief(design, config, gear_torque, profile_contact_ratio):
         L = (eps_alpha - 1) / eps_alpha [-]: from the tip to the highest point
         of single contact, as a fraction of the active profile.
     """
-    from lsbg.tooth.reference import iso6336_mesh_stiffness, iso6336_single_pair_stiffness
+    from lsbg.tooth.reference import (
+        iso6336_mesh_stiffness,
+        iso6336_single_pair_stiffness,
+    )
 
     if not profile_contact_ratio > 1:
         raise ValueError(f"profile_contact_ratio = {profile_contact_ratio!r}: a long tip "

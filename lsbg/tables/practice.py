@@ -245,7 +245,11 @@ def spectrum_life_table(curves, load_torque, torque_fractions, cycle_shares, res
         the damage-equivalent stresses [MPa] of both types, the life ratio
         LSBG/SBG and its range, and the ``better`` type.
     """
-    from lsbg.practice.spectrum import check_spectrum, spectrum_life_ratio, spectrum_stresses
+    from lsbg.practice.spectrum import (
+        check_spectrum,
+        spectrum_life_ratio,
+        spectrum_stresses,
+    )
 
     levels, shares = check_spectrum(torque_fractions, cycle_shares)
     torques = levels * float(load_torque)

@@ -61,7 +61,9 @@ def test_another_face_width_is_stated_as_a_change(study, tmp_path):
     root, env = study
     mine = tmp_path / "face30"
     mine.mkdir()
-    config = write_yaml(mine / "config.yaml", {"design": {"face_width_mm": 30}})
+    # (the practice design left out: the session's study renders it)
+    config = write_yaml(mine / "config.yaml", {"design": {"face_width_mm": 30},
+                                               "practice": {"enabled": False}})
     snakemake("-j2", "-s", root / "Snakefile", "-d", mine, "--configfile", root / TEST_CONFIG,
               config, cwd=tmp_path, env=env, check=True)
     paper, sweep = (report_text(mine / "reports" / f"{n}.html") for n in ("paper", "sweep"))

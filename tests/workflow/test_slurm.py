@@ -37,7 +37,11 @@ import yaml
 from tests.workflow.helpers import TEST_CONFIG, copy_repository, snakemake
 
 PROFILE = "workflow/profiles/slurm"
-COMMAND = ("--profile", PROFILE, "--configfile", TEST_CONFIG)
+#: The practice design's stage left out here: its rules are the paper point's commands
+#: again (tests/workflow/test_workflow.py runs them), and 19 more SLURM jobs would double
+#: this module's time. Written into each copy by :func:`copy_with_env`.
+NO_PRACTICE = "no-practice.yaml"
+COMMAND = ("--profile", PROFILE, "--configfile", TEST_CONFIG, NO_PRACTICE)
 #: The rule of the job that the fault test cancels while it computes: a job of
 #: seconds even in the tiny study, whose loss blocks only the summary and two
 #: reports, so that the rerun stays short.
@@ -179,6 +183,7 @@ class Run:
 def copy_with_env(tmp_path_factory, name):
     """A copy of the repository and an environment whose lsbg is the copy's."""
     root = copy_repository(tmp_path_factory.mktemp(name))
+    (root / NO_PRACTICE).write_text("practice:\n  enabled: false\n", encoding="utf-8")
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(
         [str(root), *filter(None, [os.environ.get("PYTHONPATH")])]))
     return root, env
@@ -190,7 +195,7 @@ def slurm_study(cluster, tmp_path_factory):
     and, meanwhile, the same config run locally with -j2 (for the comparison)."""
     root, env = copy_with_env(tmp_path_factory, "slurm")
     local_root, local_env = copy_with_env(tmp_path_factory, "local")
-    local = Run("-j2", "--configfile", TEST_CONFIG, cwd=local_root, env=local_env)
+    local = Run("-j2", "--configfile", TEST_CONFIG, NO_PRACTICE, cwd=local_root, env=local_env)
     try:
         # 1. The run with a fault.
         run = Run(*COMMAND, cwd=root, env=env)

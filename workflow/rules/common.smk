@@ -298,3 +298,14 @@ def fe_ltca_input(needed):
 
 def simulation_params(engine, model):
     return plan.simulation_params(config, engine, model)
+
+
+def practice_input(kind):
+    """A practice design point's file as a rule's input (its trace from the wildcards)."""
+    return lambda w: STUDY.practice_file(kind, w.trace)
+
+
+def design_set_input(paper, practice):
+    """An input of a load curve: ``paper(wildcards)`` for the published pair, else
+    ``practice(wildcards)`` (rules/practice.smk)."""
+    return lambda w: paper(w) if w.design_set == "paper" else practice(w)

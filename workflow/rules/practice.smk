@@ -18,11 +18,6 @@ PRACTICE_CONFIG = [ancient(FILES["study_config"]), FILES["practice_design"]]
 PRACTICE_SPIRAL = dict(spiral=re.escape(PAPER_SPIRAL))
 
 
-def practice_input(kind):
-    """A practice design point's file as a rule's input (its trace from the wildcards)."""
-    return lambda w: STUDY.practice_file(kind, w.trace)
-
-
 rule practice_design:
     input:
         config=ancient(FILES["study_config"]),
@@ -31,9 +26,10 @@ rule practice_design:
         out=FILES["practice_design"],
     params:
         **command("practice", set=[f"design.spiral_angle_deg={PAPER_SPIRAL}"]),
-        # rerun trigger: what the rules read
+        # rerun trigger: what the rules read (the rating's speed of the simulation section)
         settings=plan.canonical({k: config[k] for k in (
-            "design", "practice", "rating", "tooth", "simulation", "flank_modification")}),
+            "design", "practice", "rating", "tooth", "flank_modification")}),
+        speed=config["simulation"]["pinion_speed_deg_s"],
     log:
         "logs/practice_design.log",
     shell:
@@ -92,7 +88,9 @@ for name, envelope in (("practice_fe_ltca", False), ("practice_fe_envelope", Tru
             out=FILES[name],
         params:
             **command("ltca", set=["contact.compliance=fe"], envelope=envelope),
-            **FE_TRIGGERS,
+            # rerun triggers: the line model's settings and the tooth's (the load: the overlay's)
+            contact=FE_TRIGGERS["contact"],
+            tooth=FE_TRIGGERS["tooth"],
             envelope=plan.canonical({k: config["misalignment_map"][k] for k in ("axes", "range")}),
         wildcard_constraints:
             **PRACTICE_SPIRAL,
@@ -164,18 +162,13 @@ rule practice_rating:
         LSBG
 
 
-def _design_set(paper, practice):
-    """An input of the load curve: the paper's file or the practice design's."""
-    return lambda w: paper(w) if w.design_set == "paper" else practice(w)
-
-
 rule load_curve:
     input:
-        geometry=_design_set(lambda w: STUDY.geometry(w.trace, w.spiral),
+        geometry=design_set_input(lambda w: STUDY.geometry(w.trace, w.spiral),
                              practice_input("geometry")),
-        compliance_file=_design_set(lambda w: STUDY.compliance(w.trace, w.spiral),
+        compliance_file=design_set_input(lambda w: STUDY.compliance(w.trace, w.spiral),
                                     practice_input("compliance")),
-        config=_design_set(lambda w: [ancient(FILES["study_config"])], lambda w: PRACTICE_CONFIG),
+        config=design_set_input(lambda w: [ancient(FILES["study_config"])], lambda w: PRACTICE_CONFIG),
         sources=sources("load-curve"),
     output:
         out=FILES["load_curve"],
