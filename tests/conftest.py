@@ -55,3 +55,15 @@ def pybullet_runs(runs):
 @pytest.fixture(scope="session")
 def sweep(pybullet_runs):
     return combine_runs(pybullet_runs)
+
+
+@pytest.fixture(scope="session")
+def coarse_compliance():
+    """The paper pair's (LSBG, 35 deg) FE compliance on the coarsest mesh FEMeshSettings
+    accepts (three elements across the tooth) and a coarse rim: computed once for the
+    tests of the FE loaded TCA, its load range and the load curves (about 8 s)."""
+    from lsbg.gear.geometry import GearPair
+    from lsbg.tooth.compliance import FEMeshSettings, tooth_compliance
+
+    return tooth_compliance(GearPair(GearPairDesign()),
+                            settings=FEMeshSettings(tooth_size=0.52, body_size=10.0))

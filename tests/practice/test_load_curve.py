@@ -9,14 +9,12 @@ from lsbg.gear.design import GearPairDesign
 from lsbg.gear.geometry import GearPair
 from lsbg.practice.load_curve import load_curve, load_torques
 from lsbg.rating.config import rate_design
-from lsbg.tooth.compliance import FEMeshSettings, tooth_compliance
 
 
 @pytest.fixture(scope="module")
-def curve():
+def curve(coarse_compliance):
     pair = GearPair(GearPairDesign())
-    # the coarsest mesh FEMeshSettings accepts, as tests/tooth do
-    compliance = tooth_compliance(pair, settings=FEMeshSettings(tooth_size=0.52, body_size=10.0))
+    compliance = coarse_compliance   # the session's (tests/conftest.py)
     config = resolve_config([], [])
     return load_curve(MeshContact(pair, ContactParameters(model="line")), compliance, config,
                       [0.5, 1.0], others=[1964.99], phases=16)

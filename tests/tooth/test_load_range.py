@@ -10,7 +10,6 @@ from lsbg.gear.design import GearPairDesign
 from lsbg.gear.geometry import GearPair
 from lsbg.tca.modification import FlankModification
 from lsbg.tca.separation import separation_field
-from lsbg.tooth.compliance import FEMeshSettings, tooth_compliance
 from lsbg.tooth.elasticity import largest_principal, largest_principal_over_points
 from lsbg.tooth.load_range import fe_load_range
 from lsbg.tooth.ltca import fe_loaded_tca
@@ -33,9 +32,9 @@ def pair():
 
 
 @pytest.fixture(scope="module")
-def compliance(pair):
-    # the coarse mesh of tests/tooth/test_ltca.py
-    return tooth_compliance(pair, settings=FEMeshSettings(tooth_size=0.52, body_size=10.0))
+def compliance(coarse_compliance):
+    # the session's coarse compliance of the paper pair (tests/conftest.py)
+    return coarse_compliance
 
 
 @pytest.fixture(scope="module")

@@ -8,7 +8,7 @@ import pytest
 from lsbg.contact import ContactParameters, MeshContact
 from lsbg.gear.design import GearPairDesign
 from lsbg.gear.geometry import GearPair
-from lsbg.tooth.compliance import FEMeshSettings, ToothMaterial, tooth_compliance
+from lsbg.tooth.compliance import FEMeshSettings, ToothMaterial
 from lsbg.tooth.local import HertzLines, local_approach, normal_curvature_across
 from lsbg.tooth.field import active_field, undercut_roll
 from lsbg.tooth.contact_points import FECompliance, contact_points
@@ -24,10 +24,9 @@ def pair():
 
 
 @pytest.fixture(scope="module")
-def compliance(pair):
-    # the coarsest mesh FEMeshSettings accepts (three elements across the tooth)
-    # and a coarse rim, to keep the suite fast
-    return tooth_compliance(pair, settings=FEMeshSettings(tooth_size=0.52, body_size=10.0))
+def compliance(coarse_compliance):
+    # the session's coarse compliance of the paper pair (tests/conftest.py)
+    return coarse_compliance
 
 
 @pytest.fixture(scope="module")

@@ -72,7 +72,7 @@ def test_default_and_test_configs_are_valid_and_plan_the_study(tmp_path):
     written = yaml.safe_load((tmp_path / "results" / "config.yaml").read_text(encoding="utf-8"))
     assert set(written) == {"design", "simulation", "contact", "flank_modification",
                             "misalignment", "tca", "misalignment_map", "statistics",
-                            "tooth", "rating"}
+                            "tooth", "rating", "practice"}
     assert written["simulation"]["duration_s"] == config["simulation"]["duration_s"]
     assert written["flank_modification"]["lengthwise_crowning_um"] == 25
     assert written["misalignment_map"]["sweep_steps"] == config["misalignment_map"]["sweep_steps"]
@@ -181,7 +181,8 @@ def test_sweeps_written_in_config_only_give_one_dataset_each(study):
                                 "sweep_friction_batch0", "sweep_friction_batch0",
                                 "sweep_friction_combine"])
     # (and the sweep report, which plots each sweep)
-    assert set(rules_of(jobs)) - set(batches) == {"report_sweep", "all"}
+    # (and the paper report, which states the loads the sweeps ran)
+    assert set(rules_of(jobs)) - set(batches) == {"report_sweep", "report_paper", "all"}
     snakemake("-j2", "--configfile", TEST_CONFIG, example, cwd=root, env=env, check=True)
     html = (root / "reports" / "sweep.html").read_text(encoding="utf-8")
     assert "8. Parameter sweeps" in html and "Sweep 'friction' at 35°" in html
@@ -355,20 +356,22 @@ def test_a_changed_setting_reruns_only_the_runs_that_use_it(study, tmp_path):
     # (the FE loaded TCA too: its bands and flanks are the line model's; not the FE
     # compliance, which depends on the design and the tooth section only)
     # (and the rating: its FE loaded TCA and its K_v's line run)
-    _line_model = (["paper_ltca"] * 2 + ["fe_ltca"] * 2 + ["sensitivity"] * 2
+    # (the practice design point's line-model jobs and the load curves likewise)
+    _paper_line = (["paper_ltca"] * 2 + ["fe_ltca"] * 2 + ["sensitivity"] * 2
                    + ["convergence_line"] * 2 + ["contact_state"] * 2 + ["rating"] * 2
                    + ["fe_sensitivity"] * 2 + _CHECKS + _AGGREGATES)
-    assert rules_of(jobs) == sorted(_line_model), output
-    # The flanks: every line-model job and the contact state, not the point model.
+    assert rules_of(jobs) == sorted(_paper_line + _PRACTICE_LINE), output
+    # The flanks: every line-model job and the contact state, not the point model; the
+    # practice design (its overlay carries the flanks with its tip reliefs) anew.
     extra = write_yaml(tmp_path / "flanks.yaml", {"flank_modification": {"bias_um": 2}})
     jobs, output = dry_run(study, extra)
-    assert rules_of(jobs) == sorted(_line_model), output
+    assert rules_of(jobs) == sorted(_paper_line + _PRACTICE_ALL + ["load_curve"] * 2), output
     # The contact state's own settings: its jobs and what reads them.
     extra = write_yaml(tmp_path / "tca.yaml", {"tca": {"positions": 50}})
     jobs, output = dry_run(study, extra)
-    assert rules_of(jobs) == sorted(["contact_state"] * 2 + ["combine", "summary",
-                                                             "rating_sweep", "report_paper",
-                                                             "report_sweep", "all"]), output
+    assert rules_of(jobs) == sorted(["contact_state"] * 2 + ["practice_contact_state"] * 2
+                                    + ["combine", "summary", "rating_sweep", "report_paper",
+                                       "report_sweep", "all"]), output
     # Statistics settings rerun the statistics, not the simulations; the steady state
     # the convergence tables and the rating's K_v too
     extra = write_yaml(tmp_path / "stats.yaml", {"statistics": {"subgroup_size": 4}})
@@ -376,13 +379,16 @@ def test_a_changed_setting_reruns_only_the_runs_that_use_it(study, tmp_path):
     assert rules_of(jobs) == sorted(["summary", "rating_sweep", "report_sweep", "all"]), output
     extra = write_yaml(tmp_path / "steady.yaml", {"statistics": {"steady_state_after_s": 0.008}})
     jobs, output = dry_run(study, extra)
-    assert rules_of(jobs) == sorted(_CONVERGENCE + ["rating"] * 2 + _CHECKS + _AGGREGATES), output
+    assert rules_of(jobs) == sorted(_CONVERGENCE + ["rating"] * 2 + ["practice_rating"] * 2
+                                    + _CHECKS + _AGGREGATES), output
     # The rating's own settings: its jobs and the reports that show them
     extra = write_yaml(tmp_path / "rating.yaml", {"rating": {"application_factor": 1.25}})
     jobs, output = dry_run(study, extra)
-    # (the sweep report rates every design point by the standard: lsbg rate-sweep)
+    # (the sweep report rates every design point by the standard: lsbg rate-sweep; the
+    # practice design is made by the rating's rules: made anew, and its load curves)
     assert rules_of(jobs) == sorted(["rating", "rating", "rating_sweep", "report_paper",
-                                     "report_sweep", "all"]), output
+                                     "report_sweep", "all"] + _PRACTICE_ALL
+                                    + ["load_curve"] * 2), output
 
 
 _CONVERGENCE = ["convergence_point"] * 2 + ["convergence_line"] * 2
@@ -390,11 +396,20 @@ _CONVERGENCE = ["convergence_point"] * 2 + ["convergence_line"] * 2
 _CHECKS = ["checks"] * 2
 _AGGREGATES = ["combine", "summary", "rating_sweep", "report_paper", "report_sweep",
                "report_verification", "all"]
+#: The practice design point's jobs of both traces, and the load curves of both designs.
+_PRACTICE_POINT = [f"practice_{step}" for step in (
+    "geometry", "compliance", "fe_ltca", "fe_envelope", "contact_state", "run", "rating")] * 2
+_LOAD_CURVES = ["load_curve"] * 4
+#: What the overlay's change reruns: the practice design and everything made from it.
+_PRACTICE_ALL = ["practice_design"] + _PRACTICE_POINT + ["load_curve"] * 2
+#: What a line-model setting reruns of it: the jobs that read the line model or its runs.
+_PRACTICE_LINE = [f"practice_{step}" for step in (
+    "fe_ltca", "fe_envelope", "contact_state", "run", "rating")] * 2 + _LOAD_CURVES
 #: Every job of the test study.
 _EVERYTHING = (["paper_geometry"] * 2 + ["paper_ltca"] * 2 + ["sensitivity"] * 2
                + _CONVERGENCE + ["contact_state"] * 2 + ["tooth_compliance"] * 2
                + ["fe_ltca"] * 2 + ["fe_sensitivity"] * 2 + ["rating"] * 2 + _CHECKS
-               + _AGGREGATES)
+               + _AGGREGATES + _PRACTICE_POINT + _LOAD_CURVES)
 #: The loaded TCA's jobs: the commands that reach lsbg.tca.loaded and what reads them.
 _LOADED_TCA = (["paper_ltca"] * 2 + ["fe_ltca"] * 2 + ["fe_sensitivity"] * 2
                + ["contact_state"] * 2 + ["sensitivity"] * 2 + ["rating"] * 2 + _CHECKS
@@ -403,17 +418,19 @@ CODE_CHANGES = {
     # (the rating reads the line run that the convergence table writes, and its K_v
     # comes through lsbg.aggregate.summary, which reads lsbg.stats)
     "lsbg/experiments/verification.py": _CONVERGENCE + ["rating"] * 2 + _CHECKS + _AGGREGATES,
-    "lsbg/stats/samples.py": ["rating"] * 2 + _AGGREGATES,
+    "lsbg/stats/samples.py": ["rating"] * 2 + ["practice_rating"] * 2 + _AGGREGATES,
     # a command depends on its stage only (lsbg.study.stages): the loaded TCA reruns the
     # loaded TCAs (the line model's, the FE one, the V-H maps'), not the runs or the FE
     # compliance; the sensitivity runs and the rating read the FE loaded TCA
-    "lsbg/tca/loaded.py": _LOADED_TCA,
+    "lsbg/tca/loaded.py": _LOADED_TCA + [r for r in _PRACTICE_LINE if r != "practice_run"],
     # the V-H map: the contact state's jobs alone, and the aggregates that read them
-    "lsbg/tca/vh_map.py": ["contact_state"] * 2 + ["combine", "summary", "rating_sweep",
-                                                   "report_paper", "report_sweep", "all"],
+    "lsbg/tca/vh_map.py": ["contact_state"] * 2 + ["practice_contact_state"] * 2
+                          + ["combine", "summary", "rating_sweep", "report_paper",
+                             "report_sweep", "all"],
     # (the cases reach the contact state's and the loaded TCA's commands, lsbg ltca
     # --case, and the rating reads the cases' runs)
-    "lsbg/experiments/sensitivity.py": _LOADED_TCA,
+    "lsbg/experiments/sensitivity.py": _LOADED_TCA + [
+        r for r in _PRACTICE_LINE if r not in ("practice_run", "load_curve")],
     # every run at the paper's point reads its geometry; the convergence tables write
     # every engine's run there; the FE segment is lofted through the STEP solid's
     # sections (lsbg.solid.step, lsbg.solid.solids)
@@ -468,7 +485,7 @@ def test_the_load_sweep_is_a_sweep_and_mesh_mode_a_new_stage(study, tmp_path):
     jobs, output = dry_run(study, extra)
     assert rules_of(jobs) == sorted(["sweep_load_batch0"] * 2 + ["sweep_load_combine",
                                                                  "mesh_mode", "report_sweep",
-                                                                 "all"]), output
+                                                                 "report_paper", "all"]), output
     snakemake("-j2", "--configfile", TEST_CONFIG, extra, cwd=root, env=env, check=True)
     table = pd.read_csv(root / "results" / "sweeps" / "load.csv")
     force = table[table.quantity == "tangential_force_outer"]
@@ -487,10 +504,10 @@ def test_the_load_sweep_is_a_sweep_and_mesh_mode_a_new_stage(study, tmp_path):
     assert (modes["resonance_speed_order_1_deg_s"] / 360 * 9).tolist() == pytest.approx(
         modes["natural_frequency_hz"].tolist(), rel=1e-12)
     assert not dry_run(study, extra)[0]
-    # Without them only the sweep report changes back; the former section names its
-    # replacement.
+    # Without them only the reports that read the sweeps change back; the former section
+    # names its replacement.
     jobs, output = dry_run(study)
-    assert rules_of(jobs) == ["all", "report_sweep"], output
+    assert rules_of(jobs) == ["all", "report_paper", "report_sweep"], output
     snakemake("-j2", "--configfile", TEST_CONFIG, cwd=root, env=env, check=True)
     old = write_yaml(tmp_path / "old.yaml", {"load_sweep": {"torques_N_m": [1000, 1500]}})
     proc = snakemake("-n", "--configfile", TEST_CONFIG, old, cwd=root, env=env)
