@@ -23,6 +23,7 @@ LAYERS = (
     ("tca",),
     ("tooth",),
     ("rating",),
+    ("optimise",),
     ("stats",),
     ("experiments",),
     ("aggregate",),
