@@ -229,6 +229,7 @@ def run_settings(config, design):
         pattern_margin=float(section["pattern_margin"]),
         edge_load_tolerance=float(section["edge_load_tolerance"]),
         marking=config.get("tca", {}).get("marking_compound_um", 6.35) * 1e-6,
+        check_positions=int(config.get("misalignment_map", {}).get("positions", 100)),
         contact=ContactParameters.from_config(config.get("contact", {})),
         edge_radius=edge_radius)
     permissible = section.get("permissible_pressure_MPa")

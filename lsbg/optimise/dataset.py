@@ -48,7 +48,7 @@ def _attribute(value):
     return value
 
 
-def front_dataset(front, space, chosen, reference, attrs=None):
+def front_dataset(front, space, chosen, reference, attrs=None, checked=None):
     """The dataset of a run's front.
 
     Parameters
@@ -61,6 +61,9 @@ def front_dataset(front, space, chosen, reference, attrs=None):
         The shared design's quantities (:meth:`lsbg.optimise.objectives.Evaluator.evaluate`).
     attrs : dict, optional
         Further attributes (the settings, the design, the command line).
+    checked : array_like, optional
+        The finer edge-contact check of the members the choice checked, NaN
+        elsewhere (:func:`lsbg.optimise.run.checked_choice`) [-].
 
     Returns
     -------
@@ -94,6 +97,10 @@ def front_dataset(front, space, chosen, reference, attrs=None):
              "chosen": (np.arange(n) == chosen, "1 for the design the choice rule picks")}
     for name, (flag, text) in flags.items():
         data[name] = (individual, np.asarray(flag, np.int8), {"units": "1", "long_name": text})
+    data["checked_edge_contact"] = (individual, np.full(n, np.nan) if checked is None
+                                    else np.asarray(checked, float), {
+        "units": "1", "long_name": "share of positions with an edge contact at the V-H "
+                                   "map's resolution, over the envelope (NaN: not checked)"})
     generation = ("generation",)
     data["hypervolume"] = (generation, front.hypervolume, {
         "units": "1", "long_name": "hypervolume of the feasible non-dominated set, "

@@ -160,6 +160,10 @@ class EvaluationSettings:
     tca_positions : int
     tca_grid : (int, int)
         Each unloaded TCA's positions over a mesh cycle and pinion grid [-].
+    check_positions : int
+    check_grid : (int, int)
+        The finer unloaded TCA that checks a chosen design for edge contact
+        (:meth:`Evaluator.edge_contact`; the V-H map's resolution) [-].
     edge_radius : float
         Edge radius of the generating rack [m], which places the generated
         flanks' starts, the active profile's ends (:func:`lsbg.tooth.field.active_field`;
@@ -183,6 +187,8 @@ class EvaluationSettings:
     contact: object = None
     tca_positions: int = TCA_POSITIONS
     tca_grid: tuple = TCA_GRID
+    check_positions: int = 100
+    check_grid: tuple = (61, 121)
     edge_radius: float = None
 
     @property
@@ -281,6 +287,24 @@ class Evaluator:
         out["envelope_transmission_error"] = float(max(envelope_te))
         out.update(self._unloaded(modification))
         return out
+
+    def edge_contact(self, modification):
+        """The ``edge_contact`` constraint at the finer unloaded TCA of the settings'
+        ``check_positions`` and ``check_grid`` (the V-H map's): the largest share of
+        positions whose contact ellipse reaches an edge over the envelope's states [-],
+        1 where a state loses contact. The search's quick TCA (16 positions) can miss
+        an edge touched between its positions; a chosen design is checked with this."""
+        from lsbg.tca.analysis import tooth_contact_summary
+
+        s, worst = self.settings, 0.0
+        for _, misalignment in self.states:
+            try:
+                tca = tooth_contact_summary(self.pair, modification, misalignment,
+                                            s.check_positions, s.marking, s.check_grid)
+            except ValueError:
+                return 1.0
+            worst = max(worst, tca["edge_contact_share"])
+        return float(worst)
 
     def _aligned(self, state, modification, torques, loads, rated):
         """TE over the load range, pressure and friction at the rated torque."""

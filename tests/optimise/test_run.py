@@ -40,3 +40,31 @@ def test_a_tiny_run_chooses_a_feasible_design(pairs):
                                                         rel=1e-9)
     assert 30e-6 <= chosen.lengthwise_crowning <= 45e-6 and chosen.bias == 0.0
     assert np.all(np.diff(ds["evaluations"].values) >= 0)
+
+
+def test_a_choice_that_fails_the_finer_edge_check_gives_way_to_the_next():
+    from lsbg.optimise.choice import knee_point
+    from lsbg.optimise.run import checked_choice
+    from lsbg.optimise.search import Front
+    from lsbg.optimise.space import DesignSpace
+
+    space = DesignSpace.from_config({})
+    values = np.array([[0.0, 10.0], [2.0, 3.0], [5.0, 1.5], [10.0, 0.0]])
+    quantities = {"transmission_error": values[:, 0], "mesh_loss": values[:, 1]}
+    x = np.linspace(0.1, 0.9, 4)[:, None] * np.ones((4, space.size))
+    front = Front(x, quantities, ("transmission_error", "mesh_loss"), np.ones(4, bool),
+                  np.ones(4, bool), np.zeros(1), np.zeros(1), np.zeros(1), 1, 4, 1, "nsga2", 0)
+    knee = knee_point(values)
+
+    class Finer:
+        def edge_contact(self, modification):
+            # the knee touches an edge between the quick check's positions
+            knee_design = space.modification(x[knee])
+            return 0.03 if modification.lengthwise_crowning == knee_design.lengthwise_crowning \
+                else 0.0
+
+    chosen, checked = checked_choice(Finer(), front, space, "knee", None)
+    remaining = [k for k in range(4) if k != knee]
+    assert chosen == remaining[knee_point(values[remaining])]
+    assert checked[knee] == 0.03 and checked[chosen] == 0.0
+    assert np.isnan(checked).sum() == 2
