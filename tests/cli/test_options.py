@@ -41,6 +41,7 @@ COMMANDS = {
     "sweep-combine": "--runs {text} --out {out}",
     "summary": "--runs {text} --out {root}/s.csv",
     "rate-sweep": "--summary {text} --out {out}",
+    "optimise": "--geometry {geo} --out {out}",
 }
 
 #: Commands that read files only (no configuration, no --set) and a command line of each.
@@ -61,6 +62,8 @@ GOOD = {
     "misalignment_map": ("axes", "[P, G]", ["P", "G"]),
     "statistics": ("control_chart_window_s", "[0.01, 0.05]", [0.01, 0.05]),
     "rating": ("application_factor", "1.25", 1.25),
+    "optimise": ("seed", "3", 3),
+    "limits": ("optimise_minutes", "20", 20),
     "speed_sweep": ("pinion_speeds_deg_s", "{start: 1000, stop: 8000, count: 4}",
                     {"start": 1000, "stop": 8000, "count": 4}),
 }
