@@ -69,3 +69,10 @@ class Untouchable:
 def test_bad_input_is_refused_before_any_evaluation(objectives, algorithm, message):
     with pytest.raises(ValueError, match=message):
         optimise(Untouchable(), DesignSpace.from_config(SMALL), objectives, 8, 2, 1, algorithm)
+
+
+def test_nsga3_runs_on_reference_directions(small):
+    evaluator, space = small
+    front = optimise(evaluator, space, OBJECTIVES, 8, 2, 1, algorithm="nsga3")
+    assert front.algorithm == "nsga3" and front.x.shape[1] == space.size
+    assert front.evaluations[-1] <= 16 and front.hypervolume.size == 2
