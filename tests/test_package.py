@@ -24,6 +24,7 @@ LAYERS = (
     ("tooth",),
     ("rating",),
     ("practice",),
+    ("optimise",),
     ("stats",),
     ("experiments",),
     ("aggregate",),

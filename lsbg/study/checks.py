@@ -53,7 +53,8 @@ configuration that returns its problem lines):
 9. the tooth section, the compliance case and each FE compliance's estimated
    cost (:func:`lsbg.tooth.config.tooth_problems`);
 10. the rating section and the paper point's ISO 10300 rating
-    (:func:`lsbg.rating.config.rating_problems`);
+    (:func:`lsbg.rating.config.rating_problems`), and the ease-off optimisation's
+    section and its budget (:func:`lsbg.optimise.checks.optimise_problems`);
 11. the sweeps (:func:`lsbg.study.sweep_checks.sweep_problems`): every point of every
     sweep through the schema and steps 4, 6 and 7 as if its values were set in
     their own sections, at the sweep's own design points; points that give one
@@ -132,12 +133,14 @@ def check_config(config, schema):
     problems = (_name_problems(config) + _settings_problems(config) + run_cost_problems(config)
                 + _statistics_problems(config) + _design_problems(config, pairs))
     # the later stages' checks import numba's kernels: imported where they run
+    from lsbg.optimise.checks import optimise_problems
     from lsbg.rating.config import rating_problems
     from lsbg.tooth.config import tooth_problems
 
     problems += load_problems(config, pairs)
     problems += _contact_state_problems(config, pairs) + tooth_problems(
         config, pairs, *memory_limit_gb(config)) + rating_problems(config, pairs)
+    problems += optimise_problems(config)
     if not problems and config.get("sweeps"):
         problems += _sweeps_problems(config, schema, pairs)
     if not problems and "line" in config["sweep"]["contact_models"]:

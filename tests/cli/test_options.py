@@ -43,6 +43,7 @@ COMMANDS = {
     "rate-sweep": "--summary {text} --out {out}",
     "practice": "--out {root}/practice.yaml",
     "load-curve": "--geometry {geo} --compliance-file {root}/c.nc --out {out}",
+    "optimise": "--geometry {geo} --out {out}",
 }
 
 #: Commands that read files only (no configuration, no --set) and a command line of each.
@@ -64,6 +65,8 @@ GOOD = {
     "statistics": ("control_chart_window_s", "[0.01, 0.05]", [0.01, 0.05]),
     "rating": ("application_factor", "1.25", 1.25),
     "practice": ("load_range_phases", "64", 64),
+    "optimise": ("seed", "3", 3),
+    "limits": ("optimise_minutes", "20", 20),
     "speed_sweep": ("pinion_speeds_deg_s", "{start: 1000, stop: 8000, count: 4}",
                     {"start": 1000, "stop": 8000, "count": 4}),
 }

@@ -385,11 +385,13 @@ def test_contact_state_answers_are_kept_on_disk(monkeypatch, tmp_path):
     assert config_check.contact_state_cache_dir() is None
 
 
-@pytest.mark.parametrize("names", [(), ("config-test.yaml",), ("config-speed.yaml",)])
+@pytest.mark.parametrize("names", [(), ("config-test.yaml",), ("config-speed.yaml",),
+                                   ("config-optimise.yaml",)])
 def test_shipped_configs_pass_with_the_schema_defaults_filled_in(names):
     config = load(*names)
     assert config_check.check_config(config, SCHEMA) == []
-    assert config["limits"] == {"geometry_minutes": 10, "tooth_minutes": 10}
+    assert config["limits"] == {"geometry_minutes": 10, "tooth_minutes": 10,
+                                "optimise_minutes": 10}
     assert config["contact"]["model"] == "point" and "slices" in config["contact"]
 
 

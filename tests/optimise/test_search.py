@@ -1,0 +1,78 @@
+"""NSGA-II on the ease-off: deterministic from its seed, two seeds' fronts alike."""
+
+import numpy as np
+import pytest
+
+from lsbg.optimise.objectives import EvaluationSettings, Evaluator
+from lsbg.optimise.search import HYPERVOLUME_SCALES, hypervolume, non_dominated, optimise
+from lsbg.optimise.space import DesignSpace
+
+from tests.optimise.conftest import RATED, edge_radius
+
+#: A small problem: lengthwise and profile crowning with fixed tip reliefs, two objectives,
+#: the aligned pair only.
+SMALL = {"bias_um": [0, 0], "spiral_angle_correction_um": [0, 0],
+         "pressure_angle_correction_um": [0, 0], "pinion_tip_relief_um": [25, 25],
+         "gear_tip_relief_um": [25, 25], "lengthwise_crowning_um": [20, 50],
+         "profile_crowning_um": [0, 15]}
+OBJECTIVES = ("transmission_error", "contact_pressure")
+
+
+@pytest.fixture(scope="module")
+def small(pairs):
+    pair = pairs["logarithmic"]
+    evaluator = Evaluator(pair, EvaluationSettings(rated_torque=RATED, phases=16,
+                                                   edge_radius=edge_radius(pair.design)))
+    return evaluator, DesignSpace.from_config(SMALL)
+
+
+def test_hypervolume_by_hand():
+    scales = np.array([HYPERVOLUME_SCALES[n] for n in OBJECTIVES])
+    # normalised (0.5, 0.5) and (0.25, 0.75): 0.25 + 0.1875 - 0.125 under the point (1, 1)
+    points = np.array([[0.5, 0.5], [0.25, 0.75], [1.2, 0.1]]) * scales
+    assert hypervolume(points, OBJECTIVES) == pytest.approx(0.3125, rel=1e-12)
+    assert hypervolume(points[:0], OBJECTIVES) == 0.0
+    assert non_dominated([[1, 2], [2, 1], [2, 2], [1, 2]]).tolist() == [True, True, False, True]
+
+
+def test_two_seeds_reach_the_same_hypervolume(small):
+    evaluator, space = small
+    fronts = [optimise(evaluator, space, OBJECTIVES, 16, 12, seed) for seed in (1, 2)]
+    finals = [front.hypervolume[-1] for front in fronts]
+    assert min(finals) > 0.1
+    assert finals[0] == pytest.approx(finals[1], rel=0.02)
+    for front in fronts:
+        assert front.hypervolume.size == 12 and front.evaluations[-1] <= 16 * 12
+        assert np.all(front.feasible[front.front])
+        # the front's members are not dominated by any feasible individual
+        values = front.values[front.feasible]
+        assert np.all(non_dominated(values)[front.front[front.feasible]])
+
+
+def test_the_same_seed_gives_the_same_front(small):
+    evaluator, space = small
+    first, again = (optimise(evaluator, space, OBJECTIVES, 6, 2, 5) for _ in range(2))
+    np.testing.assert_array_equal(first.x, again.x)
+    np.testing.assert_array_equal(first.values, again.values)
+    np.testing.assert_array_equal(first.hypervolume, again.hypervolume)
+
+
+class Untouchable:
+    def evaluate(self, modification):
+        raise AssertionError("evaluated before the input was checked")
+
+
+@pytest.mark.parametrize("objectives, algorithm, message", [
+    (("transmission_error", "noise"), "nsga2", r"objectives = \['transmission_error', 'noise'\]"),
+    (OBJECTIVES, "moead", "algorithm = 'moead'"),
+])
+def test_bad_input_is_refused_before_any_evaluation(objectives, algorithm, message):
+    with pytest.raises(ValueError, match=message):
+        optimise(Untouchable(), DesignSpace.from_config(SMALL), objectives, 8, 2, 1, algorithm)
+
+
+def test_nsga3_runs_on_reference_directions(small):
+    evaluator, space = small
+    front = optimise(evaluator, space, OBJECTIVES, 8, 2, 1, algorithm="nsga3")
+    assert front.algorithm == "nsga3" and front.x.shape[1] == space.size
+    assert front.evaluations[-1] <= 16 and front.hypervolume.size == 2
