@@ -53,6 +53,11 @@ if STUDY.practice:
     include: "workflow/rules/practice.smk"
 
 
+if STUDY.optimise:
+
+    include: "workflow/rules/optimise.smk"
+
+
 for extension in config["extensions"]:
 
     include: extension_file(extension)

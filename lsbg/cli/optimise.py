@@ -32,6 +32,10 @@ def add_optimise_parser(subparsers):
     add_geometry_input(parser)
     add_config_options(parser, SECTIONS)
     add_output(parser, metavar="FRONT.nc")
+    add_output(parser, option="--overlay-out", metavar="OVERLAY.yaml", required=False,
+               help="also write the chosen design as a configuration overlay (its "
+                    "flank_modification section; the shared one where nothing was chosen), "
+                    "to be given as a further --config")
     parser.set_defaults(handler=run_optimise)
 
 
@@ -67,4 +71,28 @@ def run_optimise(args):
             "pressure_angle_correction", "pinion_tip_relief", "gear_tip_relief"))
         lines.append(f"chosen ({a['choice_rule']}): {relief} um; {shown}")
     lines.append(f"-> {args.out}")
+    if args.overlay_out:
+        lines.append(_write_overlay(ds, args.settings, args.overlay_out))
     return lines
+
+
+def _write_overlay(ds, settings, path):
+    """The chosen design's ``flank_modification`` section -> ``path`` (YAML); its line."""
+    from pathlib import Path
+
+    from lsbg.files import write_atomically
+    from lsbg.optimise.choice import chosen_modification
+    from lsbg.study.params import yaml_text
+
+    trace = ds.attrs["design_trace"]
+    if ds.attrs["chosen"] < 0:
+        section = dict(settings["flank_modification"])
+        comment = f"{trace}: no feasible design in the front; the shared ease-off stands"
+    else:
+        section = chosen_modification(ds).to_config()
+        comment = (f"{trace}: the ease-off lsbg optimise chose ({ds.attrs['choice_rule']}, "
+                   f"seed {ds.attrs['seed']})")
+    section = {k: v for k, v in section.items() if v is not None}
+    text = yaml_text({"flank_modification": section}, comment)
+    write_atomically(path, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
+    return f"its ease-off as an overlay -> {path}"

@@ -334,6 +334,40 @@ class Study:
         """:meth:`practice_file` of both traces (none without the practice design)."""
         return [self.practice_file(kind, t) for t in PAPER_TRACES] if self.practice else []
 
+    @property
+    def optimise(self):
+        """Whether the study optimises each type's ease-off (on the practice design:
+        ``optimise.enabled`` and the practice design made)."""
+        return self.practice and bool(self.config["optimise"]["enabled"])
+
+    @property
+    def optimise_seeds(self):
+        """The seeds of each trace's search: the study's and the next (the fronts of two
+        seeds compared, the convergence evidence)."""
+        seed = int(self.config["optimise"]["seed"])
+        return [seed, seed + 1]
+
+    def optimise_front(self, trace, seed):
+        return _format(FILES["optimise_front"], trace=trace, spiral=self.paper_spiral,
+                       seed=seed)
+
+    @property
+    def optimise_fronts(self):
+        """Every front: both traces, both seeds (none without the optimisation)."""
+        if not self.optimise:
+            return []
+        return [self.optimise_front(t, s) for t in PAPER_TRACES for s in self.optimise_seeds]
+
+    def best_file(self, kind, trace):
+        """A file of the practice design point with each type's chosen ease-off: ``kind``
+        one of overlay, fe_ltca, fe_envelope, tca, vh_map, run, rating."""
+        return _format(FILES[f"best_{kind}"], trace=trace, spiral=self.paper_spiral,
+                       engine=self.sweep_engine)
+
+    def best_files(self, kind):
+        """:meth:`best_file` of both traces (none without the optimisation)."""
+        return [self.best_file(kind, t) for t in PAPER_TRACES] if self.optimise else []
+
     def load_curve(self, design_set, trace):
         return _format(FILES["load_curve"], design_set=design_set, trace=trace,
                        spiral=self.paper_spiral)
@@ -358,7 +392,8 @@ class Study:
                 *self.vh_maps, *self.vh_cases(), *self.tooth_files, *self.fe_cases(),
                 *self.rating_files, *self.sweep_files, *extra,
                 *self.practice_files("rating"), *self.practice_files("vh_map"),
-                *self.load_curves]
+                *self.load_curves, *self.optimise_fronts, *self.best_files("rating"),
+                *self.best_files("vh_map")]
 
     # ------------------------------------------------------------ wildcards
     @property
@@ -379,6 +414,7 @@ class Study:
             "case": "|".join(map(re.escape, self.sensitivity)) or "none",
             "speed": r"\d+(\.\d+)?",
             "design_set": "|".join(DESIGN_SETS),
+            "seed": r"\d+",
         }
 
     @property

@@ -50,6 +50,17 @@ FILES = {
     "practice_vh_map": "results/practice/vh/{trace}_beta{spiral}.nc",
     "practice_run": "results/practice/runs/{trace}_beta{spiral}_line_{engine}.nc",
     "practice_rating": "results/practice/rating/{trace}_beta{spiral}.nc",
+    # each type at its best ease-off (lsbg optimise on the practice design, rules/optimise.smk):
+    # the front of each seed, the chosen ease-off as an overlay, and the practice design
+    # point's claims' files again with it
+    "optimise_front": "results/optimise/{trace}_beta{spiral}_seed{seed}_front.nc",
+    "best_overlay": "results/optimise/{trace}_beta{spiral}_best.yaml",
+    "best_fe_ltca": "results/best/tooth/{trace}_beta{spiral}_ltca.nc",
+    "best_fe_envelope": "results/best/tooth/{trace}_beta{spiral}_envelope.nc",
+    "best_tca": "results/best/tca/{trace}_beta{spiral}.nc",
+    "best_vh_map": "results/best/vh/{trace}_beta{spiral}.nc",
+    "best_run": "results/best/runs/{trace}_beta{spiral}_line_{engine}.nc",
+    "best_rating": "results/best/rating/{trace}_beta{spiral}.nc",
     # stresses, TE and pattern against torque (lsbg load-curve), design_set: paper or practice
     "load_curve": "results/load_curves/{design_set}_{trace}_beta{spiral}.nc",
 }

@@ -20,7 +20,7 @@ from lsbg.tables import claims as claim_tables
 __all__ = ["PRACTICE_CELL", "FE_ISO_BAND", "SPECTRUM_QUANTITIES", "by_type", "practice_claims",
            "practice_design_table", "design_words", "load_curve_table", "fe_iso_ratio_table",
            "spectrum_life_table", "read_practice", "practice_load", "practice_text",
-           "with_practice_answers"]
+           "claims_text", "with_answers"]
 
 #: The practice design's stability cell.
 PRACTICE_CELL = "line model, the practice design at its load"
@@ -316,6 +316,15 @@ def practice_load(practice):
     return None
 
 
+def claims_text(claims, heading):
+    """A design's claims as Markdown: its heading, then one bullet per claim."""
+    lines = [heading]
+    for name, verdict in claims.items():
+        lines.append(f"- **{name.capitalize()}**: {claim_tables.claim_answer(verdict)}. "
+                     + " ".join(verdict["sentences"].values()))
+    return "\n".join(lines)
+
+
 def practice_text(claims, practice, where):
     """The finding's paragraph on the practice design: what it is, each claim's answer.
 
@@ -340,34 +349,31 @@ def practice_text(claims, practice, where):
     relief = flanks.get("flank_modification_pinion_tip_relief_um")
     relief_words = (f", both tips relieved by {float(relief):.3g} µm" if relief is not None
                     else "")
-    lines = [f"**As a designer would make it** ({design_words(record)}{relief_words}), "
-             f"{where}, its rated pitting torque:"]
-    for name, verdict in claims.items():
-        lines.append(f"- **{name.capitalize()}**: {claim_tables.claim_answer(verdict)}. "
-                     + " ".join(verdict["sentences"].values()))
-    return "\n".join(lines)
+    return claims_text(claims, f"**As a designer would make it** ({design_words(record)}"
+                               f"{relief_words}), {where}, its rated pitting torque:")
 
 
-def with_practice_answers(table, claims, load):
-    """The finding's claims table with the practice design's answer beside the paper pair's.
+def with_answers(table, claims, column, at=2):
+    """The finding's claims table with another design's answers in a column.
 
     Parameters
     ----------
     table : pandas.DataFrame
         :func:`lsbg.tables.finding.claims_table`.
     claims : dict
-        :func:`practice_claims` (may be empty).
-    load : float or None
-        The practice design's load [N m].
+        :func:`practice_claims` of that design (none: the table as it is).
+    column : str
+        The column's heading: the design and its load.
+    at : int
+        Where the column goes.
     """
-    if not claims or load is None:
+    if not claims:
         return table
     from lsbg.tables.finding import CLAIMED
 
     names = {text: name for name, text in CLAIMED.items()}
     out = table.copy()
-    column = f"as a designer would make it, at {load:.0f} N·m"
-    out.insert(2, column, [claim_tables.claim_answer(claims[names[c]]).replace("**", "")
-                           if names.get(c) in claims else "—"
-                           for c in out["the paper's claim"]])
+    out.insert(at, column, [claim_tables.claim_answer(claims[names[c]]).replace("**", "")
+                            if names.get(c) in claims else "—"
+                            for c in out["the paper's claim"]])
     return out

@@ -1,32 +1,46 @@
-# Each gear type at its best ease-off (docs/optimise.md): `lsbg optimise` searches
-# the pinion's ease-off of one trace at the paper's spiral angle with NSGA-II (the
-# `optimise` section: objectives, bounds, budget, seed, choice rule), evaluated on
-# the uniform-bed line model's loaded TCA over the load range and the unloaded TCA
-# at the corners of the misalignment_map envelope, and writes the final population,
-# its front, the chosen design, the hypervolume by generation and the shared
-# design's figures (the flank_modification section). The default budget is about
-# 15 s per trace; workflow/config-optimise.yaml runs the full one. Not included in
-# the Snakefile yet: the lead engineer integrates it.
+# Each gear type at its best ease-off (docs/optimise.md): `lsbg optimise` searches the
+# pinion's ease-off of one trace on the practice design at its load (the practice
+# overlay as a second --config) with NSGA-II (the `optimise` section: objectives,
+# bounds, budget, seed, choice rule), evaluated on the uniform-bed line model's loaded
+# TCA over the load range and the unloaded TCA at the corners of the misalignment_map
+# envelope, and writes the final population, its front, the chosen design, the
+# hypervolume by generation and the shared design's figures. The study's seed also
+# writes the chosen ease-off as an overlay (results/optimise/*_best.yaml), which the
+# "best" design point's rules take (rules/practice.smk); the next seed's front is the
+# convergence evidence (two seeds' fronts and hypervolumes compared in the report).
+
+#: What `lsbg optimise` reads, its rerun trigger: its section, the envelope, the line
+#: model, the marking compound, the pinion's speed, the rating and the tooth (the flanks
+#: and the load: the practice overlay's, an input).
+OPTIMISE_SETTINGS = plan.canonical({
+    **{k: config[k] for k in ("optimise", "misalignment", "misalignment_map", "rating",
+                              "tooth", "limits")},
+    "contact": simulation_params(SWEEP_ENGINE, "line")["contact"],
+    "marking_compound_um": config["tca"]["marking_compound_um"],
+    "pinion_speed_deg_s": config["simulation"]["pinion_speed_deg_s"]})
 
 
-rule optimise:
-    input:
-        geometry=FILES["geometry"],
-        config=ancient(FILES["study_config"]),
-        sources=sources("optimise"),
-    output:
-        out="results/optimise/{trace}_beta{spiral}_front.nc",
-    params:
-        **command("optimise"),
-        # rerun triggers: the sections the command reads
-        settings=plan.canonical({k: config[k] for k in (
-            "optimise", "flank_modification", "misalignment", "misalignment_map", "tca",
-            "contact", "simulation", "rating", "tooth")}),
-    wildcard_constraints:
-        spiral=re.escape(PAPER_SPIRAL),
-    log:
-        "logs/optimise/{trace}_beta{spiral}.log",
-    resources:
-        runtime=lambda w: 5 + int(config["limits"]["optimise_minutes"]),
-    shell:
-        LSBG
+for name, seed in zip(("optimise", "optimise_second_seed"), STUDY.optimise_seeds):
+
+    rule:
+        name:
+            name
+        input:
+            geometry=FILES["practice_geometry"],
+            config=PRACTICE_CONFIG,
+            sources=sources("optimise"),
+        output:
+            out=template(FILES["optimise_front"], seed=seed),
+            # the study's seed: its chosen ease-off as an overlay
+            overlay_out=[FILES["best_overlay"]] if name == "optimise" else [],
+        params:
+            **command("optimise", set=[f"optimise.seed={seed}"]),
+            settings=OPTIMISE_SETTINGS,
+        wildcard_constraints:
+            spiral=re.escape(PAPER_SPIRAL),
+        log:
+            f"logs/{name}/{{trace}}_beta{{spiral}}.log",
+        resources:
+            runtime=5 + int(config["limits"]["optimise_minutes"]),
+        shell:
+            LSBG

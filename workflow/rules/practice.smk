@@ -73,102 +73,119 @@ rule practice_compliance:
         LSBG
 
 
-# the FE loaded TCA at the practice load, aligned and (--envelope) at the corners
-for name, envelope in (("practice_fe_ltca", False), ("practice_fe_envelope", True)):
+# The practice design point's claims' files, once with the study's ease-off (and the
+# overlay's tip reliefs: "practice") and, under the optimise section, once with each
+# type's chosen ease-off ("best", rules/optimise.smk): the same commands on the same
+# geometry and compliance, the chosen ease-off a third --config.
+FLANK_SETS = {"practice": lambda w: PRACTICE_CONFIG}
+if STUDY.optimise:
+    FLANK_SETS["best"] = lambda w: [*PRACTICE_CONFIG, STUDY.best_file("overlay", w.trace)]
+
+for flanks, flank_config in FLANK_SETS.items():
+
+    # the FE loaded TCA at the practice load, aligned and (--envelope) at the corners
+    for step, envelope in (("fe_ltca", False), ("fe_envelope", True)):
+
+        rule:
+            name:
+                f"{flanks}_{step}"
+            input:
+                geometry=FILES["practice_geometry"],
+                config=flank_config,
+                compliance_file=FILES["practice_compliance"],
+                sources=sources("ltca"),
+            output:
+                out=FILES[f"{flanks}_{step}"],
+            params:
+                **command("ltca", set=["contact.compliance=fe"], envelope=envelope),
+                # rerun triggers: the line model's settings and the tooth's (the load and
+                # the flanks: the overlays')
+                contact=FE_TRIGGERS["contact"],
+                tooth=FE_TRIGGERS["tooth"],
+                envelope=plan.canonical({k: config["misalignment_map"][k]
+                                         for k in ("axes", "range")}),
+            wildcard_constraints:
+                **PRACTICE_SPIRAL,
+            log:
+                f"logs/{flanks}_{step}/{{trace}}_beta{{spiral}}.log",
+            shell:
+                LSBG
 
     rule:
         name:
-            name
+            f"{flanks}_contact_state"
         input:
             geometry=FILES["practice_geometry"],
-            config=PRACTICE_CONFIG,
-            compliance_file=FILES["practice_compliance"],
-            sources=sources("ltca"),
+            config=flank_config,
+            topography=TOPOGRAPHY,
+            sources=sources("misalignment-map"),
         output:
-            out=FILES[name],
+            tca_out=FILES[f"{flanks}_tca"],
+            out=FILES[f"{flanks}_vh_map"],
         params:
-            **command("ltca", set=["contact.compliance=fe"], envelope=envelope),
-            # rerun triggers: the line model's settings and the tooth's (the load: the overlay's)
-            contact=FE_TRIGGERS["contact"],
-            tooth=FE_TRIGGERS["tooth"],
-            envelope=plan.canonical({k: config["misalignment_map"][k] for k in ("axes", "range")}),
+            **command("misalignment-map"),
+            settings=plan.contact_state_params(config, PAPER_SPIRAL, SWEEP_ENGINE),
         wildcard_constraints:
             **PRACTICE_SPIRAL,
         log:
-            f"logs/{name}/{{trace}}_beta{{spiral}}.log",
+            f"logs/{flanks}_contact_state/{{trace}}_beta{{spiral}}.log",
         shell:
             LSBG
 
+    rule:
+        name:
+            f"{flanks}_run"
+        input:
+            geometry=FILES["practice_geometry"],
+            config=flank_config,
+            sources=sources("simulate"),
+        output:
+            out=FILES[f"{flanks}_run"],
+        params:
+            **command("simulate", set=["contact.model=line"]),
+            settings=lambda w: simulation_params(w.engine, "line"),  # rerun trigger
+        wildcard_constraints:
+            **PRACTICE_SPIRAL,
+        log:
+            f"logs/{flanks}_run/{{trace}}_beta{{spiral}}_{{engine}}.log",
+        resources:
+            **runtime(),
+        shell:
+            LSBG
 
-rule practice_contact_state:
-    input:
-        geometry=FILES["practice_geometry"],
-        config=PRACTICE_CONFIG,
-        topography=TOPOGRAPHY,
-        sources=sources("misalignment-map"),
-    output:
-        tca_out=FILES["practice_tca"],
-        out=FILES["practice_vh_map"],
-    params:
-        **command("misalignment-map"),
-        settings=plan.contact_state_params(config, PAPER_SPIRAL, SWEEP_ENGINE),
-    wildcard_constraints:
-        **PRACTICE_SPIRAL,
-    log:
-        "logs/practice_contact_state/{trace}_beta{spiral}.log",
-    shell:
-        LSBG
-
-
-rule practice_run:
-    input:
-        geometry=FILES["practice_geometry"],
-        config=PRACTICE_CONFIG,
-        sources=sources("simulate"),
-    output:
-        out=FILES["practice_run"],
-    params:
-        **command("simulate", set=["contact.model=line"]),
-        settings=lambda w: simulation_params(w.engine, "line"),  # rerun trigger
-    wildcard_constraints:
-        **PRACTICE_SPIRAL,
-    log:
-        "logs/practice_run/{trace}_beta{spiral}_{engine}.log",
-    resources:
-        **runtime(),
-    shell:
-        LSBG
-
-
-rule practice_rating:
-    input:
-        geometry=FILES["practice_geometry"],
-        config=PRACTICE_CONFIG,
-        run=practice_input("run"),
-        fe_ltca=FILES["practice_fe_ltca"],
-        fe_envelope=FILES["practice_fe_envelope"],
-        sources=sources("rate"),
-    output:
-        out=FILES["practice_rating"],
-    params:
-        **command("rate"),
-        rating=plan.canonical({k: config[k] for k in ("rating", "tooth")}),  # rerun trigger
-        steady_state=config["statistics"]["steady_state_after_s"],
-    wildcard_constraints:
-        **PRACTICE_SPIRAL,
-    log:
-        "logs/practice_rating/{trace}_beta{spiral}.log",
-    shell:
-        LSBG
+    rule:
+        name:
+            f"{flanks}_rating"
+        input:
+            geometry=FILES["practice_geometry"],
+            config=flank_config,
+            run=lambda w, flanks=flanks: STUDY.practice_file("run", w.trace)
+            if flanks == "practice" else STUDY.best_file("run", w.trace),
+            fe_ltca=FILES[f"{flanks}_fe_ltca"],
+            fe_envelope=FILES[f"{flanks}_fe_envelope"],
+            sources=sources("rate"),
+        output:
+            out=FILES[f"{flanks}_rating"],
+        params:
+            **command("rate"),
+            rating=plan.canonical({k: config[k] for k in ("rating", "tooth")}),  # rerun trigger
+            steady_state=config["statistics"]["steady_state_after_s"],
+        wildcard_constraints:
+            **PRACTICE_SPIRAL,
+        log:
+            f"logs/{flanks}_rating/{{trace}}_beta{{spiral}}.log",
+        shell:
+            LSBG
 
 
 rule load_curve:
     input:
         geometry=design_set_input(lambda w: STUDY.geometry(w.trace, w.spiral),
-                             practice_input("geometry")),
+                                  practice_input("geometry")),
         compliance_file=design_set_input(lambda w: STUDY.compliance(w.trace, w.spiral),
-                                    practice_input("compliance")),
-        config=design_set_input(lambda w: [ancient(FILES["study_config"])], lambda w: PRACTICE_CONFIG),
+                                         practice_input("compliance")),
+        config=design_set_input(lambda w: [ancient(FILES["study_config"])],
+                                lambda w: PRACTICE_CONFIG),
         sources=sources("load-curve"),
     output:
         out=FILES["load_curve"],

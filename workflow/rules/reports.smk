@@ -29,6 +29,12 @@ rule report_paper:
         practice_fe_ltca_files=STUDY.practice_files("fe_ltca"),
         practice_geometry_dirs=STUDY.practice_files("geometry"),
         load_curve_files=STUDY.load_curves,
+        # each type at its best ease-off (rules/optimise.smk)
+        optimise_front_files=STUDY.optimise_fronts,
+        best_run_files=STUDY.best_files("run"),
+        best_vh_files=STUDY.best_files("vh_map"),
+        best_rating_files=STUDY.best_files("rating"),
+        best_fe_ltca_files=STUDY.best_files("fe_ltca"),
         sources=sources("report", "paper"),
     output:
         report(STUDY.reports["paper"], caption="../report/reports.rst", category="Reports",

@@ -1,0 +1,119 @@
+"""Each type at its best ease-off, in the reports: the fronts, the chosen designs, the seeds.
+
+Read from the fronts ``lsbg optimise`` writes (:func:`lsbg.optimise.dataset.front_dataset`):
+the chosen ease-off of each type beside the shared one with their objectives and
+mesh efficiencies, and the two seeds' hypervolumes (the search's convergence).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from lsbg.aggregate.runs import TYPE_ORDER, gear_type
+
+__all__ = ["read_fronts", "study_seed", "chosen_table", "seed_table", "efficiency_text",
+           "COEFFICIENTS"]
+
+#: The ease-off coefficients shown [um].
+COEFFICIENTS = ("lengthwise_crowning", "profile_crowning", "bias", "spiral_angle_correction",
+                "pressure_angle_correction", "pinion_tip_relief", "gear_tip_relief")
+
+
+def read_fronts(paths):
+    """``{(gear type, seed): front}`` of the fronts' files, in type and seed order."""
+    import xarray as xr
+
+    from lsbg.files import as_path_list
+
+    fronts = {}
+    for path in as_path_list(paths):
+        ds = xr.load_dataset(path)
+        fronts[(gear_type(ds), int(ds.attrs["seed"]))] = ds
+    return dict(sorted(fronts.items(), key=lambda kv: (TYPE_ORDER.index(kv[0][0]), kv[0][1])))
+
+
+def study_seed(fronts):
+    """The study's seed: the least of the fronts' (the next one only checks it)."""
+    return min(seed for _, seed in fronts)
+
+
+def chosen_table(fronts):
+    """The shared ease-off and each type's chosen one, with their objectives.
+
+    Parameters
+    ----------
+    fronts : dict
+        :func:`read_fronts`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per ease-off coefficient [µm] and objective (and the mesh
+        efficiency, %); columns ``shared`` and, per type, its chosen design and
+        the shared design's value at its own trace.
+    """
+    seed = study_seed(fronts)
+    rows = {}
+    for (kind, s), ds in fronts.items():
+        if s != seed:
+            continue
+        chosen = int(ds.attrs["chosen"])
+        for name in COEFFICIENTS:
+            row = rows.setdefault((name.replace("_", " "), "µm"), {})
+            row["shared"] = float(ds.attrs.get(f"reference_flank_modification_{name}_um", 0.0))
+            row[f"{kind} chosen"] = float(ds[name].values[chosen]) if chosen >= 0 else np.nan
+        for name in (*ds.attrs["objectives"].split(), "efficiency"):
+            units = ds[name].attrs.get("units", "")
+            row = rows.setdefault((ds[name].attrs.get("long_name", name), units), {})
+            row[f"{kind} shared"] = float(ds[f"reference_{name}"])
+            row[f"{kind} chosen"] = float(ds[name].values[chosen]) if chosen >= 0 else np.nan
+    table = pd.DataFrame([{"quantity": q, "unit": u, **values}
+                          for (q, u), values in rows.items()])
+    order = ["quantity", "unit", "shared"] + [f"{t} {w}" for t in TYPE_ORDER
+                                              for w in ("shared", "chosen")]
+    return table[[c for c in order if c in table.columns]]
+
+
+def seed_table(fronts):
+    """Each type's searches: evaluations, time, feasible front, hypervolume, seeds' agreement.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Per type and seed; ``hypervolume vs the study's seed [%]`` the relative
+        difference of each seed's final hypervolume from the study's seed's.
+    """
+    seed = study_seed(fronts)
+    base = {kind: float(ds.attrs["final_hypervolume"]) for (kind, s), ds in fronts.items()
+            if s == seed}
+    rows = []
+    for (kind, s), ds in fronts.items():
+        a = ds.attrs
+        hv = float(a["final_hypervolume"])
+        rows.append({"type": kind, "seed": s, "designs evaluated": int(a["evaluations"]),
+                     "time [s]": float(a["run_seconds"]),
+                     "feasible on the front": int(a["front_individuals"]),
+                     "hypervolume": hv,
+                     "hypervolume vs the study's seed [%]":
+                         100 * (hv - base[kind]) / base[kind] if base.get(kind) else np.nan})
+    return pd.DataFrame(rows)
+
+
+def efficiency_text(fronts):
+    """The mesh efficiencies in one sentence: shared and chosen, per type (Markdown)."""
+    seed = study_seed(fronts)
+    parts = []
+    for (kind, s), ds in fronts.items():
+        if s != seed or "efficiency" not in ds:
+            continue
+        chosen = int(ds.attrs["chosen"])
+        shared = float(ds["reference_efficiency"])
+        best = float(ds["efficiency"].values[chosen]) if chosen >= 0 else np.nan
+        parts.append(f"{kind} {shared:.2f} % with the shared ease-off, {best:.2f} % with its "
+                     f"own")
+    if not parts:
+        return ""
+    law = next(iter(fronts.values())).attrs.get("friction_law", "")
+    return (f"**Mesh efficiency** (a comparison the paper did not make; sliding friction of "
+            f"the loaded TCA's line loads, {law.replace('_', ' ')}): " + "; ".join(parts) + ".")
