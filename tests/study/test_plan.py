@@ -73,7 +73,14 @@ def test_every_run_and_file_of_the_default_study_is_planned_once(default):
                              plan.FILES["summary"], *study.tca_files, *study.vh_maps,
                              *study.vh_cases(), *study.tooth_files, *study.fe_cases(),
                              *study.rating_files, *study.practice_files("rating"),
-                             *study.practice_files("vh_map"), *study.load_curves]
+                             *study.practice_files("vh_map"), *study.load_curves,
+                             *study.optimise_fronts, *study.best_files("rating"),
+                             *study.best_files("vh_map")]
+    # each trace's search at two seeds, and the chosen ease-off's rating and V-H map
+    assert study.optimise_fronts == [f"results/optimise/{t}_beta35_seed{s}_front.nc"
+                                     for t in ("logarithmic", "circular") for s in (1, 2)]
+    assert study.best_files("rating") == ["results/best/rating/logarithmic_beta35.nc",
+                                          "results/best/rating/circular_beta35.nc"]
     # the practice design point of each trace and the load curves of both designs
     assert study.practice_files("rating") == ["results/practice/rating/logarithmic_beta35.nc",
                                               "results/practice/rating/circular_beta35.nc"]

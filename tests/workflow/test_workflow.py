@@ -369,7 +369,9 @@ def test_a_changed_setting_reruns_only_the_runs_that_use_it(study, tmp_path):
     # The contact state's own settings: its jobs and what reads them.
     extra = write_yaml(tmp_path / "tca.yaml", {"tca": {"positions": 50}})
     jobs, output = dry_run(study, extra)
+    # (the search's settings hold the marking compound only: its choice stays)
     assert rules_of(jobs) == sorted(["contact_state"] * 2 + ["practice_contact_state"] * 2
+                                    + ["best_contact_state"] * 2
                                     + ["combine", "summary", "rating_sweep", "report_paper",
                                        "report_sweep", "all"]), output
     # Statistics settings rerun the statistics, not the simulations; the steady state
@@ -380,7 +382,7 @@ def test_a_changed_setting_reruns_only_the_runs_that_use_it(study, tmp_path):
     extra = write_yaml(tmp_path / "steady.yaml", {"statistics": {"steady_state_after_s": 0.008}})
     jobs, output = dry_run(study, extra)
     assert rules_of(jobs) == sorted(_CONVERGENCE + ["rating"] * 2 + ["practice_rating"] * 2
-                                    + _CHECKS + _AGGREGATES), output
+                                    + ["best_rating"] * 2 + _CHECKS + _AGGREGATES), output
     # The rating's own settings: its jobs and the reports that show them
     extra = write_yaml(tmp_path / "rating.yaml", {"rating": {"application_factor": 1.25}})
     jobs, output = dry_run(study, extra)
@@ -400,17 +402,26 @@ _AGGREGATES = ["combine", "summary", "rating_sweep", "report_paper", "report_swe
 _PRACTICE_POINT = [f"practice_{step}" for step in (
     "geometry", "compliance", "fe_ltca", "fe_envelope", "contact_state", "run", "rating")] * 2
 _LOAD_CURVES = ["load_curve"] * 4
+#: Each type's ease-off searched (two seeds) and its chosen design point's jobs.
+_OPTIMISE = ["optimise"] * 2 + ["optimise_second_seed"] * 2
+_BEST = [f"best_{step}" for step in (
+    "fe_ltca", "fe_envelope", "contact_state", "run", "rating")] * 2
 #: What the overlay's change reruns: the practice design and everything made from it.
-_PRACTICE_ALL = ["practice_design"] + _PRACTICE_POINT + ["load_curve"] * 2
-#: What a line-model setting reruns of it: the jobs that read the line model or its runs.
+_PRACTICE_ALL = ["practice_design"] + _PRACTICE_POINT + ["load_curve"] * 2 + _OPTIMISE + _BEST
+#: What a line-model setting reruns of it: the jobs that read the line model or its runs,
+#: the searches (on the line model) and so the chosen designs.
 _PRACTICE_LINE = [f"practice_{step}" for step in (
-    "fe_ltca", "fe_envelope", "contact_state", "run", "rating")] * 2 + _LOAD_CURVES
+    "fe_ltca", "fe_envelope", "contact_state", "run", "rating")] * 2 + _LOAD_CURVES \
+    + _OPTIMISE + _BEST
 #: Every job of the test study.
 _EVERYTHING = (["paper_geometry"] * 2 + ["paper_ltca"] * 2 + ["sensitivity"] * 2
                + _CONVERGENCE + ["contact_state"] * 2 + ["tooth_compliance"] * 2
                + ["fe_ltca"] * 2 + ["fe_sensitivity"] * 2 + ["rating"] * 2 + _CHECKS
-               + _AGGREGATES + _PRACTICE_POINT + _LOAD_CURVES)
+               + _AGGREGATES + _PRACTICE_POINT + _LOAD_CURVES + _OPTIMISE + _BEST)
 #: The loaded TCA's jobs: the commands that reach lsbg.tca.loaded and what reads them.
+#: The practice and best points' jobs that the sensitivity cases do not reach: the runs
+#: and the searches (the chosen design is unchanged, so its runs are too).
+_NO_CASES = ("practice_run", "best_run", "optimise", "optimise_second_seed", "load_curve")
 _LOADED_TCA = (["paper_ltca"] * 2 + ["fe_ltca"] * 2 + ["fe_sensitivity"] * 2
                + ["contact_state"] * 2 + ["sensitivity"] * 2 + ["rating"] * 2 + _CHECKS
                + _AGGREGATES)
@@ -418,19 +429,22 @@ CODE_CHANGES = {
     # (the rating reads the line run that the convergence table writes, and its K_v
     # comes through lsbg.aggregate.summary, which reads lsbg.stats)
     "lsbg/experiments/verification.py": _CONVERGENCE + ["rating"] * 2 + _CHECKS + _AGGREGATES,
-    "lsbg/stats/samples.py": ["rating"] * 2 + ["practice_rating"] * 2 + _AGGREGATES,
+    "lsbg/stats/samples.py": ["rating"] * 2 + ["practice_rating"] * 2 + ["best_rating"] * 2
+                             + _AGGREGATES,
     # a command depends on its stage only (lsbg.study.stages): the loaded TCA reruns the
     # loaded TCAs (the line model's, the FE one, the V-H maps'), not the runs or the FE
     # compliance; the sensitivity runs and the rating read the FE loaded TCA
+    # (the search reads the loaded TCA's stage, so it and its choice's jobs rerun)
     "lsbg/tca/loaded.py": _LOADED_TCA + [r for r in _PRACTICE_LINE if r != "practice_run"],
     # the V-H map: the contact state's jobs alone, and the aggregates that read them
     "lsbg/tca/vh_map.py": ["contact_state"] * 2 + ["practice_contact_state"] * 2
+                          + _OPTIMISE + _BEST  # (the search imports lsbg.tca)
                           + ["combine", "summary", "rating_sweep", "report_paper",
                              "report_sweep", "all"],
     # (the cases reach the contact state's and the loaded TCA's commands, lsbg ltca
     # --case, and the rating reads the cases' runs)
     "lsbg/experiments/sensitivity.py": _LOADED_TCA + [
-        r for r in _PRACTICE_LINE if r not in ("practice_run", "load_curve")],
+        r for r in _PRACTICE_LINE if r not in _NO_CASES],
     # every run at the paper's point reads its geometry; the convergence tables write
     # every engine's run there; the FE segment is lofted through the STEP solid's
     # sections (lsbg.solid.step, lsbg.solid.solids)
