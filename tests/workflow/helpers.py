@@ -80,3 +80,11 @@ def dry_run(study, *configfiles):
     proc = snakemake("-n", "--configfile", TEST_CONFIG, *configfiles, cwd=root, env=env,
                      check=True)
     return planned_jobs(proc.output), proc.output
+
+
+def report_text(path):
+    """A rendered report's visible text, one line."""
+    text = path.read_text(encoding="utf-8")
+    text = re.sub(r"<style.*?</style>|<script.*?</script>", "", text, flags=re.S)
+    text = re.sub(r"data:[\w/+]+;base64,[A-Za-z0-9+/=]+", "", text)
+    return " ".join(re.sub(r"<[^>]+>", " ", text).split())

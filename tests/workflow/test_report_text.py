@@ -1,23 +1,14 @@
 """The reports say what ran: design values, loads and angles from the study's files.
 
-Three altered studies beside the session's (tests/workflow/conftest.py, the test
-configuration: one spiral angle, the paper's pair): a load sweep on top of it, and
-a pair with another face width in a study folder of its own.
+The session's study (tests/workflow/conftest.py, the test configuration: one spiral
+angle, the paper's pair) and a pair with another face width in a study folder of its
+own; a load sweep on top of the session's study is named in the paper report
+(tests/workflow/test_workflow.py, the load sweep's test, which runs it).
 """
-
-import re
 
 import pytest
 
-from tests.workflow.helpers import TEST_CONFIG, snakemake, write_yaml
-
-
-def report_text(path):
-    """A rendered report's visible text, one line."""
-    text = path.read_text(encoding="utf-8")
-    text = re.sub(r"<style.*?</style>|<script.*?</script>", "", text, flags=re.S)
-    text = re.sub(r"data:[\w/+]+;base64,[A-Za-z0-9+/=]+", "", text)
-    return " ".join(re.sub(r"<[^>]+>", " ", text).split())
+from tests.workflow.helpers import TEST_CONFIG, report_text, snakemake, write_yaml
 
 
 def first_screen(text):
@@ -36,22 +27,6 @@ def test_one_spiral_angle_and_the_papers_pair(study):
     assert "at one spiral angle, 35°" in first_screen(sweep)
     assert "depends on the spiral angle" not in sweep and "35–35" not in sweep
     assert "spiral angles" not in first_screen(sweep).split("(compiled engine)")[0]
-
-
-@pytest.mark.slow
-def test_a_load_sweep_is_named_where_the_loads_are_stated(study, tmp_path):
-    root, env = study
-    extra = write_yaml(tmp_path / "loads.yaml", {"sweeps": {"load": {
-        "simulation.load_torque_N_m": [1000, 3000], "contact_model": "point"}}})
-    try:
-        snakemake("-j2", "--configfile", TEST_CONFIG, extra, cwd=root, env=env, check=True)
-        paper = report_text(root / "reports" / "paper.html")
-        assert "No other load was run" not in paper
-        assert "Other loads ran in the parameter sweep 'load' (1000, 3000 N·m" in paper
-    finally:
-        # the session's study as it was: its reports without the sweep
-        snakemake("-j2", "--configfile", TEST_CONFIG, cwd=root, env=env, check=True)
-    assert "No other load was run" in report_text(root / "reports" / "paper.html")
 
 
 @pytest.mark.slow

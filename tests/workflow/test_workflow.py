@@ -23,7 +23,8 @@ import yaml
 
 from lsbg.study import job_order
 from tests.workflow.helpers import (REPO, SNAKEFILE, TEST_CONFIG, _JOB, dry_run,
-                                    job_inputs, planned_jobs, rules_of, snakemake, write_yaml)
+                                    job_inputs, planned_jobs, report_text, rules_of, snakemake,
+                                    write_yaml)
 
 
 # ------------------------------------------------------------ configuration
@@ -512,6 +513,10 @@ def test_the_load_sweep_is_a_sweep_and_mesh_mode_a_new_stage(study, tmp_path):
                          / "circular_beta35_load_torque_N_m~1500.nc") as ds:
         assert float(ds.attrs["solver_load_torque_N_m"]) == pytest.approx(1500)
         assert ds.attrs["contact_model"] == "point"
+    # the paper report names the loads that ran
+    paper = report_text(root / "reports" / "paper.html")
+    assert "No other load was run" not in paper
+    assert "Other loads ran in the parameter sweep 'load' (1000, 1500 N·m" in paper
     modes = pd.read_csv(root / "results" / "extensions" / "mesh_mode.csv")
     assert sorted(modes.trace) == ["circular", "logarithmic"]
     # the mesh frequency z1 n meets f_n at the first resonance speed
@@ -523,6 +528,7 @@ def test_the_load_sweep_is_a_sweep_and_mesh_mode_a_new_stage(study, tmp_path):
     jobs, output = dry_run(study)
     assert rules_of(jobs) == ["all", "report_paper", "report_sweep"], output
     snakemake("-j2", "--configfile", TEST_CONFIG, cwd=root, env=env, check=True)
+    assert "No other load was run" in report_text(root / "reports" / "paper.html")
     old = write_yaml(tmp_path / "old.yaml", {"load_sweep": {"torques_N_m": [1000, 1500]}})
     proc = snakemake("-n", "--configfile", TEST_CONFIG, old, cwd=root, env=env)
     assert proc.returncode != 0
