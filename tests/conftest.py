@@ -10,6 +10,18 @@ from lsbg.solid.export import write_geometry
 from lsbg.tca.loaded import ltca_for_geometry
 from lsbg.files import write_dataset
 
+
+
+@pytest.hookimpl(tryfirst=True)  # before pytest-xdist reads the groups from the marks
+def pytest_collection_modifyitems(config, items):
+    """The workflow's end-to-end tests in one group (``-n 2 --dist loadgroup``, the README's
+    command): they share the session's study (tests/workflow/conftest.py) and run in order
+    on one worker, the largest group and so the first, while the other takes the unit tests."""
+    for item in items:
+        if item.nodeid.startswith("tests/workflow/"):
+            item.add_marker(pytest.mark.xdist_group("workflow"))
+
+
 SHORT = SimulationSettings(duration=0.05, samples=25, ramp_time=0.01)
 # 26 instants 0, 0.002, ..., 0.05 s: 20 samples after 0.01 s, 4 subgroups of 5.
 WINDOWS = dict(steady_state_after=0.01, window=(0.01, 0.05), subgroup_size=5)

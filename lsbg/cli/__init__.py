@@ -64,6 +64,7 @@ import logging
 import sys
 
 from lsbg import __version__
+from lsbg.cli import options
 from lsbg.cli.options import CommandError, check_outputs, settings_of
 from lsbg.config import ConfigError
 from lsbg.files import InputError
@@ -184,6 +185,7 @@ def main(argv=None):
         written), 3 when a simulation blew up. Usage errors found by argparse
         raise ``SystemExit(2)``.
     """
+    options._ARGUMENTS = list(sys.argv[1:] if argv is None else argv)  # the provenance's
     args = build_parser().parse_args(argv)
     if args.verbose:
         logging.basicConfig(level=logging.INFO, format="%(name)s: %(message)s")

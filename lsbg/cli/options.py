@@ -230,9 +230,14 @@ def settings_of(args):
     return args.settings
 
 
+#: The arguments of the running ``lsbg`` call, set by :func:`lsbg.cli.main`: the
+#: argv a caller passed (``main([...])`` from Python), else ``sys.argv[1:]``.
+_ARGUMENTS = None
+
+
 def command_line():
     """This command as typed (the provenance attribute of what it writes)."""
-    return " ".join(["lsbg", *sys.argv[1:]])
+    return " ".join(["lsbg", *(sys.argv[1:] if _ARGUMENTS is None else _ARGUMENTS)])
 
 
 def checked(build):
