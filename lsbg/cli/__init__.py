@@ -70,7 +70,7 @@ from lsbg.config import ConfigError
 from lsbg.files import InputError
 from lsbg.gear.design import DesignError
 
-__all__ = ["main", "build_parser", "parser_adders", "handler_of", "CommandError", "USER_ERRORS"]
+__all__ = ["main", "build_parser", "parser_adders", "handler_of", "command_parsers", "CommandError", "USER_ERRORS"]
 
 #: Exceptions that are a user's mistake: exit code 2 with the message, no traceback.
 USER_ERRORS = (ConfigError, DesignError, CommandError, InputError)
@@ -124,7 +124,9 @@ def build_parser():
 
 
 @functools.lru_cache(maxsize=None)
-def _commands():
+def command_parsers():
+    """``{command: its argparse parser}`` of every ``lsbg`` subcommand, built once per
+    process (the workflow's rules read their options from them)."""
     parser = build_parser()
     return next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction)).choices
 
@@ -146,7 +148,7 @@ def handler_of(command):
     ValueError
         Naming the known subcommands.
     """
-    choices = _commands()
+    choices = command_parsers()
     if command not in choices:
         raise ValueError(f"lsbg {command}: no such subcommand (known: {', '.join(choices)})")
     return choices[command].get_default("handler")

@@ -20,6 +20,7 @@ before the handler runs (:func:`check_outputs`, called by
 from __future__ import annotations
 
 import argparse
+import functools
 import math
 import os
 import sys
@@ -186,6 +187,11 @@ def add_config_options(parser, sections):
 def settings_help(sections):
     """The keys of the configuration's ``sections`` with their defaults, from the schema
     (the design's from :class:`lsbg.gear.design.GearPairDesign`: the paper's Table 1)."""
+    return _settings_help(tuple(sections))
+
+
+@functools.lru_cache(maxsize=None)  # every command's parser asks, at every lsbg start
+def _settings_help(sections):
     from lsbg.config import load_schema, section_keys
     from lsbg.gear.design import GearPairDesign
 

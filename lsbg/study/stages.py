@@ -145,16 +145,24 @@ def module_imports(name, package=PACKAGE):
     -------
     set of str
     """
-    return _imports(_tree(str(module_files(name, package)[-1])), package)
+    return set(_module_imports(name, package))
 
 
+# Kept per process, as the trees are: a rule file asks for the same modules' imports
+# dozens of times (a walk over every node of the module each time, half of a dry run).
+@functools.lru_cache(maxsize=None)
+def _module_imports(name, package):
+    return frozenset(_imports(_tree(str(module_files(name, package)[-1])), package))
+
+
+@functools.lru_cache(maxsize=None)
 def _module_level_imports(name, package):
     tree = _tree(str(module_files(name, package)[-1]))
     found = set()
     for node in tree.body:
         if not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
             found |= _imports(node, package)
-    return found
+    return frozenset(found)
 
 
 def _parents(name):
@@ -172,7 +180,7 @@ def module_closure(names, package=PACKAGE):
         for module in _parents(name):
             if module not in seen:
                 seen.add(module)
-                todo.extend(module_imports(module, package))
+                todo.extend(_module_imports(module, package))
     return seen
 
 

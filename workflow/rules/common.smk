@@ -114,14 +114,10 @@ WILDCARD_SETTINGS = {"trace": "design.trace", "spiral": "design.spiral_angle_deg
                      "model": "contact.model"}
 
 
-@lru_cache(maxsize=None)
 def _subparser(name):
-    from lsbg.cli import build_parser
+    from lsbg.cli import command_parsers
 
-    parser = build_parser()
-    choices = next(a for a in parser._actions if hasattr(a, "choices") and
-                   isinstance(a.choices, dict)).choices
-    return choices[name]
+    return command_parsers()[name]
 
 
 def _actions(name):
