@@ -20,6 +20,8 @@ def pytest_collection_modifyitems(config, items):
     for item in items:
         if item.nodeid.startswith("tests/workflow/"):
             item.add_marker(pytest.mark.xdist_group("workflow"))
+    # The SLURM run first: it waits on the cluster while the session's study is made.
+    items.sort(key=lambda item: not item.nodeid.startswith("tests/workflow/test_slurm.py"))
 
 
 SHORT = SimulationSettings(duration=0.05, samples=25, ramp_time=0.01)

@@ -12,9 +12,9 @@ does), the README's command
 twice: the first time one running job is cancelled (``scancel``) while it
 computes, and Snakemake must report it and fail; the second time, the same
 command must complete the DAG. Its outputs are compared with the session's study
-(tests/workflow/conftest.py: the same config run locally with -j2): the same files
-but the practice stage's, and results/summary.csv byte for byte (the summary does
-not read the practice stage).
+(tests/workflow/conftest.py: the same config run locally with -j2, made meanwhile):
+the same files but the practice stage's, and results/summary.csv byte for byte (the
+summary does not read the practice stage).
 """
 
 import json
@@ -196,24 +196,40 @@ def copy_with_env(tmp_path_factory, name):
 
 
 @pytest.fixture(scope="module")
-def slurm_study(cluster, study, tmp_path_factory):
+def slurm_study(cluster, request, tmp_path_factory):
     """The test config through the SLURM profile, with one job cancelled, then rerun; the
-    session's study (the same config run locally with -j2) for the comparison."""
+    session's study (the same config run locally with -j2) for the comparison, made
+    meanwhile when this module runs first (tests/conftest.py puts it first)."""
     root, env = copy_with_env(tmp_path_factory, "slurm")
-    # 1. The run with a fault.
-    run = Run(*COMMAND, cwd=root, env=env)
+    done = {}
+
+    def through_slurm():
+        try:
+            # 1. The run with a fault.
+            run = Run(*COMMAND, cwd=root, env=env)
+            try:
+                done["cancelled"] = cancel_one_running_job(run.lines, run.proc)
+            finally:
+                done["fault"] = run.finish(timeout=900)
+            # 2. The same command again.
+            start = time.monotonic()
+            done["rerun"] = snakemake(*COMMAND, cwd=root, env=env)
+            done["rerun"].seconds = time.monotonic() - start
+        except BaseException as error:  # raised again below, in the test's thread
+            done["error"] = error
+
+    thread = threading.Thread(target=through_slurm)
+    thread.start()
     try:
-        cancelled = cancel_one_running_job(run.lines, run.proc)
+        local_root = request.getfixturevalue("study")[0]
     finally:
-        fault = run.finish(timeout=400)
-    # 2. The same command again.
-    start = time.monotonic()
-    rerun = snakemake(*COMMAND, cwd=root, env=env)
-    rerun.seconds = time.monotonic() - start
-    print(f"\nSLURM: {fault.seconds:.0f} s with the cancelled job, {rerun.seconds:.0f} s for "
-          f"the rerun")
-    return SimpleNamespace(root=root, env=env, fault=fault, rerun=rerun, local_root=study[0],
-                           cancelled=cancelled)
+        thread.join()
+    if "error" in done:
+        raise done["error"]
+    print(f"\nSLURM: {done['fault'].seconds:.0f} s with the cancelled job, "
+          f"{done['rerun'].seconds:.0f} s for the rerun")
+    return SimpleNamespace(root=root, env=env, fault=done["fault"], rerun=done["rerun"],
+                           local_root=local_root, cancelled=done["cancelled"])
 
 
 def sacct_jobs(job_ids):
