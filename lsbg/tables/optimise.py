@@ -114,6 +114,9 @@ def efficiency_text(fronts):
                      f"own")
     if not parts:
         return ""
+    from lsbg.optimise.friction import FRICTION_LAWS
+
     law = next(iter(fronts.values())).attrs.get("friction_law", "")
     return (f"**Mesh efficiency** (a comparison the paper did not make; sliding friction of "
-            f"the loaded TCA's line loads, {law.replace('_', ' ')}): " + "; ".join(parts) + ".")
+            f"the loaded TCA's line loads, {FRICTION_LAWS.get(law, law)}): "
+            + "; ".join(parts) + ".")
