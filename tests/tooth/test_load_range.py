@@ -7,7 +7,6 @@ import pytest
 
 from lsbg.contact import ContactParameters, MeshContact
 from lsbg.gear.design import GearPairDesign
-from lsbg.gear.geometry import GearPair
 from lsbg.tca.modification import FlankModification
 from lsbg.tca.separation import separation_field
 from lsbg.tooth.elasticity import largest_principal, largest_principal_over_points
@@ -24,17 +23,6 @@ PHASES = 16
 SAME = ("transmission_error", "max_contact_pressure", "max_flank_pressure",
         "root_stress_pinion", "root_stress_gear", "edge_load_share", "edge_line_load",
         "relief_start_load_share", "relief_start_line_load")
-
-
-@pytest.fixture(scope="module")
-def pair():
-    return GearPair(GearPairDesign())
-
-
-@pytest.fixture(scope="module")
-def compliance(coarse_compliance):
-    # the session's coarse compliance of the paper pair (tests/conftest.py)
-    return coarse_compliance
 
 
 @pytest.fixture(scope="module")

@@ -19,17 +19,6 @@ RATED = 480.0  # about the pair's rated pitting torque on the gear (ISO 10300) [
 
 
 @pytest.fixture(scope="module")
-def pair():
-    return GearPair(GearPairDesign())
-
-
-@pytest.fixture(scope="module")
-def compliance(coarse_compliance):
-    # the session's coarse compliance of the paper pair (tests/conftest.py)
-    return coarse_compliance
-
-
-@pytest.fixture(scope="module")
 def contact(pair):
     return MeshContact(pair, ContactParameters(model="line"))
 
