@@ -12,7 +12,9 @@
 * :mod:`lsbg.contact.slices`: the line model's stiffness per slice from the
   tooth's own compliance (:class:`SliceStiffness`);
 * :mod:`lsbg.contact.mesh`: :class:`MeshContact`, the kernels' data built from
-  the exact geometry, and the line model's stiffness calibration.
+  the exact geometry, and the line model's stiffness calibration;
+* :mod:`lsbg.contact.bands`: where the line model's bands of a contact line lie
+  in the field of contact (the FE and the optimiser's loaded TCAs).
 """
 
 from lsbg import lazy_exports

@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from lsbg.contact import kernels as k
+from lsbg.contact.bands import band_points
 from lsbg.gear.flank import mesh_phase_pinion_angle
 
 __all__ = ["MeshPoints", "LoadedPoints", "SeparationCache", "mesh_points", "loaded_points"]
@@ -253,28 +254,15 @@ def mesh_points(contact, pinion_angles):
     start = mismatch_turn + np.ceil((first - mismatch_turn) / pitch) * pitch
     lines = math.floor((last - first) / pitch) + 2
     turn = start[:, None] + pitch * np.arange(lines)[None, :]
-    a = turn[..., None] + band[:, k.B_THETA_IN]
-    b = turn[..., None] + band[:, k.B_THETA_OUT]
-    lo, hi = np.minimum(a, b), np.maximum(a, b)
-    top, bottom = np.minimum(hi, psi_hi), np.maximum(lo, psi_lo)
-    inside = (top > bottom) & (turn <= last)[..., None]
-    span = np.where(hi > lo, hi - lo, 1.0)
-    fraction = np.where(inside, (top - bottom) / span, 0.0)
-    t = np.where(inside & (fraction < 1.0), 0.5 * (top + bottom - a - b) / (b - a), 0.0)
-    rho = band[:, k.B_RHO] + t * band[:, k.B_D_RHO]
-    cos_t = band[:, k.B_COS] + t * band[:, k.B_D_COS]
-    sin_t = band[:, k.B_SIN] + t * band[:, k.B_D_SIN]
-    psi = turn[..., None] + np.arctan2(sin_t, cos_t)
-    lever = band[:, k.B_LEVER] + t * band[:, k.B_D_LEVER]
-    length = fraction * band[:, k.B_LENGTH]
+    at = band_points(band, turn, psi_lo, psi_hi, last)
+    inside, rho = at.inside, at.rho
     separation = np.zeros(rho.shape)
     if contact.separation is not None and np.any(inside):
         turns = np.broadcast_to(turn[..., None], rho.shape)
         separation[inside] = contact.separation(turns[inside], rho[inside])
-    edge = np.where(inside, np.where(lo < psi_lo, -1, 0) + np.where(hi > psi_hi, 1, 0), 0)
-    return MeshPoints(phi1, turn, rho, psi, lever, length, separation, inside,
-                      edge.astype(np.int8), np.where(inside, bottom, np.nan),
-                      np.where(inside, top, np.nan), np.arange(bands))
+    return MeshPoints(phi1, turn, rho, at.psi, at.lever, at.length, separation, inside,
+                      at.edge.astype(np.int8), np.where(inside, at.bottom, np.nan),
+                      np.where(inside, at.top, np.nan), np.arange(bands))
 
 
 def loaded_points(contact, torques, phases):

@@ -25,6 +25,7 @@ import math
 import numpy as np
 
 from lsbg.contact import kernels as k
+from lsbg.contact.bands import band_points
 
 __all__ = ["ContactPoints", "contact_points", "FECompliance"]
 
@@ -122,29 +123,17 @@ def contact_points(contact, mismatch_turn, field=None):
     rows = []
     n = 0
     while turn <= last:
-        # as the line model's kernel does (lsbg.contact.kernels._line_side): a
-        # band cut by the field's edge acts at the middle of its inside part
-        a, b = turn + band[:, k.B_THETA_IN], turn + band[:, k.B_THETA_OUT]
-        lo, hi = np.minimum(a, b), np.maximum(a, b)
-        top, bottom = np.minimum(hi, psi_hi), np.maximum(lo, psi_lo)
-        inside = top > bottom
-        fraction = np.where(inside, (top - bottom) / np.where(hi > lo, hi - lo, 1.0), 0.0)
-        t = np.where(fraction < 1.0, 0.5 * (top + bottom - a - b) / (b - a), 0.0)
+        # as the line model's kernel does; an end of the field inside a band is an
+        # edge (the line's end)
+        at = band_points(band, turn, psi_lo, psi_hi)
+        inside, rho = at.inside, at.rho
         if np.any(inside):
-            rho = band[:, k.B_RHO] + t * band[:, k.B_D_RHO]
-            cos_t = band[:, k.B_COS] + t * band[:, k.B_D_COS]
-            sin_t = band[:, k.B_SIN] + t * band[:, k.B_D_SIN]
-            psi = turn + np.arctan2(sin_t, cos_t)
-            lever = band[:, k.B_LEVER] + t * band[:, k.B_D_LEVER]
-            length = fraction * band[:, k.B_LENGTH]
             s = (contact.separation(np.full(rho.size, turn), rho)
                  if contact.separation is not None else np.zeros(rho.size))
-            # the end of the field inside the band: an edge (the line's end)
-            edge = np.where(lo < psi_lo, -1, 0) + np.where(hi > psi_hi, 1, 0)
             rows.append(tuple(np.asarray(v)[inside] for v in (
-                np.full(rho.size, n), rho, psi, lever, length, np.asarray(s, float),
-                np.arange(rho.size), np.full(rho.size, turn), edge,
-                np.broadcast_to(bottom, rho.shape), np.broadcast_to(top, rho.shape))))
+                np.full(rho.size, n), rho, at.psi, at.lever, at.length, np.asarray(s, float),
+                np.arange(rho.size), np.full(rho.size, turn), at.edge,
+                np.broadcast_to(at.bottom, rho.shape), np.broadcast_to(at.top, rho.shape))))
         turn += pitch
         n += 1
     if not rows:
