@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from matplotlib.ticker import MaxNLocator
+
 from lsbg.figures.base import axis_label, figure_legend, new_figure, type_color
 
 __all__ = ["plot_fronts", "plot_hypervolume"]
@@ -88,6 +90,7 @@ def plot_hypervolume(fronts):
                 "-" if seed == seeds[0] else "--", color=type_color(kind), lw=1.4,
                 marker=".", label=f"{kind}, seed {seed}")
     ax.set_xlabel("generation")
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))  # generations are whole
     ax.set_ylabel("hypervolume of the feasible front [-]")
     ax.set_ylim(bottom=0)
     ax.grid(True, alpha=0.3)
