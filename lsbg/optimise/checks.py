@@ -232,13 +232,14 @@ def run_settings(config, design):
         check_positions=int(config.get("misalignment_map", {}).get("positions", 100)),
         contact=ContactParameters.from_config(config.get("contact", {})),
         edge_radius=edge_radius)
+    reference = FlankModification.from_config(config.get("flank_modification", {}))
     permissible = section.get("permissible_pressure_MPa")
     if permissible is None:
         permissible = config.get("rating", {}).get("contact_endurance_MPa", 1500)
-    return {"space": DesignSpace.from_config(section.get("bounds", {})),
+    return {"space": DesignSpace.from_config(section.get("bounds", {}), reference),
             "evaluation": evaluation, "objectives": tuple(section["objectives"]),
             "population": int(section["population"]),
             "generations": int(section["generations"]), "seed": int(section["seed"]),
             "algorithm": section["algorithm"], "choice": section["choice"],
             "permissible_pressure": float(permissible),
-            "reference": FlankModification.from_config(config.get("flank_modification", {}))}
+            "reference": reference}

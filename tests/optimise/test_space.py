@@ -46,7 +46,19 @@ def test_bad_bounds_are_named(bounds, message):
     assert str(error.value).startswith(message)
 
 
+def test_the_reliefs_lengths_are_the_shared_designs_own_unless_bounded():
+    # the practice design's "long" relief: a search at 0.25 could not reach it
+    shared = FlankModification(pinion_tip_relief=26.6e-6, gear_tip_relief=26.6e-6,
+                               pinion_tip_relief_length=0.137, gear_tip_relief_length=0.2)
+    space = DesignSpace.from_config({}, shared)
+    assert space.fixed == {"pinion_tip_relief_length": 0.137, "gear_tip_relief_length": 0.2}
+    assert space.modification(np.full(space.size, 0.5)).pinion_tip_relief_length == 0.137
+    free = DesignSpace.from_config({"gear_tip_relief_length": [0.1, 0.3]}, shared)
+    assert "gear_tip_relief_length" in free.keys
+    assert free.fixed == {"pinion_tip_relief_length": 0.137}
+
+
 def test_a_space_with_every_variable_fixed_is_refused():
-    fixed = {key: [spec[2][0]] * 2 for key, spec in VARIABLES.items()}
+    fixed = {key: [spec[2][0] if spec[2] else 0.25] * 2 for key, spec in VARIABLES.items()}
     with pytest.raises(ValueError, match=r"^optimise.bounds = .*every variable is fixed"):
         DesignSpace.from_config(fixed)
