@@ -25,7 +25,8 @@ def add_optimise_parser(subparsers):
                     "misalignment_map envelope, the largest contact pressure, the mesh "
                     "loss), under the constraints of no edge contact, the pattern inside "
                     "the face, the relief within the backlash and contact kept; pick one "
-                    "design by optimise.choice; write the final population, the front, "
+                    "design by optimise.choice; write the final population, the front (every "
+                    "feasible design evaluated that no other dominates), "
                     "the chosen design, the hypervolume by generation and the shared "
                     "design's figures (the flank_modification section) to --out (NetCDF, "
                     "CF-1.11). Everything is checked before the first evaluation.")

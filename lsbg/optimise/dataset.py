@@ -1,7 +1,8 @@
 """A run's front as a CF-annotated dataset, and the chosen design back from it.
 
-:func:`front_dataset` writes the final population of a run
-(:class:`lsbg.optimise.search.Front`): each individual's ease-off
+:func:`front_dataset` writes the designs of a run
+(:class:`lsbg.optimise.search.Front`: its final population and the members of
+its front, every feasible design it evaluated that no other dominates): each design's ease-off
 coefficients (``lengthwise_crowning`` ... in um, the reliefs' lengths as
 fractions), every quantity of its evaluation (objectives, constraints and
 further figures, :data:`lsbg.optimise.objectives.QUANTITIES`), whether it is
@@ -56,7 +57,7 @@ def front_dataset(front, space, chosen, reference, attrs=None, checked=None):
     front : lsbg.optimise.search.Front
     space : lsbg.optimise.space.DesignSpace
     chosen : int
-        Index of the chosen individual in the final population, -1 for none.
+        Index of the chosen design in the run's designs (``front.x``), -1 for none.
     reference : dict
         The shared design's quantities (:meth:`lsbg.optimise.objectives.Evaluator.evaluate`).
     attrs : dict, optional
@@ -94,7 +95,10 @@ def front_dataset(front, space, chosen, reference, attrs=None, checked=None):
             "units": unit, "long_name": f"{text}, the shared design"})
     flags = {"feasible": (front.feasible, "1 where every constraint holds"),
              "front": (front.front, "1 on the feasible non-dominated front"),
-             "chosen": (np.arange(n) == chosen, "1 for the design the choice rule picks")}
+             "chosen": (np.arange(n) == chosen, "1 for the design the choice rule picks"),
+             "population_member": (np.arange(n) < front.population if front.population_member
+                                   is None else front.population_member,
+                                   "1 for the final population's designs")}
     for name, (flag, text) in flags.items():
         data[name] = (individual, np.asarray(flag, np.int8), {"units": "1", "long_name": text})
     data["checked_edge_contact"] = (individual, np.full(n, np.nan) if checked is None
@@ -103,7 +107,7 @@ def front_dataset(front, space, chosen, reference, attrs=None, checked=None):
                                    "map's resolution, over the envelope (NaN: not checked)"})
     generation = ("generation",)
     data["hypervolume"] = (generation, front.hypervolume, {
-        "units": "1", "long_name": "hypervolume of the feasible non-dominated set, "
+        "units": "1", "long_name": "hypervolume of the run's front so far, "
                                    "objectives over their scales, reference point 1"})
     data["feasible_count"] = (generation, front.feasible_count, {
         "units": "1", "long_name": "feasible individuals of the population"})
@@ -130,6 +134,8 @@ def front_dataset(front, space, chosen, reference, attrs=None, checked=None):
         "chosen": int(chosen),
         "feasible_individuals": int(np.sum(front.feasible)),
         "front_individuals": int(np.sum(front.front)),
+        "front_definition": "every feasible design evaluated in the run that no other "
+                            "feasible design evaluated dominates (an external archive)",
         "final_hypervolume": float(front.hypervolume[-1]) if front.hypervolume.size else 0.0,
         "hypervolume_reference_point": " ".join(["1"] * len(front.objectives)),
         **{f"hypervolume_scale_{name}_{OBJECTIVES[name][0].replace('%', 'percent')}":
@@ -142,7 +148,7 @@ def front_dataset(front, space, chosen, reference, attrs=None, checked=None):
     base = {k: _attribute(v) for k, v in base.items() if v is not None}
     return short_labels(xr.Dataset(
         data, coords={"individual": ("individual", np.arange(n), {
-                          "long_name": "individual of the final population"}),
+                          "long_name": "design: the final population, then the front's others"}),
                       "generation": ("generation", np.arange(1, front.hypervolume.size + 1), {
                           "long_name": "generation"})},
         attrs=base))

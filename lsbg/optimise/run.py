@@ -69,7 +69,7 @@ def checked_choice(evaluator, front, space, rule, permissible_pressure):
     Returns
     -------
     chosen : int
-        Index in the final population, -1 if no member of the front passes.
+        Index in the run's designs (``front.x``), -1 if no member of the front passes.
     checked : numpy.ndarray, shape (population,)
         The finer check's edge-contact share of each member checked, NaN elsewhere [-].
     """

@@ -10,14 +10,19 @@ infeasible ones by their total violation). It is deterministic: pymoo draws
 every random number from a generator seeded with ``seed``, and the
 evaluations are deterministic.
 
-The **hypervolume** of each generation's feasible non-dominated set is
-recorded (moocore's exact hypervolume, Fonseca, Paquete & López-Ibáñez 2006)
-on objectives normalised by fixed scales, f / f_scale with f_scale of
+The run's **front** is every feasible design it evaluated that no other
+feasible design it evaluated dominates (an external archive, as in Zitzler &
+Thiele's SPEA, IEEE Trans. Evol. Comput. 3, 1999): NSGA-II's last population
+holds only ``population`` designs and can lose good ones to crowding in four
+objectives, while the archive keeps all it found. Its **hypervolume** after
+each generation is recorded (moocore's exact hypervolume, Fonseca, Paquete &
+López-Ibáñez 2006) on objectives normalised by fixed scales, f / f_scale with f_scale of
 :data:`HYPERVOLUME_SCALES` (zero is every objective's ideal, and each scale a
 value the worst useful design reaches), with the reference point 1 in every
 objective: the same box for every run of a problem, so that the histories
-of two seeds, and of a small and a full budget, compare. A generation
-without a feasible design has hypervolume 0.
+of two seeds, and of a small and a full budget, compare. The archive only
+grows, so the history does not fall (a last population's can), and
+generations without a feasible design have hypervolume 0.
 
 SI inside the evaluations; the objectives in the units of
 :data:`lsbg.optimise.objectives.QUANTITIES`.
@@ -33,7 +38,8 @@ import numpy as np
 
 from lsbg.optimise.objectives import CONSTRAINTS, OBJECTIVES
 
-__all__ = ["ALGORITHMS", "HYPERVOLUME_SCALES", "Front", "hypervolume", "optimise"]
+__all__ = ["ALGORITHMS", "HYPERVOLUME_SCALES", "Front", "hypervolume", "merged_front",
+           "optimise"]
 
 #: The algorithms by name.
 ALGORITHMS = ("nsga2", "nsga3")
@@ -80,19 +86,22 @@ def hypervolume(values, objectives):
 
 @dataclass(frozen=True)
 class Front:
-    """The outcome of a run: its final population and its history.
+    """The outcome of a run: its final population, its front and its history.
 
     Attributes
     ----------
     x : numpy.ndarray, shape (n, variables)
-        The final population's scaled variables [-].
+        The scaled variables [-] of the final population's designs, then of
+        the archive's front members not in it.
     quantities : dict
-        ``{name: array (n,)}``: every quantity of each individual's evaluation.
+        ``{name: array (n,)}``: every quantity of each design's evaluation.
     objectives : tuple of str
     feasible : numpy.ndarray of bool, shape (n,)
     front : numpy.ndarray of bool, shape (n,)
-        The feasible non-dominated individuals.
+        The run's front: the feasible designs no feasible design evaluated
+        in the run dominates.
     hypervolume : numpy.ndarray, shape (generations,)
+        The front's hypervolume so far, after each generation [-].
     feasible_count : numpy.ndarray, shape (generations,)
         Feasible individuals of each generation's population [-].
     evaluations : numpy.ndarray, shape (generations,)
@@ -101,6 +110,8 @@ class Front:
     algorithm : str
     seconds : float
         Wall time of the run [s].
+    population_member : numpy.ndarray of bool, shape (n,)
+        The final population's designs (the first ``population`` rows).
     """
 
     x: np.ndarray
@@ -116,6 +127,7 @@ class Front:
     generations: int
     algorithm: str
     seconds: float
+    population_member: np.ndarray = None
 
     @property
     def values(self):
@@ -147,6 +159,38 @@ def non_dominated(values):
         dominated = np.all(others <= values[i], axis=1) & np.any(others < values[i], axis=1)
         keep[i] = not np.any(dominated)
     return keep
+
+
+def dominated_by(values, others):
+    """True for the rows of ``values`` that some row of ``others`` dominates (minimisation)."""
+    values, others = np.asarray(values, float), np.asarray(others, float)
+    if values.shape[0] == 0 or others.shape[0] == 0:
+        return np.zeros(values.shape[0], bool)
+    a, b = values[:, None, :], others[None, :, :]
+    return np.any(np.all(b <= a, axis=2) & np.any(b < a, axis=2), axis=1)
+
+
+def merged_front(front, candidates):
+    """The non-dominated rows of a front and new candidates, each set's own kept rows.
+
+    Parameters
+    ----------
+    front : array_like, shape (n, m)
+        Mutually non-dominated objective vectors.
+    candidates : array_like, shape (k, m)
+        New objective vectors.
+
+    Returns
+    -------
+    keep_front : numpy.ndarray of bool, shape (n,)
+    keep_candidates : numpy.ndarray of bool, shape (k,)
+        The rows of each that no row of the union dominates.
+    """
+    front = np.asarray(front, float).reshape(-1, np.shape(candidates)[1])
+    candidates = np.asarray(candidates, float)
+    keep = non_dominated(candidates) if candidates.shape[0] else np.zeros(0, bool)
+    keep &= ~dominated_by(candidates, front)
+    return ~dominated_by(front, candidates[keep]), keep
 
 
 def optimise(evaluator, space, objectives, population, generations, seed,
@@ -198,6 +242,8 @@ def optimise(evaluator, space, objectives, population, generations, seed,
         raise ValueError(f"population = {population!r}, generations = {generations!r}: at "
                          f"least 2 and 1")
     evaluated = {}  # the quantities of each design evaluated, by its variables' bytes
+    archive = {"keys": [], "values": np.zeros((0, len(objectives)))}  # the run's front
+    fresh = []  # the feasible designs evaluated since the last generation's end, by key
 
     class EaseOff(Problem):
         def __init__(self):
@@ -210,6 +256,8 @@ def optimise(evaluator, space, objectives, population, generations, seed,
                 key = row.tobytes()
                 if key not in evaluated:
                     evaluated[key] = evaluator.evaluate(space.modification(row))
+                    if all(evaluated[key][name] <= 0 for name in CONSTRAINTS):
+                        fresh.append(key)
                 rows.append(evaluated[key])
             out["F"] = np.array([[q[name] for name in objectives] for q in rows])
             out["G"] = np.array([_violations(q) for q in rows])
@@ -218,11 +266,15 @@ def optimise(evaluator, space, objectives, population, generations, seed,
 
     class Record(Callback):
         def notify(self, algorithm):
-            pop = algorithm.pop
-            feasible = pop.get("CV").ravel() <= 0
-            values = pop.get("F")[feasible]
-            best = values[non_dominated(values)] if values.size else values
-            history["hypervolume"].append(hypervolume(best, objectives))
+            feasible = algorithm.pop.get("CV").ravel() <= 0
+            values = np.array([[evaluated[key][name] for name in objectives] for key in fresh])
+            if fresh:
+                old, new = merged_front(archive["values"], values)
+                archive["keys"] = ([k for k, kept in zip(archive["keys"], old) if kept]
+                                   + [k for k, kept in zip(fresh, new) if kept])
+                archive["values"] = np.vstack([archive["values"][old], values[new]])
+            fresh.clear()
+            history["hypervolume"].append(hypervolume(archive["values"], objectives))
             history["feasible"].append(int(feasible.sum()))
             history["evaluations"].append(int(algorithm.evaluator.n_eval))
             if log is not None:
@@ -242,16 +294,17 @@ def optimise(evaluator, space, objectives, population, generations, seed,
     result = minimize(EaseOff(), method, ("n_gen", int(generations)), seed=int(seed),
                       callback=Record(), verbose=False)
     seconds = time.perf_counter() - start
-    x = np.asarray(result.pop.get("X"), float)
-    rows = [evaluated[row.tobytes()] for row in x]
+    final = np.asarray(result.pop.get("X"), float)
+    keys = [row.tobytes() for row in final]
+    members, last = set(archive["keys"]), set(keys)
+    keys += [key for key in archive["keys"] if key not in last]
+    x = np.vstack([final] + [np.frombuffer(key, dtype=float)[None, :] for key in keys[len(final):]])
+    rows = [evaluated[key] for key in keys]
     quantities = {name: np.array([q[name] for q in rows]) for name in rows[0]}
     feasible = np.all(np.column_stack([quantities[name] for name in CONSTRAINTS]) <= 0, axis=1)
-    values = np.column_stack([quantities[name] for name in objectives])
-    front = np.zeros(len(rows), bool)
-    if feasible.any():
-        front[np.flatnonzero(feasible)[non_dominated(values[feasible])]] = True
+    front = np.array([key in members for key in keys], bool)
     return Front(x, quantities, objectives, feasible, front,
                  np.array(history["hypervolume"]), np.array(history["feasible"]),
                  np.array(history["evaluations"]), int(seed), int(population),
-                 int(generations), algorithm, seconds)
+                 int(generations), algorithm, seconds, np.arange(len(keys)) < len(final))
 

@@ -4,7 +4,9 @@ import numpy as np
 import pytest
 
 from lsbg.optimise.objectives import EvaluationSettings, Evaluator
-from lsbg.optimise.search import HYPERVOLUME_SCALES, hypervolume, non_dominated, optimise
+from lsbg.optimise.objectives import CONSTRAINTS
+from lsbg.optimise.search import (HYPERVOLUME_SCALES, hypervolume, merged_front, non_dominated,
+                                  optimise)
 from lsbg.optimise.space import DesignSpace
 
 from tests.optimise.conftest import RATED, edge_radius
@@ -47,6 +49,37 @@ def test_two_seeds_reach_the_same_hypervolume(small):
         # the front's members are not dominated by any feasible individual
         values = front.values[front.feasible]
         assert np.all(non_dominated(values)[front.front[front.feasible]])
+
+
+def test_merged_front_keeps_what_nothing_dominates():
+    front = np.array([[1.0, 4.0], [2.0, 2.0], [4.0, 1.0]])
+    candidates = np.array([[1.5, 1.5], [3.0, 3.0], [0.5, 5.0], [0.5, 5.0]])
+    old, new = merged_front(front, candidates)
+    assert old.tolist() == [True, False, True]  # (1.5, 1.5) dominates (2, 2)
+    assert new.tolist() == [True, False, True, True]  # equal vectors dominate neither
+    union = np.vstack([front, candidates])
+    assert np.array_equal(np.concatenate([old, new]), non_dominated(union))
+    assert merged_front(np.zeros((0, 2)), candidates)[1].tolist() == [True, False, True, True]
+
+
+def test_the_front_is_every_feasible_design_evaluated_that_none_dominates(small):
+    evaluator, space = small
+    seen = []
+
+    class Recording:
+        def evaluate(self, modification):
+            seen.append(evaluator.evaluate(modification))
+            return seen[-1]
+
+    front = optimise(Recording(), space, OBJECTIVES, 8, 4, 3)
+    feasible = [q for q in seen if all(q[name] <= 0 for name in CONSTRAINTS)]
+    values = np.array([[q[name] for name in OBJECTIVES] for q in feasible])
+    expected = values[non_dominated(values)]
+    found = front.values[front.front]
+    assert sorted(map(tuple, found)) == sorted(map(tuple, expected))
+    assert np.all(np.diff(front.hypervolume) >= 0)  # the archive never loses a design
+    assert front.hypervolume[-1] == pytest.approx(hypervolume(expected, OBJECTIVES), rel=1e-12)
+    assert front.population_member.sum() == 8 and np.all(front.population_member[:8])
 
 
 def test_the_same_seed_gives_the_same_front(small):
