@@ -6,7 +6,8 @@ Run as a script (pytest does not collect it: no ``test_`` prefix)::
 
 Runs bench_dynamics.py (kernels, engines per simulated second, the PyBullet
 step against its floor, compile and cache-load times), bench_tca.py (the
-surface TCA and the V-H map of a design point), bench_tooth.py (the FE
+surface TCA and the V-H map of a design point, the uniform bed's loaded TCA over
+a load range), bench_tooth.py (the FE
 compliance, the FE loaded TCA of a design point and its load range, seconds
 per torque) and bench_study.py (the start-up costs, the full study with -j2
 and -j1, the speed sweep), then prints one table: figure, value, target,

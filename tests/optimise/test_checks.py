@@ -81,8 +81,10 @@ def test_a_budget_beyond_the_limit_is_named():
     assert message.endswith("more than limits.optimise_minutes = 10")
     seconds = evaluation_seconds(config())
     assert 0.02 < seconds < 0.08
-    # the full budget of workflow/config-optimise.yaml fits the default limit
-    assert optimise_problems(config("optimise.population=60", "optimise.generations=60")) == []
+    # the full budget of workflow/config-optimise.yaml fits its own limit, not the default
+    full = ("optimise.population=100", "optimise.generations=150")
+    assert first_problem(*full).endswith("more than limits.optimise_minutes = 10")
+    assert optimise_problems(config(*full, "limits.optimise_minutes=15")) == []
 
 
 def test_a_friction_law_outside_its_roughness_and_a_rule_without_its_objectives():
