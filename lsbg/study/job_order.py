@@ -25,13 +25,21 @@ import re
 __all__ = ["JOB_SECONDS", "rule_graph", "levels", "assign_priorities"]
 
 #: Wall time [s] of one job of each rule of the default study, ``snakemake -j2``
-#: on the 2-core reference machine (tests/benchmarks/bench_study.py, 2026-11-25).
-JOB_SECONDS = {"paper_geometry": 5.4, "paper_ltca": 1.1, "tooth_compliance": 8.8,
-               "fe_ltca": 3.0, "fe_sensitivity": 5.9, "sweep_points": 17.2,
-               "sweep_contact_state": 13.7, "contact_state": 8.8, "convergence_point": 13.1,
-               "convergence_line": 10.6, "sensitivity": 14.5, "rating": 0.8, "combine": 3.7,
-               "summary": 3.5, "report_paper": 15.9, "report_sweep": 8.4,
-               "report_verification": 7.7}
+#: on the 2-core reference machine from a fresh copy with an empty numba cache
+#: (tests/benchmarks/bench_study.py, 2026-11-27: the mean of each rule's jobs), with
+#: the practice design, the load curves, the ease-off searches and the best design point.
+JOB_SECONDS = {"paper_geometry": 4.5, "paper_ltca": 1.2, "tooth_compliance": 10.6,
+               "fe_ltca": 2.6, "fe_sensitivity": 4.2, "sweep_points": 30.9,
+               "sweep_contact_state": 11.0, "contact_state": 6.5, "convergence_point": 12.3,
+               "convergence_line": 10.2, "sensitivity": 12.9, "rating": 0.8, "checks": 2.5,
+               "combine": 2.7, "summary": 4.4, "rating_sweep": 0.7, "load_curve": 4.2,
+               "practice_design": 0.7, "practice_geometry": 1.6, "practice_compliance": 12.6,
+               "practice_contact_state": 4.3, "practice_fe_ltca": 2.9,
+               "practice_fe_envelope": 4.0, "practice_run": 3.1, "practice_rating": 0.8,
+               "optimise": 15.1, "optimise_second_seed": 14.9, "best_contact_state": 4.2,
+               "best_fe_ltca": 3.0, "best_fe_envelope": 3.7, "best_run": 2.6,
+               "best_rating": 0.8, "report_paper": 18.4, "report_sweep": 9.3,
+               "report_verification": 5.9}
 
 _FIELD = re.compile(r"\{[^{}]*\}")
 
