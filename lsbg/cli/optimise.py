@@ -58,8 +58,9 @@ def run_optimise(args):
     write_dataset(ds, args.out)
     a = ds.attrs
     lines = [f"{design.trace}: {a['evaluations']} designs in {a['run_seconds']:.3g} s "
-             f"(seed {a['seed']}), {a['feasible_individuals']} feasible, "
-             f"{a['front_individuals']} on the front, hypervolume {a['final_hypervolume']:.4g}"]
+             f"(seed {a['seed']}), {a['population_feasible_individuals']} of the last "
+             f"{a['population']} feasible, {a['front_individuals']} on the front, hypervolume "
+             f"{a['final_hypervolume']:.4g}"]
     if a["chosen"] < 0:
         lines.append("no feasible design: none chosen")
     else:

@@ -133,6 +133,8 @@ def front_dataset(front, space, chosen, reference, attrs=None, checked=None):
         "constraints": " ".join(CONSTRAINTS),
         "chosen": int(chosen),
         "feasible_individuals": int(np.sum(front.feasible)),
+        "population_feasible_individuals": int(front.feasible_count[-1])
+        if front.feasible_count.size else 0,
         "front_individuals": int(np.sum(front.front)),
         "front_definition": "every feasible design evaluated in the run that no other "
                             "feasible design evaluated dominates (an external archive)",
