@@ -105,6 +105,9 @@ def optimise_pair(pair, settings, seed=None, log=None):
     """
     evaluator = Evaluator(pair, settings["evaluation"])
     reference = evaluator.evaluate(settings["reference"])
+    if settings["permissible_pressure"] is None:
+        # the pressure of the design the choice replaces, in the same model
+        settings = {**settings, "permissible_pressure": float(reference["contact_pressure"])}
     front = optimise(evaluator, settings["space"], settings["objectives"],
                      settings["population"], settings["generations"],
                      settings["seed"] if seed is None else seed, settings["algorithm"], log)

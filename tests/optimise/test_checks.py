@@ -38,7 +38,9 @@ def test_the_defaults_pass_and_read_as_lsbgs_objects():
     assert evaluation.lubricant.roughness == pytest.approx(8e-6 / 6)
     assert evaluation.pinion_speed == pytest.approx(math.radians(7703))
     assert settings["reference"].lengthwise_crowning == pytest.approx(25e-6)
-    assert settings["permissible_pressure"] == 1500
+    assert settings["permissible_pressure"] is None  # the shared design's, once evaluated
+    assert run_settings(config("optimise.permissible_pressure_MPa=1500"),
+                        DESIGN)["permissible_pressure"] == 1500
 
 
 def test_rated_torque_is_where_iso_10300s_contact_safety_is_one():

@@ -42,6 +42,30 @@ def test_a_tiny_run_chooses_a_feasible_design(pairs):
     assert np.all(np.diff(ds["evaluations"].values) >= 0)
 
 
+def test_least_transmission_error_presses_no_harder_than_the_shared_design(pairs):
+    """Its permissible pressure, by default, is the shared design's own in the same model."""
+    pair = pairs["logarithmic"]
+    config = resolve_config([], [
+        "optimise.population=6", "optimise.generations=2", "optimise.phases=12",
+        "optimise.edge_load_tolerance=1", "optimise.choice=least_transmission_error",
+        "optimise.objectives=[transmission_error, contact_pressure]",
+        "optimise.bounds.bias_um=[0, 0]", "optimise.bounds.spiral_angle_correction_um=[0, 0]",
+        "optimise.bounds.pressure_angle_correction_um=[0, 0]",
+        "optimise.bounds.lengthwise_crowning_um=[30, 45]",
+        "optimise.bounds.profile_crowning_um=[0, 20]",
+        "optimise.bounds.pinion_tip_relief_um=[0, 15]",
+        "optimise.bounds.gear_tip_relief_um=[0, 15]", "misalignment_map.range=0.02"])
+    ds = optimise_pair(pair, run_settings(config, pair.design))
+    shared = float(ds["reference_contact_pressure"])
+    assert ds.attrs["permissible_pressure_MPa"] == shared
+    front = ds["front"].values == 1
+    within = front & (ds["contact_pressure"].values <= shared)
+    k = ds.attrs["chosen"]
+    assert within.any()  # designs pressing no harder than the shared one exist here
+    assert within[k]  # and the least TE among them is chosen
+    assert ds["transmission_error"].values[k] == ds["transmission_error"].values[within].min()
+
+
 def test_a_choice_that_fails_the_finer_edge_check_gives_way_to_the_next():
     from lsbg.optimise.choice import knee_point
     from lsbg.optimise.run import checked_choice
