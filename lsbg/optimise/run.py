@@ -70,7 +70,7 @@ def checked_choice(evaluator, front, space, rule, permissible_pressure):
     -------
     chosen : int
         Index in the run's designs (``front.x``), -1 if no member of the front passes.
-    checked : numpy.ndarray, shape (population,)
+    checked : numpy.ndarray, shape (designs,)
         The finer check's edge-contact share of each member checked, NaN elsewhere [-].
     """
     checked = np.full(front.x.shape[0], np.nan)

@@ -188,8 +188,7 @@ def merged_front(front, candidates):
     """
     front = np.asarray(front, float).reshape(-1, np.shape(candidates)[1])
     candidates = np.asarray(candidates, float)
-    keep = non_dominated(candidates) if candidates.shape[0] else np.zeros(0, bool)
-    keep &= ~dominated_by(candidates, front)
+    keep = non_dominated(candidates) & ~dominated_by(candidates, front)
     return ~dominated_by(front, candidates[keep]), keep
 
 
@@ -267,8 +266,9 @@ def optimise(evaluator, space, objectives, population, generations, seed,
     class Record(Callback):
         def notify(self, algorithm):
             feasible = algorithm.pop.get("CV").ravel() <= 0
-            values = np.array([[evaluated[key][name] for name in objectives] for key in fresh])
             if fresh:
+                values = np.array([[evaluated[key][name] for name in objectives]
+                                   for key in fresh])
                 old, new = merged_front(archive["values"], values)
                 archive["keys"] = ([k for k, kept in zip(archive["keys"], old) if kept]
                                    + [k for k, kept in zip(fresh, new) if kept])

@@ -30,7 +30,7 @@ Default bounds (:data:`VARIABLES`) and why:
   modification's default 0.25 of the active profile): the amount of a tip
   relief is tuned to its length, and a search that fixed another length
   could not reach the shared design (on the practice pair at 35 deg, 0.25
-  against its 0.137 kept every feasible design's loaded TE above 59 urad at
+  against its 0.137 kept every feasible design's loaded TE above 57 urad at
   the rated torque, twice the shared design's 34 urad); give them two
   bounds to free them.
 
@@ -44,7 +44,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["VARIABLES", "REFERENCE_KEYS", "DesignSpace", "bounds_problems"]
+__all__ = ["VARIABLES", "DesignSpace", "bounds_problems"]
 
 _UM = 1e-6
 
@@ -64,8 +64,6 @@ VARIABLES = {
     "pinion_tip_relief_length": ("pinion_tip_relief_length", 1.0, None, 0.0, 1.0),
     "gear_tip_relief_length": ("gear_tip_relief_length", 1.0, None, 0.0, 1.0),
 }
-#: The keys whose default bounds are the shared design's value (``None`` in :data:`VARIABLES`).
-REFERENCE_KEYS = tuple(key for key, spec in VARIABLES.items() if spec[2] is None)
 
 
 def bounds_problems(bounds, reference=None):
@@ -77,8 +75,8 @@ def bounds_problems(bounds, reference=None):
         ``{key: [low, high]}`` in the keys' units (keys of :data:`VARIABLES`;
         missing keys take their default bounds).
     reference : lsbg.tca.modification.FlankModification, optional
-        The shared design, whose values fix :data:`REFERENCE_KEYS` left out
-        (default: the modification's defaults).
+        The shared design, whose values fix the keys left out whose default
+        bounds are None in :data:`VARIABLES` (default: the modification's defaults).
 
     Returns
     -------
@@ -117,7 +115,7 @@ def bounds_problems(bounds, reference=None):
 
 
 def _defaults(reference=None):
-    """Every key's default bounds; :data:`REFERENCE_KEYS` fixed at the reference's values."""
+    """Every key's default bounds; those None in :data:`VARIABLES` fixed at the reference's."""
     from lsbg.tca.modification import FlankModification
 
     reference = FlankModification() if reference is None else reference
