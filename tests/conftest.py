@@ -11,7 +11,6 @@ from lsbg.tca.loaded import ltca_for_geometry
 from lsbg.files import write_dataset
 
 
-
 @pytest.hookimpl(tryfirst=True)  # before pytest-xdist reads the groups from the marks
 def pytest_collection_modifyitems(config, items):
     """The workflow's end-to-end tests in one group (``-n 2 --dist loadgroup``, the README's

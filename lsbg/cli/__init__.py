@@ -70,7 +70,8 @@ from lsbg.config import ConfigError
 from lsbg.files import InputError
 from lsbg.gear.design import DesignError
 
-__all__ = ["main", "build_parser", "parser_adders", "handler_of", "command_parsers", "CommandError", "USER_ERRORS"]
+__all__ = ["main", "build_parser", "parser_adders", "handler_of", "command_parsers",
+           "CommandError", "USER_ERRORS"]
 
 #: Exceptions that are a user's mistake: exit code 2 with the message, no traceback.
 USER_ERRORS = (ConfigError, DesignError, CommandError, InputError)

@@ -196,8 +196,8 @@ def run_settings(config, design):
     dict
         ``space`` (DesignSpace), ``evaluation`` (EvaluationSettings), ``objectives``,
         ``population``, ``generations``, ``seed``, ``algorithm``, ``choice``,
-        ``permissible_pressure`` [MPa; None: the shared design's own] and ``reference`` (the configuration's
-        ``flank_modification``, the shared design).
+        ``permissible_pressure`` [MPa; None: the shared design's own] and
+        ``reference`` (the configuration's ``flank_modification``, the shared design).
 
     Raises
     ------

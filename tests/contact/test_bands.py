@@ -38,7 +38,8 @@ def test_the_fields_end_cuts_a_band_at_the_middle_of_its_inside_part(drive):
     assert at.rho.shape == (turns.size, len(band))
     ins = at.inside
     assert ins.any() and not ins.all()
-    assert np.all(at.psi[ins] >= at.bottom[ins] - 1e-9) and np.all(at.psi[ins] <= at.top[ins] + 1e-9)
+    assert np.all(at.psi[ins] >= at.bottom[ins] - 1e-9)
+    assert np.all(at.psi[ins] <= at.top[ins] + 1e-9)
     assert np.all((at.fraction[ins] > 0) & (at.fraction[ins] <= 1))
     cut = ins & (at.fraction < 1)
     assert cut.any() and np.all(at.edge[cut] != 0)

@@ -39,7 +39,8 @@ def test_dataset_is_cf_annotated_and_reads_back(front, tmp_path):
     assert ds.attrs["seed"] == 7 and ds.attrs["population"] == 5 and ds.attrs["generations"] == 3
     assert ds.attrs["evaluations"] == 15
     # the last population's feasible designs, beside every feasible design kept
-    assert ds.attrs["population_feasible_individuals"] == 4 and ds.attrs["feasible_individuals"] == 3
+    assert ds.attrs["population_feasible_individuals"] == 4
+    assert ds.attrs["feasible_individuals"] == 3
     assert ds.attrs["objectives"] == "transmission_error mesh_loss"
     assert ds["transmission_error"].attrs["role"] == "objective"
     assert ds["edge_contact"].attrs["role"] == "constraint"
