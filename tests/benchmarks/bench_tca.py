@@ -30,6 +30,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from bench_dynamics import figure  # noqa: E402
+from bench_tooth import TORQUES  # noqa: E402  (the FE load range's torques)
 
 from lsbg.contact import ContactParameters, MeshContact  # noqa: E402
 from lsbg.gear.design import GearPairDesign  # noqa: E402
@@ -48,10 +49,6 @@ LOAD_RANGE_TARGET_S = 0.05
 #: The study's practice default (workflow/config.yaml) and the paper's load.
 MODIFICATION = FlankModification(25e-6, 5e-6)
 LOAD = 1964.99
-#: About the paper pair's rated pitting torque on the gear (ISO 10300) [N m].
-RATED = 480.0
-#: The load range: ten torques from 10 % to 150 % of the rated one, and the paper's [N m].
-TORQUES = [RATED * (0.1 + 0.14 * i) for i in range(10)] + [LOAD]
 
 
 def best_of(repeat, function):

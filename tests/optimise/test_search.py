@@ -3,8 +3,7 @@
 import numpy as np
 import pytest
 
-from lsbg.optimise.objectives import EvaluationSettings, Evaluator
-from lsbg.optimise.objectives import CONSTRAINTS
+from lsbg.optimise.objectives import CONSTRAINTS, EvaluationSettings, Evaluator
 from lsbg.optimise.search import (HYPERVOLUME_SCALES, hypervolume, merged_front, non_dominated,
                                   optimise)
 from lsbg.optimise.space import DesignSpace
