@@ -193,7 +193,7 @@ def merged_front(front, candidates):
 
 
 def optimise(evaluator, space, objectives, population, generations, seed,
-             algorithm="nsga2", log=None):
+             algorithm="nsga2", log=None, initial=None):
     """Run the multi-objective search of one pair's ease-off.
 
     Parameters
@@ -211,6 +211,11 @@ def optimise(evaluator, space, objectives, population, generations, seed,
     algorithm : {"nsga2", "nsga3"}
     log : callable, optional
         ``log(text)`` once per generation.
+    initial : array_like, shape (k, space.size), optional
+        Scaled designs [-] that take the first k places of the initial
+        population (a seeded start: the design the search is to improve on);
+        the other places are drawn at random, as without them, from the same
+        generator.
 
     Returns
     -------
@@ -226,6 +231,7 @@ def optimise(evaluator, space, objectives, population, generations, seed,
     from pymoo.algorithms.moo.nsga3 import NSGA3
     from pymoo.core.callback import Callback
     from pymoo.core.problem import Problem
+    from pymoo.operators.sampling.rnd import FloatRandomSampling
     from pymoo.optimize import minimize
     from pymoo.util.ref_dirs import get_reference_directions
 
@@ -240,6 +246,8 @@ def optimise(evaluator, space, objectives, population, generations, seed,
     if int(population) < 2 or int(generations) < 1:
         raise ValueError(f"population = {population!r}, generations = {generations!r}: at "
                          f"least 2 and 1")
+    initial = np.clip(np.asarray([] if initial is None else initial, float)
+                      .reshape(-1, space.size), 0.0, 1.0)[:int(population)]
     evaluated = {}  # the quantities of each design evaluated, by its variables' bytes
     archive = {"keys": [], "values": np.zeros((0, len(objectives)))}  # the run's front
     fresh = []  # the feasible designs evaluated since the last generation's end, by key
@@ -281,15 +289,22 @@ def optimise(evaluator, space, objectives, population, generations, seed,
                 log(f"generation {algorithm.n_gen}: {int(feasible.sum())} feasible, "
                     f"hypervolume {history['hypervolume'][-1]:.5g}")
 
+    class SeededSampling(FloatRandomSampling):
+        def _do(self, problem, n_samples, *args, random_state=None, **kwargs):
+            x = super()._do(problem, n_samples, *args, random_state=random_state, **kwargs)
+            x[:len(initial)] = initial
+            return x
+
+    sampling = SeededSampling()
     if algorithm == "nsga2":
-        method = NSGA2(pop_size=int(population))
+        method = NSGA2(pop_size=int(population), sampling=sampling)
     else:
         partitions = 1
         while math.comb(partitions + len(objectives), len(objectives) - 1) <= int(population):
             partitions += 1
         directions = get_reference_directions("das-dennis", len(objectives),
                                               n_partitions=max(partitions - 1, 1))
-        method = NSGA3(ref_dirs=directions, pop_size=int(population))
+        method = NSGA3(ref_dirs=directions, pop_size=int(population), sampling=sampling)
     start = time.perf_counter()
     result = minimize(EaseOff(), method, ("n_gen", int(generations)), seed=int(seed),
                       callback=Record(), verbose=False)

@@ -108,3 +108,24 @@ def test_nsga3_runs_on_reference_directions(small):
     front = optimise(evaluator, space, OBJECTIVES, 8, 2, 1, algorithm="nsga3")
     assert front.algorithm == "nsga3" and front.x.shape[1] == space.size
     assert front.evaluations[-1] <= 16 and front.hypervolume.size == 2
+
+
+def test_a_seeded_start_evaluates_the_shared_design_first_and_draws_the_rest_alike(small):
+    evaluator, space = small
+    shared = space.scaled(DesignSpace.from_config({}).modification(np.full(7, 0.5)))
+
+    def first_generation(initial):
+        seen = []
+
+        class Recording:
+            def evaluate(self, modification):
+                seen.append(space.scaled(modification))
+                return evaluator.evaluate(modification)
+
+        optimise(Recording(), space, OBJECTIVES, 6, 1, 5, initial=initial)
+        return np.array(seen)
+
+    plain, seeded = first_generation(None), first_generation([shared])
+    assert np.allclose(seeded[0], shared)  # the shared design is evaluated first
+    assert np.array_equal(seeded[1:], plain[1:])  # the other places as without it
+    assert not np.allclose(plain[0], shared)
