@@ -71,7 +71,9 @@ def run_optimise(args):
         relief = ", ".join(f"{name} {ds[name].values[k]:.3g}" for name in (
             "lengthwise_crowning", "profile_crowning", "bias", "spiral_angle_correction",
             "pressure_angle_correction", "pinion_tip_relief", "gear_tip_relief"))
-        lines.append(f"chosen ({a['choice_rule']}): {relief} um; {shown}")
+        among = (", among the designs below the shared TE at the rated torque"
+                 if a.get("chosen_below_shared_transmission_error") else "")
+        lines.append(f"chosen ({a['choice_rule']}{among}): {relief} um; {shown}")
     lines.append(f"-> {args.out}")
     if args.overlay_out:
         lines.append(_write_overlay(ds, args.settings, args.overlay_out))

@@ -196,6 +196,7 @@ def run_settings(config, design):
     dict
         ``space`` (DesignSpace), ``evaluation`` (EvaluationSettings), ``objectives``,
         ``population``, ``generations``, ``seed``, ``algorithm``, ``choice``,
+        ``choose_from``, ``start_from_shared``,
         ``permissible_pressure`` [MPa; None: the shared design's own] and
         ``reference`` (the configuration's ``flank_modification``, the shared design).
 
@@ -244,5 +245,7 @@ def run_settings(config, design):
             "population": int(section["population"]),
             "generations": int(section["generations"]), "seed": int(section["seed"]),
             "algorithm": section["algorithm"], "choice": section["choice"],
+            "choose_from": section["choose_from"],
+            "start_from_shared": bool(section["start_from_shared"]),
             "permissible_pressure": None if permissible is None else float(permissible),
             "reference": reference}

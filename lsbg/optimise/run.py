@@ -3,8 +3,12 @@
 :func:`optimise_pair` is what ``lsbg optimise`` runs: the settings of
 :func:`lsbg.optimise.checks.run_settings` (read and checked before anything
 is evaluated), the shared design (the configuration's ``flank_modification``)
-evaluated for comparison, the search (:func:`lsbg.optimise.search.optimise`),
-the choice rule on the feasible front (:func:`lsbg.optimise.choice.choose`),
+evaluated for comparison, the search (:func:`lsbg.optimise.search.optimise`; with ``start_from_shared``
+the shared design takes the first place of its initial population), the
+choice rule on the feasible front (:func:`lsbg.optimise.choice.choose`) or,
+with ``choose_from = "below_shared"``, on the front's members whose loaded
+TE peak to peak at the rated torque is below the shared design's
+(:func:`choice_candidates`; the whole front if none is),
 the chosen design checked for edge contact at the V-H map's resolution
 (:meth:`lsbg.optimise.objectives.Evaluator.edge_contact`; one that fails is
 dropped and the rule chooses again from the rest), and the front's dataset
@@ -20,7 +24,13 @@ from lsbg.optimise.dataset import front_dataset
 from lsbg.optimise.objectives import Evaluator
 from lsbg.optimise.search import optimise
 
-__all__ = ["optimise_pair", "settings_attributes", "checked_choice"]
+__all__ = ["optimise_pair", "settings_attributes", "choice_candidates", "checked_choice"]
+
+#: Where the choice rule picks from: ``below_shared``, the front's members whose loaded
+#: TE peak to peak at the rated torque is below the shared design's (the design the
+#: choice replaces must not get worse in the paper's own measure of smoothness; the
+#: whole front if no member is); ``front``, every member of the front.
+CHOOSE_FROM = ("below_shared", "front")
 
 
 def settings_attributes(settings):
@@ -29,6 +39,8 @@ def settings_attributes(settings):
     lubricant = evaluation.lubricant
     return {
         "choice_rule": settings["choice"],
+        "choose_from": settings["choose_from"],
+        "start_from_shared": settings["start_from_shared"],
         "permissible_pressure_MPa": settings["permissible_pressure"],
         "rated_torque_N_m": evaluation.rated_torque,
         "load_factors": " ".join(f"{f:g}" for f in evaluation.load_factors),
@@ -54,7 +66,41 @@ def settings_attributes(settings):
     }
 
 
-def checked_choice(evaluator, front, space, rule, permissible_pressure):
+def choice_candidates(front, choose_from, shared_transmission_error):
+    """The members of a front that the choice rule picks from.
+
+    Parameters
+    ----------
+    front : lsbg.optimise.search.Front
+    choose_from : {"below_shared", "front"}
+        :data:`CHOOSE_FROM`.
+    shared_transmission_error : float
+        The shared design's loaded TE peak to peak at the rated torque [urad].
+
+    Returns
+    -------
+    numpy.ndarray of int
+        Indices in the run's designs (``front.x``): the front's members whose
+        ``rated_transmission_error`` is below ``shared_transmission_error``
+        for ``below_shared`` if there are any, else every member.
+
+    Raises
+    ------
+    ValueError
+        For a ``choose_from`` not in :data:`CHOOSE_FROM`.
+    """
+    if choose_from not in CHOOSE_FROM:
+        raise ValueError(f"optimise.choose_from = {choose_from!r}: one of {CHOOSE_FROM}")
+    members = np.flatnonzero(front.front)
+    if choose_from == "below_shared":
+        below = members[front.quantities["rated_transmission_error"][members]
+                        < shared_transmission_error]
+        if below.size:
+            return below
+    return members
+
+
+def checked_choice(evaluator, front, space, rule, permissible_pressure, members=None):
     """The choice rule's member of the front that passes the finer edge-contact check.
 
     Parameters
@@ -65,6 +111,9 @@ def checked_choice(evaluator, front, space, rule, permissible_pressure):
     rule : str
     permissible_pressure : float
         [MPa].
+    members : array_like of int, optional
+        The candidates (:func:`choice_candidates`; default: every member of the
+        front). Where none of them passes, the rest of the front is tried.
 
     Returns
     -------
@@ -74,13 +123,17 @@ def checked_choice(evaluator, front, space, rule, permissible_pressure):
         The finer check's edge-contact share of each member checked, NaN elsewhere [-].
     """
     checked = np.full(front.x.shape[0], np.nan)
-    members = list(np.flatnonzero(front.front))
-    while members:
-        k = members[choose(front.values[members], front.objectives, rule, permissible_pressure)]
-        checked[k] = evaluator.edge_contact(space.modification(front.x[k]))
-        if checked[k] <= 0.0:
-            return int(k), checked
-        members.remove(k)
+    everyone = np.flatnonzero(front.front)
+    first = everyone if members is None else np.asarray(members, int)
+    rest = sorted(set(everyone.tolist()) - set(first.tolist()))
+    for candidates in (list(first), rest):
+        while candidates:
+            k = candidates[choose(front.values[candidates], front.objectives, rule,
+                                  permissible_pressure)]
+            checked[k] = evaluator.edge_contact(space.modification(front.x[k]))
+            if checked[k] <= 0.0:
+                return int(k), checked
+            candidates.remove(k)
     return -1, checked
 
 
@@ -108,11 +161,20 @@ def optimise_pair(pair, settings, seed=None, log=None):
     if settings["permissible_pressure"] is None:
         # the pressure of the design the choice replaces, in the same model
         settings = {**settings, "permissible_pressure": float(reference["contact_pressure"])}
-    front = optimise(evaluator, settings["space"], settings["objectives"],
+    space = settings["space"]
+    front = optimise(evaluator, space, settings["objectives"],
                      settings["population"], settings["generations"],
-                     settings["seed"] if seed is None else seed, settings["algorithm"], log)
-    chosen, checked = checked_choice(evaluator, front, settings["space"], settings["choice"],
-                                     settings["permissible_pressure"])
+                     settings["seed"] if seed is None else seed, settings["algorithm"], log,
+                     initial=[space.scaled(settings["reference"])]
+                     if settings["start_from_shared"] else None)
+    members = choice_candidates(front, settings["choose_from"],
+                                reference["rated_transmission_error"])
+    chosen, checked = checked_choice(evaluator, front, space, settings["choice"],
+                                     settings["permissible_pressure"], members)
+    below = front.quantities["rated_transmission_error"] < reference["rated_transmission_error"]
     attrs = {**settings_attributes(settings),
+             "choice_candidates": int(members.size),
+             "chosen_below_shared_transmission_error":
+                 bool(chosen >= 0 and below[chosen]),
              **{f"design_{k}": v for k, v in pair.design.to_config().items()}}
-    return front_dataset(front, settings["space"], chosen, reference, attrs, checked)
+    return front_dataset(front, space, chosen, reference, attrs, checked)

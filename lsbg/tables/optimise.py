@@ -12,8 +12,8 @@ import pandas as pd
 
 from lsbg.aggregate.runs import TYPE_ORDER, gear_type
 
-__all__ = ["read_fronts", "study_seed", "chosen_table", "seed_table", "efficiency_text",
-           "COEFFICIENTS"]
+__all__ = ["read_fronts", "study_seed", "choice_text", "chosen_table", "seed_table",
+           "efficiency_text", "COEFFICIENTS"]
 
 #: The ease-off coefficients shown [um].
 COEFFICIENTS = ("lengthwise_crowning", "profile_crowning", "bias", "spiral_angle_correction",
@@ -36,6 +36,38 @@ def read_fronts(paths):
 def study_seed(fronts):
     """The study's seed: the least of the fronts' (the next one only checks it)."""
     return min(seed for _, seed in fronts)
+
+
+def choice_text(fronts):
+    """How the study's seed chose each type's design, in words (Markdown, no full stop).
+
+    Parameters
+    ----------
+    fronts : dict
+        :func:`read_fronts`.
+
+    Returns
+    -------
+    str
+        The rule and the members it chose from, e.g. "the knee rule among its
+        front's designs whose loaded TE at the rated torque is below the shared
+        ease-off's", naming a type whose front had none there (then chosen
+        from the whole front).
+    """
+    seed = study_seed(fronts)
+    chosen = {kind: ds for (kind, s), ds in fronts.items() if s == seed}
+    first = next(iter(chosen.values()))
+    text = f"the {first.attrs['choice_rule']} rule"
+    if first.attrs.get("choose_from", "front") != "below_shared":
+        return text + " over its whole front"
+    text += (" among its front's designs whose loaded TE at the rated torque is below the "
+             "shared ease-off's")
+    missed = [kind for kind, ds in chosen.items()
+              if not ds.attrs.get("chosen_below_shared_transmission_error", 0)]
+    if missed:
+        text += (f" ({' and '.join(missed)}: no such design passed, so chosen from the whole "
+                 f"front)")
+    return text
 
 
 def chosen_table(fronts):

@@ -92,3 +92,49 @@ def test_a_choice_that_fails_the_finer_edge_check_gives_way_to_the_next():
     assert chosen == remaining[knee_point(values[remaining])]
     assert checked[knee] == 0.03 and checked[chosen] == 0.0
     assert np.isnan(checked).sum() == 2
+
+
+def _front_of(values, rated):
+    from lsbg.optimise.search import Front
+    from lsbg.optimise.space import DesignSpace
+
+    space = DesignSpace.from_config({})
+    n = len(values)
+    quantities = {"transmission_error": values[:, 0], "mesh_loss": values[:, 1],
+                  "rated_transmission_error": np.asarray(rated, float)}
+    x = np.linspace(0.1, 0.9, n)[:, None] * np.ones((n, space.size))
+    return space, x, Front(x, quantities, ("transmission_error", "mesh_loss"), np.ones(n, bool),
+                           np.ones(n, bool), np.zeros(1), np.zeros(1), np.zeros(1), 1, n, 1,
+                           "nsga2", 0)
+
+
+def test_the_choice_is_made_among_the_members_below_the_shared_te():
+    from lsbg.optimise.choice import knee_point
+    from lsbg.optimise.run import checked_choice, choice_candidates
+
+    values = np.array([[0.0, 10.0], [2.0, 3.0], [5.0, 1.5], [10.0, 0.0]])
+    space, x, front = _front_of(values, [30.0, 40.0, 33.0, 31.0])
+    assert knee_point(values) == 1  # the plain knee: 40 urad at the rated torque
+    below = choice_candidates(front, "below_shared", 34.0)
+    assert below.tolist() == [0, 2, 3]
+    assert choice_candidates(front, "front", 34.0).tolist() == [0, 1, 2, 3]
+    # none below: the whole front
+    assert choice_candidates(front, "below_shared", 20.0).tolist() == [0, 1, 2, 3]
+    with pytest.raises(ValueError, match="optimise.choose_from = 'nearest'"):
+        choice_candidates(front, "nearest", 34.0)
+
+    class Clean:
+        def edge_contact(self, modification):
+            return 0.0
+
+    chosen, _ = checked_choice(Clean(), front, space, "knee", None, below)
+    assert chosen == below[knee_point(values[below])] == 2
+
+    class EdgesBelow:  # every candidate touches an edge: the rest of the front is tried
+        def edge_contact(self, modification):
+            return 0.05 if modification.lengthwise_crowning in [
+                space.modification(x[k]).lengthwise_crowning for k in below] else 0.0
+
+    chosen, checked = checked_choice(EdgesBelow(), front, space, "knee", None, below)
+    assert chosen == 1
+    assert checked[below].tolist() == [0.05] * 3
