@@ -10,20 +10,20 @@ the optimiser's variables, scaled to 0..1 between their bounds.
 
 Default bounds (:data:`VARIABLES`) and why:
 
-* lengthwise crowning C_L 5-60 um: below about 5 um the bearing pattern at the
-  marking-compound thickness (6.35 um) runs over the whole face; 60 um is
-  about four fifths of the paper pair's normal backlash (77 um), which any
-  relief must stay within (a constraint);
-* profile crowning C_P 0-30 um: from none (the pattern localised lengthwise
-  only) to about five times the loaded approach at the rated torque
-  (~6 um at 480 N m), beyond which the load gathers on the pitch line;
-* bias B -20-20 um: the twist that tilts the path of contact, as large as
+* lengthwise crowning C_L 10-50 um: below about 10 um the bearing pattern at
+  the marking-compound thickness (6.35 um) runs off the face at the
+  envelope's corners; 50 um is about two thirds of the paper pair's normal
+  backlash (77 um), which any relief must stay within (a constraint);
+* profile crowning C_P 0-20 um: from none (the pattern localised lengthwise
+  only) to about the loaded approach at the rated torque (15-30 um), beyond
+  which the load gathers on the pitch line;
+* bias B -10-10 um: the twist that tilts the path of contact, as large as
   the crownings' usual difference;
-* spiral and pressure angle corrections C_beta, C_alpha -15-15 um: the
+* spiral and pressure angle corrections C_beta, C_alpha -10-10 um: the
   first-order terms that move the pattern towards the heel or the toe, the
   tip or the root by a few millimetres (about one P or E step of 0.1 mm);
-* tip reliefs C_a1, C_a2 0-30 um: none to about five times the loaded
-  approach, the amounts that take the profile's ends out of loaded contact;
+* tip reliefs C_a1, C_a2 0-30 um: none to about the loaded approach, the
+  amounts that take the profile's ends out of loaded contact;
 * the reliefs' lengths L_1, L_2 fixed at the shared design's own (the
   configuration's ``flank_modification``: the practice design's "long"
   relief, from the tip to the highest point of single contact, or the
