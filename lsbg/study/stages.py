@@ -201,6 +201,25 @@ def _imported_names(node, package):
     return names
 
 
+@functools.lru_cache(maxsize=None)
+def _module_names(name, package):
+    """A module's top-level definitions and the ``from lsbg... import`` names anywhere in it."""
+    tree = _tree(str(module_files(name, package)[-1]))
+    return _defined(tree), _imported_names(tree, package)
+
+
+@functools.lru_cache(maxsize=None)
+def _function_uses(name, function, package):
+    """The lsbg modules a top-level definition imports and the names it uses
+    (:func:`function_closure`'s step), or None where the module does not define it."""
+    node = _module_names(name, package)[0].get(function)
+    if node is None:
+        return None
+    used = frozenset(item.id for item in ast.walk(node)
+                     if isinstance(item, ast.Name) and item.id != function)
+    return frozenset(_imports(node, package)), _imported_names(node, package), used
+
+
 def function_closure(module, function, package=PACKAGE):
     """Every lsbg module a function of the command line can run.
 
@@ -227,21 +246,20 @@ def function_closure(module, function, package=PACKAGE):
             continue
         visited.add((where, name))
         modules |= _parents(where) | _module_level_imports(where, package)
-        tree = _tree(str(module_files(where, package)[-1]))
-        node = _defined(tree).get(name)
-        if node is None:
+        uses = _function_uses(where, name, package)
+        if uses is None:
             continue
-        modules |= _imports(node, package)
-        local = _defined(tree)
-        imported = {**_imported_names(tree, package), **_imported_names(node, package)}
-        for item in ast.walk(node):
-            if isinstance(item, ast.Name) and item.id != name:
-                if item.id in local:
-                    todo.append((where, item.id))
-                elif item.id in imported:
-                    source, target = imported[item.id]
-                    if source.split(".")[0] == COMMAND_PACKAGE:
-                        todo.append((source, target))
+        imports, own, used = uses
+        modules |= imports
+        local, in_module = _module_names(where, package)
+        imported = {**in_module, **own}
+        for used_name in sorted(used):
+            if used_name in local:
+                todo.append((where, used_name))
+            elif used_name in imported:
+                source, target = imported[used_name]
+                if source.split(".")[0] == COMMAND_PACKAGE:
+                    todo.append((source, target))
     command = {m for m in modules if m.split(".")[0] == COMMAND_PACKAGE}
     return command | module_closure(modules - command, package)
 

@@ -237,6 +237,11 @@ def sources(name, notebook=None):
     changes: one input per job instead of the files themselves (``snakemake -n``
     stays readable), and ``sha256sum -c`` on it names the changed file.
     """
+    path = SOURCES / (f"{name}-{notebook}.sha256" if notebook else f"{name}.sha256")
+    if workflow.remote_exec or workflow.subprocess_exec:
+        # the submitting Snakemake wrote it: a job's two Snakemakes (a SLURM job's and
+        # its job step's) spare following the imports, 1-2 CPU-s each
+        return path.as_posix()
     from lsbg.cli import handler_of
     from lsbg.study.stages import (function_closure, notebook_closure, sources_listing,
                                    write_if_changed)
@@ -245,9 +250,6 @@ def sources(name, notebook=None):
     modules = function_closure(handler.__module__.removeprefix("lsbg."), handler.__name__)
     if notebook:
         modules |= notebook_closure(REPO / "workflow" / "notebooks" / f"{notebook}.ipynb")
-    path = SOURCES / (f"{name}-{notebook}.sha256" if notebook else f"{name}.sha256")
-    if workflow.remote_exec or workflow.subprocess_exec:
-        return path.as_posix()  # the submitting Snakemake wrote it
     return write_if_changed(path, sources_listing(modules)).as_posix()
 
 
