@@ -117,13 +117,15 @@ def budget_problems(config):
     section = config.get("optimise", {})
     population, generations = section.get("population", 20), section.get("generations", 20)
     minutes = config.get("limits", {}).get("optimise_minutes", 10)
+    workers = max(int(section.get("workers", 1)), 1)
     each = evaluation_seconds(config)
-    needed = population * generations * each / 60
+    needed = population * generations * each / 60 / workers
     if needed <= minutes:
         return []
+    cores = "one core" if workers == 1 else f"{workers} cores (optimise.workers)"
     return [f"optimise.population = {population!r}, optimise.generations = {generations!r}: "
             f"{population * generations} evaluations of each trace, about {needed:.3g} min on "
-            f"one core ({each * 1e3:.2g} ms each), more than limits.optimise_minutes = "
+            f"{cores} ({each * 1e3:.2g} ms each), more than limits.optimise_minutes = "
             f"{minutes!r}"]
 
 
@@ -196,7 +198,7 @@ def run_settings(config, design):
     dict
         ``space`` (DesignSpace), ``evaluation`` (EvaluationSettings), ``objectives``,
         ``population``, ``generations``, ``seed``, ``algorithm``, ``choice``,
-        ``choose_from``, ``start_from_shared``,
+        ``choose_from``, ``start_from_shared``, ``workers``,
         ``permissible_pressure`` [MPa; None: the shared design's own] and
         ``reference`` (the configuration's ``flank_modification``, the shared design).
 
@@ -245,7 +247,7 @@ def run_settings(config, design):
             "population": int(section["population"]),
             "generations": int(section["generations"]), "seed": int(section["seed"]),
             "algorithm": section["algorithm"], "choice": section["choice"],
-            "choose_from": section["choose_from"],
+            "choose_from": section["choose_from"], "workers": int(section["workers"]),
             "start_from_shared": bool(section["start_from_shared"]),
             "permissible_pressure": None if permissible is None else float(permissible),
             "reference": reference}

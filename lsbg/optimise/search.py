@@ -39,7 +39,7 @@ import numpy as np
 from lsbg.optimise.objectives import CONSTRAINTS, OBJECTIVES
 
 __all__ = ["ALGORITHMS", "HYPERVOLUME_SCALES", "Front", "hypervolume", "merged_front",
-           "optimise"]
+           "evaluate_designs", "optimise"]
 
 #: The algorithms by name.
 ALGORITHMS = ("nsga2", "nsga3")
@@ -192,8 +192,48 @@ def merged_front(front, candidates):
     return ~dominated_by(front, candidates[keep]), keep
 
 
+#: The evaluator of the forked workers (:func:`_worker_pool`), set before the fork.
+_WORKER = {}
+
+
+def _evaluate_in_worker(design):
+    return _WORKER["evaluator"].evaluate(design)
+
+
+def _worker_pool(evaluator, workers):
+    """``workers`` forked processes that hold ``evaluator`` (None for one: no pool)."""
+    if workers <= 1:
+        return None
+    import multiprocessing
+
+    _WORKER["evaluator"] = evaluator
+    return multiprocessing.get_context("fork").Pool(workers)
+
+
+def evaluate_designs(evaluator, designs, pool=None):
+    """The quantities of each design, in order, in a pool's processes where there is one.
+
+    Parameters
+    ----------
+    evaluator : lsbg.optimise.objectives.Evaluator
+        Held by the pool's processes too (:func:`_worker_pool`).
+    designs : list of lsbg.tca.modification.FlankModification
+    pool : multiprocessing.pool.Pool, optional
+
+    Returns
+    -------
+    list of dict
+        :meth:`lsbg.optimise.objectives.Evaluator.evaluate` of each design.
+    """
+    if pool is None or len(designs) < 2:
+        return [evaluator.evaluate(design) for design in designs]
+    # contiguous chunks, one per process: each worker's caches serve its own designs
+    chunk = -(-len(designs) // pool._processes)
+    return pool.map(_evaluate_in_worker, designs, chunksize=chunk)
+
+
 def optimise(evaluator, space, objectives, population, generations, seed,
-             algorithm="nsga2", log=None, initial=None):
+             algorithm="nsga2", log=None, initial=None, workers=1):
     """Run the multi-objective search of one pair's ease-off.
 
     Parameters
@@ -216,6 +256,10 @@ def optimise(evaluator, space, objectives, population, generations, seed,
         population (a seeded start: the design the search is to improve on);
         the other places are drawn at random, as without them, from the same
         generator.
+    workers : int
+        Processes that evaluate each generation's new designs (forked from
+        this one, :func:`evaluate_designs`); the front is the same for any
+        number, the evaluations being deterministic.
 
     Returns
     -------
@@ -246,6 +290,8 @@ def optimise(evaluator, space, objectives, population, generations, seed,
     if int(population) < 2 or int(generations) < 1:
         raise ValueError(f"population = {population!r}, generations = {generations!r}: at "
                          f"least 2 and 1")
+    if int(workers) < 1:
+        raise ValueError(f"workers = {workers!r}: at least 1")
     initial = np.clip(np.asarray([] if initial is None else initial, float)
                       .reshape(-1, space.size), 0.0, 1.0)[:int(population)]
     evaluated = {}  # the quantities of each design evaluated, by its variables' bytes
@@ -258,14 +304,14 @@ def optimise(evaluator, space, objectives, population, generations, seed,
                              n_ieq_constr=len(CONSTRAINTS), xl=0.0, xu=1.0)
 
         def _evaluate(self, x, out, *args, **kwargs):
-            rows = []
-            for row in np.asarray(x, float):
-                key = row.tobytes()
-                if key not in evaluated:
-                    evaluated[key] = evaluator.evaluate(space.modification(row))
-                    if all(evaluated[key][name] <= 0 for name in CONSTRAINTS):
-                        fresh.append(key)
-                rows.append(evaluated[key])
+            x = np.asarray(x, float)
+            new = list(dict.fromkeys(row.tobytes() for row in x if row.tobytes() not in evaluated))
+            designs = [space.modification(np.frombuffer(key, dtype=float)) for key in new]
+            for key, quantities in zip(new, evaluate_designs(evaluator, designs, pool)):
+                evaluated[key] = quantities
+                if all(quantities[name] <= 0 for name in CONSTRAINTS):
+                    fresh.append(key)
+            rows = [evaluated[row.tobytes()] for row in x]
             out["F"] = np.array([[q[name] for name in objectives] for q in rows])
             out["G"] = np.array([_violations(q) for q in rows])
 
@@ -306,8 +352,13 @@ def optimise(evaluator, space, objectives, population, generations, seed,
                                               n_partitions=max(partitions - 1, 1))
         method = NSGA3(ref_dirs=directions, pop_size=int(population), sampling=sampling)
     start = time.perf_counter()
-    result = minimize(EaseOff(), method, ("n_gen", int(generations)), seed=int(seed),
-                      callback=Record(), verbose=False)
+    pool = _worker_pool(evaluator, int(workers))
+    try:
+        result = minimize(EaseOff(), method, ("n_gen", int(generations)), seed=int(seed),
+                          callback=Record(), verbose=False)
+    finally:
+        if pool is not None:
+            pool.terminate()
     seconds = time.perf_counter() - start
     final = np.asarray(result.pop.get("X"), float)
     keys = [row.tobytes() for row in final]

@@ -87,6 +87,11 @@ def test_a_budget_beyond_the_limit_is_named():
     full = ("optimise.population=100", "optimise.generations=150")
     assert first_problem(*full).endswith("more than limits.optimise_minutes = 10")
     assert optimise_problems(config(*full, "limits.optimise_minutes=15")) == []
+    # on four cores (optimise.workers) a quarter of the time: 40000 designs then fit 15 min
+    big = ("optimise.population=400", "optimise.generations=100", "limits.optimise_minutes=15")
+    assert "on one core" in first_problem(*big)
+    assert optimise_problems(config(*big, "optimise.workers=4")) == []
+    assert "on 2 cores (optimise.workers)" in first_problem(*big[:2], "optimise.workers=2")
 
 
 def test_a_friction_law_outside_its_roughness_and_a_rule_without_its_objectives():

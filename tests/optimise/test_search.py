@@ -129,3 +129,16 @@ def test_a_seeded_start_evaluates_the_shared_design_first_and_draws_the_rest_ali
     assert np.allclose(seeded[0], shared)  # the shared design is evaluated first
     assert np.array_equal(seeded[1:], plain[1:])  # the other places as without it
     assert not np.allclose(plain[0], shared)
+
+
+def test_worker_processes_give_the_same_front(small):
+    evaluator, space = small
+    one = optimise(evaluator, space, OBJECTIVES, 8, 3, 4)
+    two = optimise(evaluator, space, OBJECTIVES, 8, 3, 4, workers=2)
+    assert np.array_equal(one.x, two.x)
+    for name in one.quantities:
+        assert np.array_equal(one.quantities[name], two.quantities[name], equal_nan=True), name
+    assert np.array_equal(one.front, two.front)
+    assert np.array_equal(one.hypervolume, two.hypervolume)
+    with pytest.raises(ValueError, match="workers = 0: at least 1"):
+        optimise(evaluator, space, OBJECTIVES, 8, 3, 4, workers=0)

@@ -108,7 +108,14 @@ check_installed_lsbg()
 
 # ---------------------------------------------------------------- commands
 #: The shell command of every rule: ``lsbg <params.command> <params.args>``.
-LSBG = "lsbg -v {params.command} {params.args} > {log} 2>&1"
+def lsbg_shell(*settings):
+    """The shell of a rule that runs lsbg (``params`` of :func:`command`) into its log;
+    ``settings`` are further ``--set`` values, which may name the job's ``{threads}``."""
+    extra = "".join(f" --set {setting}" for setting in settings)
+    return f"lsbg -v {{params.command}} {{params.args}}{extra} > {{log}} 2>&1"
+
+
+LSBG = lsbg_shell()
 #: Wildcards that name a setting of the command: ``--set KEY=VALUE``.
 WILDCARD_SETTINGS = {"trace": "design.trace", "spiral": "design.spiral_angle_deg",
                      "model": "contact.model"}

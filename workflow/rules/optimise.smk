@@ -13,8 +13,9 @@
 #: model, the marking compound, the pinion's speed, the rating and the tooth (the flanks
 #: and the load: the practice overlay's, an input).
 OPTIMISE_SETTINGS = plan.canonical({
-    **{k: config[k] for k in ("optimise", "misalignment", "misalignment_map", "rating",
-                              "tooth", "limits")},
+    **{k: config[k] for k in ("misalignment", "misalignment_map", "rating", "tooth", "limits")},
+    # the processes do not change the front: more of them rerun nothing
+    "optimise": {k: v for k, v in config["optimise"].items() if k != "workers"},
     "contact": simulation_params(SWEEP_ENGINE, "line")["contact"],
     "marking_compound_um": config["tca"]["marking_compound_um"],
     "pinion_speed_deg_s": config["simulation"]["pinion_speed_deg_s"]})
@@ -40,7 +41,11 @@ for name, seed in zip(("optimise", "optimise_second_seed"), STUDY.optimise_seeds
             spiral=re.escape(PAPER_SPIRAL),
         log:
             f"logs/{name}/{{trace}}_beta{{spiral}}.log",
+        # optimise.workers processes evaluate each generation; a SLURM job gets as
+        # many CPUs (workflow/profiles/slurm), a local run at most --cores
+        threads: config["optimise"]["workers"]
         resources:
             runtime=5 + int(config["limits"]["optimise_minutes"]),
+            mem_mb=1500 + 500 * (config["optimise"]["workers"] - 1),
         shell:
-            LSBG
+            lsbg_shell("optimise.workers={threads}")
