@@ -19,8 +19,11 @@ executes them:
   lazily (:func:`lsbg.lazy_exports`, its ``_EXPORTS`` table) is the submodule
   that defines ``Name``.
 
-Parsing the ~120 sources takes about 0.1 s, once per process (the files'
-trees are kept). An answer of some code computed while Snakemake starts (the
+Parsing the ~130 sources and walking their trees for their import statements
+took about 1 s of every Snakemake start: the statements of each file are kept
+between processes by the SHA-256 of its content (:func:`import_statements`,
+in lsbg's machine-wide cache beside the configuration check's answers), and
+only resolved to modules afresh. An answer of some code computed while Snakemake starts (the
 configuration check) is kept on the same terms: :func:`cached_answer` asks again
 when a source of that code changes.
 """
@@ -28,6 +31,7 @@ when a source of that code changes.
 from __future__ import annotations
 
 import ast
+import atexit
 import copy
 import functools
 import hashlib
@@ -35,8 +39,9 @@ import json
 import os
 from pathlib import Path
 
-__all__ = ["PACKAGE", "module_files", "module_imports", "module_closure", "function_closure",
-           "notebook_closure", "closure_files", "sources_listing", "write_if_changed", "sources_digest", "cached_answer"]
+__all__ = ["PACKAGE", "module_files", "import_statements", "module_imports", "module_closure",
+           "function_closure", "notebook_closure", "closure_files", "sources_listing",
+           "write_if_changed", "sources_digest", "cached_answer"]
 
 #: The lsbg package directory.
 PACKAGE = Path(__file__).resolve().parents[1]
@@ -118,18 +123,102 @@ def _resolve(dotted, package):
     return None
 
 
-def _imports(node, package):
-    """lsbg modules imported anywhere below an AST node (dotted names below lsbg)."""
-    found = set()
+def _import_names(node):
+    """The dotted names imported anywhere below an AST node (``from a import b``: ``a.b``),
+    as written (absolute imports only)."""
+    names = []
     for item in ast.walk(node):
         if isinstance(item, ast.Import):
-            names = [alias.name for alias in item.names]
+            names += [alias.name for alias in item.names]
         elif isinstance(item, ast.ImportFrom) and item.module and not item.level:
-            names = [f"{item.module}.{alias.name}" for alias in item.names]
-        else:
-            continue
-        found.update(m for m in (_resolve(n, package) for n in names) if m is not None)
-    return found
+            names += [f"{item.module}.{alias.name}" for alias in item.names]
+    return names
+
+
+def _resolved(names, package):
+    """The lsbg modules dotted names stand for (:func:`_resolve`), the others left out."""
+    return {m for m in (_resolve(n, package) for n in names) if m is not None}
+
+
+def _imports(node, package):
+    """lsbg modules imported anywhere below an AST node (dotted names below lsbg)."""
+    return _resolved(_import_names(node), package)
+
+
+#: The import statements of the sources seen, by the SHA-256 of their content: loaded
+#: from the machine-wide file once per process, written back at its end if it grew.
+_STATEMENTS = {"known": None, "grown": False}
+#: The most entries the file keeps (the most recent): lsbg has about 130 sources.
+STATEMENT_ENTRIES = 4000
+
+
+def _statements_file():
+    """``source-imports.json`` in the configuration check's cache folder (None: kept by the
+    process only, ``LSBG_CHECK_CACHE=off``)."""
+    if os.environ.get("LSBG_CHECK_CACHE", "").lower() in ("0", "off", "no", "false"):
+        return None
+    from lsbg.numba_cache import numba_cache_root
+
+    return numba_cache_root() / "config-checks" / "source-imports.json"
+
+
+def _known_statements():
+    if _STATEMENTS["known"] is None:
+        _STATEMENTS["known"] = {}
+        path = _statements_file()
+        try:
+            known = json.loads(path.read_text(encoding="utf-8"))
+            if isinstance(known, dict):
+                _STATEMENTS["known"] = known
+        except (AttributeError, OSError, ValueError):
+            pass
+    return _STATEMENTS["known"]
+
+
+def _keep_statements():
+    """Write the statements back (atomically) if this process found new ones."""
+    path = _statements_file()
+    if not _STATEMENTS["grown"] or path is None:
+        return
+    known = dict(list(_STATEMENTS["known"].items())[-STATEMENT_ENTRIES:])
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        part = path.with_name(f"{path.name}.{os.getpid()}.part")
+        part.write_text(json.dumps(known), encoding="utf-8")
+        part.replace(path)
+        _STATEMENTS["grown"] = False
+    except OSError:
+        pass
+
+
+atexit.register(_keep_statements)
+
+
+def import_statements(path):
+    """The dotted names a source file imports: anywhere, and at module level.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+
+    Returns
+    -------
+    everywhere, module_level : list of str
+        As written (:func:`_import_names`), not yet resolved to lsbg's modules;
+        module level is outside the top-level functions and classes. Kept
+        between processes by the file's content.
+    """
+    data = Path(path).read_bytes()
+    key = hashlib.sha256(data).hexdigest()
+    known = _known_statements()
+    if key not in known:
+        tree = ast.parse(data.decode("utf-8"))
+        level = [name for node in tree.body
+                 if not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef))
+                 for name in _import_names(node)]
+        known[key] = [_import_names(tree), level]
+        _STATEMENTS["grown"] = True
+    return known[key]
 
 
 def module_imports(name, package=PACKAGE):
@@ -152,17 +241,14 @@ def module_imports(name, package=PACKAGE):
 # dozens of times (a walk over every node of the module each time, half of a dry run).
 @functools.lru_cache(maxsize=None)
 def _module_imports(name, package):
-    return frozenset(_imports(_tree(str(module_files(name, package)[-1])), package))
+    everywhere, _ = import_statements(module_files(name, package)[-1])
+    return frozenset(_resolved(everywhere, package))
 
 
 @functools.lru_cache(maxsize=None)
 def _module_level_imports(name, package):
-    tree = _tree(str(module_files(name, package)[-1]))
-    found = set()
-    for node in tree.body:
-        if not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
-            found |= _imports(node, package)
-    return frozenset(found)
+    _, level = import_statements(module_files(name, package)[-1])
+    return frozenset(_resolved(level, package))
 
 
 def _parents(name):

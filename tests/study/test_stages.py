@@ -148,3 +148,30 @@ def test_answers_are_kept_until_an_input_or_a_source_changes(tmp_path, monkeypat
     blocked.write_text("")
     assert stages.cached_answer(blocked, code, {"x": 10}, compute) == ["a problem"]
     assert len(calls) == 6
+
+
+def test_import_statements_are_kept_by_content_between_processes(tmp_path, monkeypatch):
+    kept = tmp_path / "cache" / "source-imports.json"
+    monkeypatch.setattr(stages, "_statements_file", lambda: kept)
+    monkeypatch.setattr(stages, "_STATEMENTS", {"known": None, "grown": False})
+    source = tmp_path / "a.py"
+    source.write_text("import lsbg.b\n\ndef f():\n    from lsbg.c import d\n")
+    assert stages.import_statements(source) == [["lsbg.b", "lsbg.c.d"], ["lsbg.b"]]
+    stages._keep_statements()                           # the process's end
+    assert len(json.loads(kept.read_text())) == 1
+    # another process reads them from the file, without parsing the source
+    monkeypatch.setattr(stages, "_STATEMENTS", {"known": None, "grown": False})
+    monkeypatch.setattr(stages.ast, "parse", lambda text: pytest.fail("parsed again"))
+    assert stages.import_statements(source) == [["lsbg.b", "lsbg.c.d"], ["lsbg.b"]]
+    monkeypatch.undo()
+    # an edited source is read afresh: the key is its content
+    monkeypatch.setattr(stages, "_statements_file", lambda: kept)
+    monkeypatch.setattr(stages, "_STATEMENTS", {"known": None, "grown": False})
+    source.write_text("import lsbg.e\n")
+    assert stages.import_statements(source) == [["lsbg.e"], ["lsbg.e"]]
+    # a corrupt file is ignored (and replaced at the end)
+    kept.write_text("{not json")
+    monkeypatch.setattr(stages, "_STATEMENTS", {"known": None, "grown": False})
+    assert stages.import_statements(source) == [["lsbg.e"], ["lsbg.e"]]
+    stages._keep_statements()
+    assert len(json.loads(kept.read_text())) == 1
