@@ -152,16 +152,21 @@ def test_lint_passes(tmp_path):
 
 def test_slurm_profile_schedules_with_resources(tmp_path):
     """The SLURM profile alone selects the executor and gives every job its memory, time
-    and one CPU (dry run, no sbatch; tests/workflow/test_slurm.py runs it on a real cluster)."""
+    and one CPU, the searches as many as their threads, optimise.workers (dry run, no
+    sbatch; tests/workflow/test_slurm.py runs it on a real cluster)."""
     profile = REPO / "workflow" / "profiles" / "slurm"
     assert yaml.safe_load((profile / "config.yaml").read_text())["executor"] == "slurm"
     proc = snakemake("-n", "--snakefile", SNAKEFILE, "--configfile", REPO / TEST_CONFIG,
                      "--profile", profile, cwd=tmp_path, check=True)
-    bodies = [body for rule, body in _JOB.findall(proc.output) if rule != "all"]
-    assert bodies
-    for body in bodies:
+    jobs = [(rule, body) for rule, body in _JOB.findall(proc.output) if rule != "all"]
+    assert jobs
+    for rule, body in jobs:
         assert re.search(r"mem_mb=\d+", body) and re.search(r"runtime=\d+", body), body
-        assert "cpus_per_task=1" in body, body
+        if rule.startswith("optimise"):  # the plugin asks for the rule's threads
+            assert "cpus_per_task" not in body and "threads:" not in body, body
+        else:
+            assert "cpus_per_task=1" in body, body
+    assert any(rule.startswith("optimise") for rule, _ in jobs)
 
 
 # ---------------------------------------------------------------- end to end

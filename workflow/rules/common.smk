@@ -109,7 +109,7 @@ check_installed_lsbg()
 # ---------------------------------------------------------------- commands
 #: The shell command of every rule: ``lsbg <params.command> <params.args>``.
 def lsbg_shell(*settings):
-    """The shell of a rule that runs lsbg (``params`` of :func:`command`) into its log;
+    """A rule's shell: lsbg with the ``params`` of :func:`command`, into the log;
     ``settings`` are further ``--set`` values, which may name the job's ``{threads}``."""
     extra = "".join(f" --set {setting}" for setting in settings)
     return f"lsbg -v {{params.command}} {{params.args}}{extra} > {{log}} 2>&1"
