@@ -3,9 +3,9 @@
 :func:`optimise_pair` is what ``lsbg optimise`` runs: the settings of
 :func:`lsbg.optimise.checks.run_settings` (read and checked before anything
 is evaluated), the shared design (the configuration's ``flank_modification``)
-evaluated for comparison, the search (:func:`lsbg.optimise.search.optimise`; with ``start_from_shared``
-the shared design takes the first place of its initial population), the
-choice rule on the feasible front (:func:`lsbg.optimise.choice.choose`) or,
+evaluated for comparison, the search (:func:`lsbg.optimise.search.optimise`;
+with ``start_from_shared`` the shared design takes the first place of its
+initial population), the choice rule on the feasible front (:func:`lsbg.optimise.choice.choose`) or,
 with ``choose_from = "below_shared"``, on the front's members whose loaded
 TE peak to peak at the rated torque is below the shared design's
 (:func:`choice_candidates`; the whole front if none is),

@@ -210,7 +210,7 @@ def _worker_pool(evaluator, workers):
     return multiprocessing.get_context("fork").Pool(workers)
 
 
-def evaluate_designs(evaluator, designs, pool=None):
+def evaluate_designs(evaluator, designs, pool=None, workers=1):
     """The quantities of each design, in order, in a pool's processes where there is one.
 
     Parameters
@@ -219,6 +219,8 @@ def evaluate_designs(evaluator, designs, pool=None):
         Held by the pool's processes too (:func:`_worker_pool`).
     designs : list of lsbg.tca.modification.FlankModification
     pool : multiprocessing.pool.Pool, optional
+    workers : int
+        The pool's processes [-].
 
     Returns
     -------
@@ -228,7 +230,7 @@ def evaluate_designs(evaluator, designs, pool=None):
     if pool is None or len(designs) < 2:
         return [evaluator.evaluate(design) for design in designs]
     # contiguous chunks, one per process: each worker's caches serve its own designs
-    chunk = -(-len(designs) // pool._processes)
+    chunk = -(-len(designs) // max(int(workers), 1))
     return pool.map(_evaluate_in_worker, designs, chunksize=chunk)
 
 
@@ -307,7 +309,8 @@ def optimise(evaluator, space, objectives, population, generations, seed,
             x = np.asarray(x, float)
             new = list(dict.fromkeys(row.tobytes() for row in x if row.tobytes() not in evaluated))
             designs = [space.modification(np.frombuffer(key, dtype=float)) for key in new]
-            for key, quantities in zip(new, evaluate_designs(evaluator, designs, pool)):
+            found = evaluate_designs(evaluator, designs, pool, int(workers))
+            for key, quantities in zip(new, found):
                 evaluated[key] = quantities
                 if all(quantities[name] <= 0 for name in CONSTRAINTS):
                     fresh.append(key)
