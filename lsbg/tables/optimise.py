@@ -12,8 +12,8 @@ import pandas as pd
 
 from lsbg.aggregate.runs import TYPE_ORDER, gear_type
 
-__all__ = ["read_fronts", "study_seed", "choice_text", "chosen_table", "seed_table",
-           "efficiency_text", "COEFFICIENTS"]
+__all__ = ["read_fronts", "study_seed", "study_fronts", "choice_text", "chosen_table",
+           "seed_table", "efficiency_text", "COEFFICIENTS"]
 
 #: The ease-off coefficients shown [um].
 COEFFICIENTS = ("lengthwise_crowning", "profile_crowning", "bias", "spiral_angle_correction",
@@ -38,6 +38,12 @@ def study_seed(fronts):
     return min(seed for _, seed in fronts)
 
 
+def study_fronts(fronts):
+    """``{gear type: front}`` of the study's seed (:func:`study_seed`), in type order."""
+    seed = study_seed(fronts)
+    return {kind: ds for (kind, s), ds in fronts.items() if s == seed}
+
+
 def choice_text(fronts):
     """How the study's seed chose each type's design, in words (Markdown, no full stop).
 
@@ -54,8 +60,7 @@ def choice_text(fronts):
         ease-off's", naming a type whose front had none there (then chosen
         from the whole front).
     """
-    seed = study_seed(fronts)
-    chosen = {kind: ds for (kind, s), ds in fronts.items() if s == seed}
+    chosen = study_fronts(fronts)
     first = next(iter(chosen.values()))
     text = f"the {first.attrs['choice_rule']} rule"
     if first.attrs.get("choose_from", "front") != "below_shared":
@@ -86,11 +91,8 @@ def chosen_table(fronts):
         ``shared`` and, per type, its chosen design and the shared design's
         value at its own trace.
     """
-    seed = study_seed(fronts)
     rows = {}
-    for (kind, s), ds in fronts.items():
-        if s != seed:
-            continue
+    for kind, ds in study_fronts(fronts).items():
         chosen = int(ds.attrs["chosen"])
         for name in COEFFICIENTS:
             row = rows.setdefault((name.replace("_", " "), "µm"), {})
@@ -120,9 +122,8 @@ def seed_table(fronts):
         Per type and seed; ``hypervolume vs the study's seed [%]`` the relative
         difference of each seed's final hypervolume from the study's seed's.
     """
-    seed = study_seed(fronts)
-    base = {kind: float(ds.attrs["final_hypervolume"]) for (kind, s), ds in fronts.items()
-            if s == seed}
+    base = {kind: float(ds.attrs["final_hypervolume"])
+            for kind, ds in study_fronts(fronts).items()}
     rows = []
     for (kind, s), ds in fronts.items():
         a = ds.attrs
@@ -138,10 +139,9 @@ def seed_table(fronts):
 
 def efficiency_text(fronts):
     """The mesh efficiencies in one sentence: shared and chosen, per type (Markdown)."""
-    seed = study_seed(fronts)
     parts = []
-    for (kind, s), ds in fronts.items():
-        if s != seed or "efficiency" not in ds:
+    for kind, ds in study_fronts(fronts).items():
+        if "efficiency" not in ds:
             continue
         chosen = int(ds.attrs["chosen"])
         shared = float(ds["reference_efficiency"])
