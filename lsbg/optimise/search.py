@@ -306,15 +306,15 @@ def optimise(evaluator, space, objectives, population, generations, seed,
                              n_ieq_constr=len(CONSTRAINTS), xl=0.0, xu=1.0)
 
         def _evaluate(self, x, out, *args, **kwargs):
-            x = np.asarray(x, float)
-            new = list(dict.fromkeys(row.tobytes() for row in x if row.tobytes() not in evaluated))
+            keys = [row.tobytes() for row in np.asarray(x, float)]
+            new = [key for key in dict.fromkeys(keys) if key not in evaluated]
             designs = [space.modification(np.frombuffer(key, dtype=float)) for key in new]
             found = evaluate_designs(evaluator, designs, pool, int(workers))
             for key, quantities in zip(new, found):
                 evaluated[key] = quantities
                 if all(quantities[name] <= 0 for name in CONSTRAINTS):
                     fresh.append(key)
-            rows = [evaluated[row.tobytes()] for row in x]
+            rows = [evaluated[key] for key in keys]
             out["F"] = np.array([[q[name] for name in objectives] for q in rows])
             out["G"] = np.array([_violations(q) for q in rows])
 
