@@ -41,7 +41,7 @@ def settings_attributes(settings):
         "choice_rule": settings["choice"],
         "choose_from": settings["choose_from"],
         "start_from_shared": settings["start_from_shared"],
-        "workers": settings.get("workers", 1),
+        "workers": settings["workers"],
         "permissible_pressure_MPa": settings["permissible_pressure"],
         "rated_torque_N_m": evaluation.rated_torque,
         "load_factors": " ".join(f"{f:g}" for f in evaluation.load_factors),
@@ -168,7 +168,7 @@ def optimise_pair(pair, settings, seed=None, log=None):
                      settings["seed"] if seed is None else seed, settings["algorithm"], log,
                      initial=[space.scaled(settings["reference"])]
                      if settings["start_from_shared"] else None,
-                     workers=settings.get("workers", 1))
+                     workers=settings["workers"])
     members = choice_candidates(front, settings["choose_from"],
                                 reference["rated_transmission_error"])
     chosen, checked = checked_choice(evaluator, front, space, settings["choice"],
