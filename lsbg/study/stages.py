@@ -23,9 +23,9 @@ Parsing the ~130 sources and walking their trees for their import statements
 took about 1 s of every Snakemake start: the statements of each file are kept
 between processes by the SHA-256 of its content (:func:`import_statements`,
 in lsbg's machine-wide cache beside the configuration check's answers), and
-only resolved to modules afresh. An answer of some code computed while Snakemake starts (the
-configuration check) is kept on the same terms: :func:`cached_answer` asks again
-when a source of that code changes.
+only resolved to modules afresh. An answer of some code computed while
+Snakemake starts (the configuration check) is kept on the same terms:
+:func:`cached_answer` asks again when a source of that code changes.
 """
 
 from __future__ import annotations
