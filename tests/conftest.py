@@ -11,13 +11,19 @@ from lsbg.tca.loaded import ltca_for_geometry
 from lsbg.files import write_dataset
 
 
+#: The fixtures that hold the session's study (directly or, for the SLURM run, by
+#: comparison): a test that asks for one runs on that study's worker.
+STUDY_FIXTURES = {"study", "slurm_study"}
+
+
 @pytest.hookimpl(tryfirst=True)  # before pytest-xdist reads the groups from the marks
 def pytest_collection_modifyitems(config, items):
-    """The workflow's end-to-end tests in one group (``-n 2 --dist loadgroup``, the README's
-    command): they share the session's study (tests/workflow/conftest.py) and run in order
-    on one worker, the largest group and so the first, while the other takes the unit tests."""
+    """The tests of the session's study (tests/workflow/conftest.py) in one group (``-n 2
+    --dist loadgroup``, the README's command): they share that study and run in order on
+    one worker, the largest group and so the first, while the other takes every other
+    test, including the workflow tests that run in a folder of their own."""
     for item in items:
-        if item.nodeid.startswith("tests/workflow/"):
+        if STUDY_FIXTURES & set(getattr(item, "fixturenames", ())):
             item.add_marker(pytest.mark.xdist_group("workflow"))
     # The SLURM run first: it waits on the cluster while the session's study is made.
     items.sort(key=lambda item: not item.nodeid.startswith("tests/workflow/test_slurm.py"))

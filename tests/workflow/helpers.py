@@ -14,12 +14,13 @@ SNAKEFILE = REPO / "Snakefile"
 TEST_CONFIG = "workflow/config-test.yaml"
 
 
-def snakemake(*args, cwd, env=None, check=None):
+def snakemake(*args, cwd, env=None, check=None, module="snakemake"):
     """Run ``python -m snakemake ARGS`` in ``cwd``; return the completed process (text).
 
-    ``check=True`` asserts exit code 0 and shows the output if not.
+    ``check=True`` asserts exit code 0 and shows the output if not; ``module`` is the
+    one run with ``-m`` (tests.workflow.slurm_polling for the test cluster).
     """
-    proc = subprocess.run([sys.executable, "-m", "snakemake", *map(str, args)], cwd=cwd,
+    proc = subprocess.run([sys.executable, "-m", module, *map(str, args)], cwd=cwd,
                           env=env, capture_output=True, text=True, timeout=600)
     proc.output = proc.stdout + proc.stderr
     if check:

@@ -11,7 +11,9 @@ does), the README's command
 
 twice: the first time one running job is cancelled (``scancel``) while it
 computes, and Snakemake must report it and fail; the second time, the same
-command must complete the DAG. Its outputs are compared with the session's study
+command must complete the DAG. Snakemake runs with its status checks at most 4 s apart
+(tests/workflow/slurm_polling.py: the plugin's interval grows without a cap on a quiet
+cluster); everything else is the README's command. Its outputs are compared with the session's study
 (tests/workflow/conftest.py: the same config run locally with -j2, made meanwhile):
 the same files but the practice stage's, and results/summary.csv byte for byte (the
 summary does not read the practice stage).
@@ -44,6 +46,9 @@ PROFILE = "workflow/profiles/slurm"
 #: this module's time. Written into each copy by :func:`copy_with_env`.
 NO_PRACTICE = "no-practice.yaml"
 COMMAND = ("--profile", PROFILE, "--configfile", TEST_CONFIG, NO_PRACTICE)
+#: Snakemake's command line with the status checks at most 4 s apart (the plugin's own
+#: interval grows by 10 s per check that sees no job end: tests/workflow/slurm_polling.py).
+SNAKEMAKE = "tests.workflow.slurm_polling"
 #: The rule of the job that the fault test cancels while it computes: a job of
 #: seconds even in the tiny study, whose loss blocks only the summary and two
 #: reports, so that the rerun stays short.
@@ -149,11 +154,11 @@ def cancel_one_running_job(lines, proc):
 
 
 class Run:
-    """``python -m snakemake ARGS`` started in ``cwd``; its output collected as it comes."""
+    """``python -m SNAKEMAKE ARGS`` started in ``cwd``; its output collected as it comes."""
 
     def __init__(self, *args, cwd, env):
         self.start = time.monotonic()
-        self.proc = subprocess.Popen([sys.executable, "-m", "snakemake", *args], cwd=cwd,
+        self.proc = subprocess.Popen([sys.executable, "-m", SNAKEMAKE, *args], cwd=cwd,
                                      env=env, stdout=subprocess.PIPE,
                                      stderr=subprocess.STDOUT, text=True)
         self.lines = []
@@ -213,7 +218,7 @@ def slurm_study(cluster, request, tmp_path_factory):
                 done["fault"] = run.finish(timeout=900)
             # 2. The same command again.
             start = time.monotonic()
-            done["rerun"] = snakemake(*COMMAND, cwd=root, env=env)
+            done["rerun"] = snakemake(*COMMAND, cwd=root, env=env, module=SNAKEMAKE)
             done["rerun"].seconds = time.monotonic() - start
         except BaseException as error:  # raised again below, in the test's thread
             done["error"] = error

@@ -554,7 +554,7 @@ def test_conda_environment_pins_match_environment_pip():
 
 
 @pytest.mark.slow
-def test_reports_show_well_in_a_browser(request, tmp_path):
+def test_reports_show_well_in_a_browser(study, tmp_path):
     """Each report, opened in headless Chromium 1400 px wide, fits the page, loads nothing
     but itself, has readable tables and opens with its finding
     (workflow/scripts/check_reports.py); screenshots go to tmp_path. Without Chromium the
@@ -570,7 +570,7 @@ def test_reports_show_well_in_a_browser(request, tmp_path):
         if os.environ.get("CI") == "true":
             pytest.fail(f"CI needs Chromium for the report checks: {reason}")
         pytest.skip(reason)
-    root, _ = request.getfixturevalue("study")
+    root, _ = study
     problems = []
     with check_reports.open_browser() as browser:
         for name in ("paper", "sweep", "verification"):
