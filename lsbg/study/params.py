@@ -26,9 +26,11 @@ __all__ = ["FLANK_SECTIONS", "CONTACT_STATE_SECTIONS", "STUDY_SECTIONS", "ENGINE
 #: (lsbg.cli.options.flanks_from_args), and the settings of `lsbg misalignment-map`.
 FLANK_SECTIONS = ("flank_modification", "misalignment")
 CONTACT_STATE_SECTIONS = (*FLANK_SECTIONS, "tca", "misalignment_map")
-#: Sections of the configuration that lsbg's commands read from results/config.yaml.
+#: Sections of the configuration that lsbg's commands read from results/config.yaml:
+#: every section a command of the workflow names (tests/study/test_plan.py checks it
+#: against the commands' parsers; a missing one runs that command on its defaults).
 STUDY_SECTIONS = ("design", "simulation", "contact", *CONTACT_STATE_SECTIONS, "statistics",
-                  "tooth", "rating", "practice")
+                  "tooth", "rating", "practice", "optimise", "limits")
 
 
 #: Simulation keys that only some engines read.

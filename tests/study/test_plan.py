@@ -215,6 +215,22 @@ def test_simulation_params_hold_only_what_the_run_reads(default):
     assert plan.simulation_params(changed, "compiled", "line") != line
 
 
+def test_study_config_holds_every_section_a_command_reads(default, tmp_path):
+    """A section that the study config lacks is read at its defaults by the command: the
+    workflow's ``optimise`` section once ran every search at the default budget."""
+    from lsbg.cli import command_parsers
+
+    read = {section for parser in command_parsers().values()
+            for section in parser.get_default("sections") or ()}
+    assert "optimise" in read and "limits" in read
+    assert read <= set(plan.STUDY_SECTIONS) | {"speed_sweep"}
+    changed = copy.deepcopy(default)
+    changed["optimise"]["population"] = 8
+    path = tmp_path / "config.yaml"
+    plan.write_study_config(path, changed)
+    assert yaml.safe_load(path.read_text(encoding="utf-8"))["optimise"]["population"] == 8
+
+
 def test_study_config_is_written_only_when_it_changes(default, tmp_path):
     path = tmp_path / "results" / "config.yaml"
     plan.write_study_config(path, default)
