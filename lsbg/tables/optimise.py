@@ -58,7 +58,8 @@ def choice_text(fronts):
         The rule and the members it chose from, e.g. "the knee rule among its
         front's designs whose loaded TE at the rated torque is below the shared
         ease-off's", naming a type whose front had none there (then chosen
-        from the whole front).
+        from the whole front) and a type for which none was chosen (its shared
+        ease-off stands).
     """
     chosen = study_fronts(fronts)
     first = next(iter(chosen.values()))
@@ -67,12 +68,17 @@ def choice_text(fronts):
         return text + " over its whole front"
     text += (" among its front's designs whose loaded TE at the rated torque is below the "
              "shared ease-off's")
-    missed = [kind for kind, ds in chosen.items()
-              if not ds.attrs.get("chosen_below_shared_transmission_error", 0)]
+    none = [kind for kind, ds in chosen.items() if int(ds.attrs.get("chosen", 0)) < 0]
+    missed = [kind for kind, ds in chosen.items() if kind not in none
+              and not ds.attrs.get("chosen_below_shared_transmission_error", 0)]
+    notes = []
     if missed:
-        text += (f" ({' and '.join(missed)}: no such design passed, so chosen from the whole "
-                 f"front)")
-    return text
+        notes.append(f"{' and '.join(missed)}: no such design passed, so chosen from the "
+                     f"whole front")
+    if none:
+        notes.append(f"{' and '.join(none)}: no design of the front passed, so the shared "
+                     f"ease-off stands")
+    return text + (f" ({'; '.join(notes)})" if notes else "")
 
 
 def chosen_table(fronts):
