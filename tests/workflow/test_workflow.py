@@ -73,8 +73,10 @@ def test_default_and_test_configs_are_valid_and_plan_the_study(tmp_path):
     written = yaml.safe_load((tmp_path / "results" / "config.yaml").read_text(encoding="utf-8"))
     assert set(written) == {"design", "simulation", "contact", "flank_modification",
                             "misalignment", "tca", "misalignment_map", "statistics",
-                            "tooth", "rating", "practice"}
+                            "tooth", "rating", "practice", "optimise", "limits"}
     assert written["simulation"]["duration_s"] == config["simulation"]["duration_s"]
+    # the search's budget as configured (lsbg optimise reads it from this file)
+    assert written["optimise"]["population"] * written["optimise"]["generations"] == 360
     assert written["flank_modification"]["lengthwise_crowning_um"] == 25
     assert written["misalignment_map"]["sweep_steps"] == config["misalignment_map"]["sweep_steps"]
 
@@ -315,6 +317,12 @@ def test_study_keeps_the_logs_and_the_validated_settings(study):
     assert settings["simulation"]["duration_s"] == 0.05
     assert settings["design"]["module_mm"] == 4.5
     assert settings["statistics"]["subgroup_size"] == 5
+    # every search ran the test config's budget, not the default's 360 designs
+    test_config = yaml.safe_load((root / TEST_CONFIG).read_text(encoding="utf-8"))
+    budget = test_config["optimise"]["population"] * test_config["optimise"]["generations"]
+    for front in sorted((root / "results" / "optimise").glob("*_front.nc")):
+        with xr.open_dataset(front) as ds:
+            assert int(ds.attrs["evaluations"]) == budget == 24, front.name
 
 
 @pytest.mark.slow
