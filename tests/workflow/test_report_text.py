@@ -38,15 +38,20 @@ def test_another_face_width_is_stated_as_a_change(tmp_path):
     """A study of its own (-d): the face width 30 mm, stated as a change from Table 1 in
     every report; the design values the reports name are the ones that ran. It runs the
     Snakefile of a fresh copy of the repository, not the session's study, so that it can
-    run on the other worker; the copy must stay without results."""
+    run on the other worker; the copy must stay without results. Without the practice
+    design and without any sensitivity cell, which the schema allows: the reports must
+    render without them (the paper report's service-life section once failed there)."""
     root = copy_repository(tmp_path / "repository")
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(
         [str(root), *filter(None, [os.environ.get("PYTHONPATH")])]))
     mine = tmp_path / "face30"
     mine.mkdir()
-    # (the practice design left out: the session's study renders it)
+    # (the practice design and the sensitivity cells left out: the session's study renders them)
+    no_cells = dict.fromkeys(("mesh_damping_ratio", "line_stiffness_N_per_mm_um", "slices",
+                              "compliance", "crowning", "displacement"), [])
     config = write_yaml(mine / "config.yaml", {"design": {"face_width_mm": 30},
-                                               "practice": {"enabled": False}})
+                                               "practice": {"enabled": False},
+                                               "sensitivity": no_cells})
     snakemake("-j2", "-s", root / "Snakefile", "-d", mine, "--configfile", root / TEST_CONFIG,
               config, cwd=tmp_path, env=env, check=True)
     paper, sweep = (report_text(mine / "reports" / f"{n}.html") for n in ("paper", "sweep"))
@@ -55,6 +60,7 @@ def test_another_face_width_is_stated_as_a_change(tmp_path):
         assert "face width 30 mm" in first_screen(text)
         assert "25-mm" not in text and "face width 25 mm" not in text
     assert "face width 30 mm" in paper[paper.index("Where the study's load stands"):][:400]
+    assert "displacement envelope (this study ran none of them)" in paper
     # and the repository whose Snakefile ran is untouched
     assert not [name for name in ("results", "logs", "reports", ".snakemake")
                 if (root / name).exists()]
