@@ -153,7 +153,8 @@ def test_design_file_and_overrides(tmp_path, capsys):
     design_file.write_text("design:\n  trace: circular\n  spiral_angle_deg: 30\n"
                            "  face_width_mm: 22\n")
     out = tmp_path / "point"
-    assert cli.main(["geometry", "--config", str(design_file),
+    # (no STEP solids: test_geometry_writes_every_file has them)
+    assert cli.main(["geometry", "--config", str(design_file), "--no-step",
                      "--set", "design.face_width_mm=24", "--out", str(out)]) == 0
     design = export.read_design(out)
     assert design == GearPairDesign.from_config(
@@ -298,7 +299,7 @@ def test_simulate_writes_a_run_and_rejects_bad_settings(tmp_path, capsys):
     import xarray as xr
 
     geo = tmp_path / "geo"
-    assert main(["geometry", "--set", "design.trace=logarithmic",
+    assert main(["geometry", "--set", "design.trace=logarithmic", "--no-step",
                  "--set", "design.spiral_angle_deg=35", "--out", str(geo)]) == 0
     out = tmp_path / "run.nc"
     assert main(["simulate", "--geometry", str(geo), "--engine", "scipy",
