@@ -68,15 +68,15 @@ def choice_text(fronts):
         return text + " over its whole front"
     text += (" among its front's designs whose loaded TE at the rated torque is below the "
              "shared ease-off's")
-    none = [kind for kind, ds in chosen.items() if int(ds.attrs.get("chosen", 0)) < 0]
-    missed = [kind for kind, ds in chosen.items() if kind not in none
+    unchosen = [kind for kind, ds in chosen.items() if int(ds.attrs.get("chosen", 0)) < 0]
+    missed = [kind for kind, ds in chosen.items() if kind not in unchosen
               and not ds.attrs.get("chosen_below_shared_transmission_error", 0)]
     notes = []
     if missed:
         notes.append(f"{' and '.join(missed)}: no such design passed, so chosen from the "
                      f"whole front")
-    if none:
-        notes.append(f"{' and '.join(none)}: no design of the front passed, so the shared "
+    if unchosen:
+        notes.append(f"{' and '.join(unchosen)}: no design of the front passed, so the shared "
                      f"ease-off stands")
     return text + (f" ({'; '.join(notes)})" if notes else "")
 
