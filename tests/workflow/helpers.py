@@ -1,6 +1,7 @@
 """What the workflow's tests share: running Snakemake in a folder, reading its plan, a copy
 of the repository to run a study in (the session's study: tests/workflow/conftest.py)."""
 
+import os
 import re
 import shutil
 import subprocess
@@ -74,6 +75,15 @@ def copy_repository(target):
             (target / name).parent.mkdir(parents=True, exist_ok=True)
             shutil.copy2(source, target / name)
     return target
+
+
+def repository_with_env(target):
+    """A copy of the repository in ``target`` (:func:`copy_repository`) and an environment
+    whose lsbg is the copy's (its folder first on ``PYTHONPATH``): (directory, environment)."""
+    root = copy_repository(target)
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(
+        [str(root), *filter(None, [os.environ.get("PYTHONPATH")])]))
+    return root, env
 
 
 def dry_run(study, *configfiles):

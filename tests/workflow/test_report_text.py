@@ -7,12 +7,10 @@ study is named in the paper report (tests/workflow/test_workflow.py, the load sw
 test, which runs it).
 """
 
-import os
-
 import pytest
 
-from tests.workflow.helpers import (TEST_CONFIG, copy_repository, report_text, snakemake,
-                                    write_yaml)
+from tests.workflow.helpers import (TEST_CONFIG, report_text, repository_with_env,
+                                    snakemake, write_yaml)
 
 
 def first_screen(text):
@@ -41,14 +39,12 @@ def test_another_face_width_is_stated_as_a_change(tmp_path):
     run on the other worker; the copy must stay without results. Without the practice
     design and without any sensitivity cell, which the schema allows: the reports must
     render without them (the paper report's service-life section once failed there)."""
-    root = copy_repository(tmp_path / "repository")
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join(
-        [str(root), *filter(None, [os.environ.get("PYTHONPATH")])]))
+    root, env = repository_with_env(tmp_path / "repository")
     mine = tmp_path / "face30"
     mine.mkdir()
     # (the practice design and the sensitivity cells left out: the session's study renders them)
-    no_cells = dict.fromkeys(("mesh_damping_ratio", "line_stiffness_N_per_mm_um", "slices",
-                              "compliance", "crowning", "displacement"), [])
+    no_cells = {key: [] for key in ("mesh_damping_ratio", "line_stiffness_N_per_mm_um",
+                                    "slices", "compliance", "crowning", "displacement")}
     config = write_yaml(mine / "config.yaml", {"design": {"face_width_mm": 30},
                                                "practice": {"enabled": False},
                                                "sensitivity": no_cells})

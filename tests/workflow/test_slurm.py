@@ -38,7 +38,7 @@ import pytest
 import xarray as xr
 import yaml
 
-from tests.workflow.helpers import TEST_CONFIG, copy_repository, snakemake
+from tests.workflow.helpers import TEST_CONFIG, repository_with_env, snakemake
 
 PROFILE = "workflow/profiles/slurm"
 #: The practice design's stage left out here: its rules are the paper point's commands
@@ -193,10 +193,8 @@ class Run:
 
 def copy_with_env(tmp_path_factory, name):
     """A copy of the repository and an environment whose lsbg is the copy's."""
-    root = copy_repository(tmp_path_factory.mktemp(name))
+    root, env = repository_with_env(tmp_path_factory.mktemp(name))
     (root / NO_PRACTICE).write_text("practice:\n  enabled: false\n", encoding="utf-8")
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join(
-        [str(root), *filter(None, [os.environ.get("PYTHONPATH")])]))
     return root, env
 
 
