@@ -173,10 +173,10 @@ def optimise_pair(pair, settings, seed=None, log=None):
                                 reference["rated_transmission_error"])
     chosen, checked = checked_choice(evaluator, front, space, settings["choice"],
                                      settings["permissible_pressure"], members)
-    below = front.quantities["rated_transmission_error"] < reference["rated_transmission_error"]
     attrs = {**settings_attributes(settings),
              "choice_candidates": int(members.size),
-             "chosen_below_shared_transmission_error":
-                 bool(chosen >= 0 and below[chosen]),
+             "chosen_below_shared_transmission_error": bool(
+                 chosen >= 0 and front.quantities["rated_transmission_error"][chosen]
+                 < reference["rated_transmission_error"]),
              **{f"design_{k}": v for k, v in pair.design.to_config().items()}}
     return front_dataset(front, space, chosen, reference, attrs, checked)
