@@ -67,6 +67,15 @@ for extension in config["extensions"]:
 # every run that executes jobs (see lsbg.study.plan.write_study_config).
 onstart:
     plan.write_study_config(FILES["study_config"], config)
+    start_job_server()
+
+
+onsuccess:
+    stop_job_server()
+
+
+onerror:
+    stop_job_server()
 
 
 # The default target must be defined here, in the top-level Snakefile

@@ -188,6 +188,14 @@ def main(argv=None):
         written), 3 when a simulation blew up. Usage errors found by argparse
         raise ``SystemExit(2)``.
     """
+    if argv is None:
+        # the `lsbg` command under a local Snakemake run: a process forked from the
+        # workflow's job server runs the job, if it serves it (lsbg.study.job_server)
+        from lsbg.study.job_server import run_on_server
+
+        served = run_on_server(sys.argv[1:])
+        if served is not None:
+            return served
     options._ARGUMENTS = list(sys.argv[1:] if argv is None else argv)  # the provenance's
     args = build_parser().parse_args(argv)
     if args.verbose:

@@ -106,6 +106,28 @@ def check_installed_lsbg():
 check_installed_lsbg()
 
 
+# ---------------------------------------------------------------- the job server
+#: The running job server (lsbg.study.job_server), if this run started one.
+JOB_SERVER = []
+
+
+def start_job_server():
+    """Under local execution: a server that forks the jobs' lsbg processes from one
+    that has done their imports (about 1.2 s a job; LSBG_JOB_SERVER=0 turns it off).
+    Not under SLURM or another executor: a job runs where its executor puts it."""
+    if workflow.local_exec and not (workflow.remote_exec or workflow.touch or workflow.dryrun):
+        from lsbg.study import job_server
+
+        JOB_SERVER.append(job_server.start())
+
+
+def stop_job_server():
+    from lsbg.study import job_server
+
+    while JOB_SERVER:
+        job_server.stop(JOB_SERVER.pop())
+
+
 # ---------------------------------------------------------------- commands
 #: The shell command of every rule: ``lsbg <params.command> <params.args>``.
 def lsbg_shell(*settings):

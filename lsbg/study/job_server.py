@@ -1,0 +1,355 @@
+"""A server that starts the study's ``lsbg`` jobs from one warm process.
+
+Every job of the study is a new ``lsbg`` process, and each paid about 1.2 s
+before its first line of work: importing numpy, scipy, xarray and numba
+(0.75 s) and numba's first dispatch, which loads its lowering registries
+(0.45 s), for jobs whose work is often one or two seconds (measured on the
+2-core reference machine, docs/performance.md). The default study runs 62 such
+jobs. Under a local ``snakemake`` run the workflow starts this server once
+(``onstart``); it imports all that, then forks one process per job, which
+starts where a new ``lsbg`` process would be after its imports.
+
+* **What a job sees.** The forked process takes the job's command line, working
+  directory, environment, umask and standard input, output and error (passed
+  over the socket), runs :func:`lsbg.cli.main` with them and exits with its
+  exit code, which the ``lsbg`` command it stands for exits with. A signal to
+  that command (Snakemake cancelling the job) reaches the job's process; if the
+  command goes away, the job is stopped.
+* **Same numbers.** The forked process runs the same code on the same inputs:
+  only the imports it did not repeat differ. The server serves a job only if
+  everything that decided what it imported and how is the job's too: the Python
+  executable, the lsbg package's place, ``PYTHONPATH``, the numba and thread-count
+  variables (Snakemake sets ``OMP_NUM_THREADS`` and the like to the job's
+  threads), the cache directories. Otherwise it refuses and the ``lsbg``
+  command runs the job itself, as it does when no server answers (before the
+  server is ready, under SLURM, outside the workflow).
+* **Lifetime.** The server stops with the Snakemake process that started it
+  (``onsuccess`` and ``onerror``, or when that process is gone), and listens on
+  a socket only its user can open.
+
+Only the workflow's ``onstart`` starts it (:func:`start`); ``lsbg`` looks for
+it only when :data:`SERVER_ENV` names a socket.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import select
+import signal
+import socket
+import struct
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+__all__ = ["SERVER_ENV", "OFF", "FINGERPRINT", "start", "stop", "serve", "run_on_server"]
+
+#: The environment variable that names the server's socket (set for the jobs).
+SERVER_ENV = "LSBG_JOB_SERVER"
+#: Its value that turns the server off (``LSBG_JOB_SERVER=0 snakemake -j2``).
+OFF = "0"
+#: Environment variables that decide what a process imports and how (one of them
+#: different: the job runs in a process of its own); names ending in ``_`` are prefixes.
+FINGERPRINT = ("PYTHONPATH", "PYTHONHASHSEED", "PYTHONHOME", "NUMBA_", "OMP_NUM_THREADS",
+               "GOTO_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS",
+               "VECLIB_MAXIMUM_THREADS", "NUMEXPR_NUM_THREADS", "XDG_CACHE_HOME", "HOME",
+               "MPLCONFIGDIR", "MPLBACKEND")
+#: The thread counts the server's imports see: those of a one-thread job.
+ONE_THREAD = {name: "1" for name in FINGERPRINT if name.endswith("_THREADS")}
+#: Modules most jobs import (the stages' packages and what they import).
+PRELOAD = ("numpy", "scipy.integrate", "scipy.optimize", "scipy.sparse.linalg", "xarray",
+           "netCDF4", "numba", "lsbg.cli", "lsbg.files", "lsbg.dynamics",
+           "lsbg.dynamics.compiled_engine", "lsbg.contact.mesh", "lsbg.tca.analysis",
+           "lsbg.tca.loaded", "lsbg.tca.vh_map", "lsbg.tooth.analysis", "lsbg.tooth.load_range",
+           "lsbg.solid.export", "lsbg.optimise.run", "lsbg.rating", "lsbg.aggregate.combine")
+#: Seconds without a job after which a server whose Snakemake process is gone stops.
+PARENT_CHECK_S = 1.0
+_HEADER = struct.Struct("!I")
+
+
+def _fingerprint(environ, executable, package):
+    """What must be the same for a job to run in a process forked from the server."""
+    keys = sorted(k for k in environ if any(k == name or (name.endswith("_") and
+                                                          k.startswith(name))
+                                            for name in FINGERPRINT))
+    return {"executable": os.path.realpath(executable), "package": str(package),
+            "environment": {k: environ[k] for k in keys}}
+
+
+def _package():
+    return Path(__file__).resolve().parents[1]
+
+
+# ---------------------------------------------------------------- the workflow's side
+def start(parent_pid=None, directory=None):
+    """Start a server for the jobs of this process's Snakemake run.
+
+    Parameters
+    ----------
+    parent_pid : int, optional
+        The process whose end stops the server (default: this one).
+    directory : str, optional
+        Where its socket goes (default: the temporary directory; a socket's path
+        must be short).
+
+    Returns
+    -------
+    subprocess.Popen or None
+        The server; its socket is named in ``os.environ[SERVER_ENV]``, which the
+        jobs inherit. It is ready once the socket exists; until then ``lsbg``
+        runs the jobs itself. None if ``SERVER_ENV`` is :data:`OFF`.
+    """
+    if os.environ.get(SERVER_ENV) == OFF:
+        return None
+    parent_pid = os.getpid() if parent_pid is None else parent_pid
+    path = Path(directory or tempfile.gettempdir()) / f"lsbg-jobs-{os.getuid()}-{parent_pid}.sock"
+    path.unlink(missing_ok=True)
+    environ = {**os.environ, **ONE_THREAD}
+    environ.pop(SERVER_ENV, None)
+    process = subprocess.Popen(
+        [sys.executable, "-m", "lsbg.study.job_server", str(path), str(parent_pid)],
+        env=environ, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL, start_new_session=True)
+    os.environ[SERVER_ENV] = str(path)
+    return process
+
+
+def stop(process):
+    """Stop a server :func:`start` started (its socket removed) and forget it."""
+    if process is None:
+        return
+    path = process.args[3]  # (see start)
+    if os.environ.get(SERVER_ENV) == path:
+        del os.environ[SERVER_ENV]
+    if process.poll() is None:
+        process.terminate()
+        try:
+            process.wait(timeout=5)
+        except subprocess.TimeoutExpired:
+            process.kill()
+    Path(path).unlink(missing_ok=True)
+
+
+# ---------------------------------------------------------------- the server
+def _preload():
+    """Import what the jobs import and load numba's registries (what a job's first
+    kernel call would do)."""
+    import importlib
+
+    for name in PRELOAD:
+        importlib.import_module(name)
+    from numba.core.registry import cpu_target
+
+    cpu_target.target_context.refresh()
+    from lsbg.cli import command_parsers
+
+    command_parsers()
+
+
+def serve(path, parent_pid=None):
+    """Serve jobs on the socket ``path`` until SIGTERM or until ``parent_pid`` is gone.
+
+    Parameters
+    ----------
+    path : str
+        The socket's path (made here, once the imports are done).
+    parent_pid : int, optional
+        The Snakemake process.
+    """
+    _preload()
+    fingerprint = _fingerprint(os.environ, sys.executable, _package())
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit(0))
+    signal.signal(signal.SIGCHLD, signal.SIG_IGN)  # the supervisors reap themselves
+    listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+    umask = os.umask(0o177)  # only this user may connect
+    try:
+        listener.bind(str(path))
+    finally:
+        os.umask(umask)
+    listener.listen(64)
+    try:
+        while parent_pid is None or _alive(parent_pid):
+            ready, _, _ = select.select([listener], [], [], PARENT_CHECK_S)
+            if not ready:
+                continue
+            connection, _ = listener.accept()
+            if _peer_uid(connection) != os.getuid():
+                connection.close()
+                continue
+            sys.stdout.flush()
+            sys.stderr.flush()
+            if os.fork() == 0:
+                listener.close()
+                signal.signal(signal.SIGCHLD, signal.SIG_DFL)
+                signal.signal(signal.SIGTERM, signal.SIG_DFL)
+                code = 1
+                try:
+                    _supervise(connection, fingerprint)
+                    code = 0
+                finally:
+                    os._exit(code)
+            connection.close()
+    finally:
+        listener.close()
+        Path(path).unlink(missing_ok=True)
+
+
+def _alive(pid):
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def _peer_uid(connection):
+    _, uid, _ = struct.unpack("3i", connection.getsockopt(socket.SOL_SOCKET, socket.SO_PEERCRED,
+                                                          struct.calcsize("3i")))
+    return uid
+
+
+def _receive(connection):
+    """The job's request and its three standard streams' descriptors."""
+    data, fds, _, _ = socket.recv_fds(connection, 65536, 3)
+    while len(data) < _HEADER.size:
+        data += connection.recv(65536)
+    size = _HEADER.unpack_from(data)[0]
+    data = data[_HEADER.size:]
+    while len(data) < size:
+        chunk = connection.recv(65536)
+        if not chunk:
+            raise ConnectionError("the lsbg command went away")
+        data += chunk
+    return json.loads(data[:size]), fds
+
+
+def _supervise(connection, fingerprint):
+    """One job: fork the process that runs it, pass its exit status back; stop it if
+    the ``lsbg`` command goes away."""
+    request, fds = _receive(connection)
+    mine = _fingerprint(request["environment"], request["executable"], request["package"])
+    if len(fds) != 3 or mine != fingerprint:
+        connection.sendall(b"refused\n")
+        return
+    worker = os.fork()
+    if worker == 0:
+        connection.close()
+        _run_job(request, fds)
+    for fd in fds:
+        os.close(fd)
+    connection.sendall(f"pid {worker}\n".encode())
+    done = os.pidfd_open(worker)
+    while True:
+        ready, _, _ = select.select([done, connection], [], [])
+        if done in ready:
+            _, status = os.waitpid(worker, 0)
+            connection.sendall(f"exit {os.waitstatus_to_exitcode(status)}\n".encode())
+            return
+        if not connection.recv(1):  # the lsbg command is gone: so is its job
+            os.kill(worker, signal.SIGTERM)
+            os.waitpid(worker, 0)
+            return
+
+
+def _run_job(request, fds):
+    """In the forked process: become the job, run it, exit with its code."""
+    code = 1
+    try:
+        for target, fd in enumerate(fds):
+            os.dup2(fd, target)
+            os.close(fd)
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+        os.chdir(request["cwd"])
+        os.umask(request["umask"])
+        os.environ.clear()
+        os.environ.update(request["environment"])
+        tempfile.tempdir = None  # from the job's TMPDIR
+        sys.argv = ["lsbg", *request["argv"]]
+        from lsbg.cli import main
+
+        try:
+            code = main(request["argv"])
+        except SystemExit as exit_:
+            code = exit_.code if isinstance(exit_.code, int) else (exit_.code is not None)
+        except BaseException:
+            import traceback
+
+            traceback.print_exc()
+            code = 1
+    finally:
+        import logging
+
+        logging.shutdown()
+        for stream in (sys.stdout, sys.stderr):
+            try:
+                stream.flush()
+            except Exception:
+                pass
+        os._exit(int(code or 0))
+
+
+# ---------------------------------------------------------------- the lsbg command's side
+def run_on_server(argv):
+    """Run ``lsbg argv`` on the server named by :data:`SERVER_ENV`, if one serves it.
+
+    Parameters
+    ----------
+    argv : list of str
+        The command line after ``lsbg``.
+
+    Returns
+    -------
+    int or None
+        The job's exit code (128 + the signal that ended it), or None: no server,
+        or one that does not serve this job (the caller runs it itself).
+    """
+    path = os.environ.get(SERVER_ENV, OFF)
+    if path == OFF:
+        return None
+    connection = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+    try:
+        connection.connect(path)
+    except OSError:
+        connection.close()
+        return None
+    with connection:
+        umask = os.umask(0)
+        os.umask(umask)
+        request = json.dumps({"argv": list(argv), "cwd": os.getcwd(),
+                              "environment": dict(os.environ), "umask": umask,
+                              "executable": sys.executable,
+                              "package": str(_package())}).encode()
+        data = _HEADER.pack(len(request)) + request
+        try:
+            sent = socket.send_fds(connection, [data], [0, 1, 2])
+            connection.sendall(data[sent:])
+            replies = connection.makefile("rb")
+            first = replies.readline().split()
+        except OSError:  # (a standard stream closed, the server gone)
+            return None
+        if not first or first[0] != b"pid":
+            return None
+        worker = int(first[1])
+
+        def forward(signum, _frame):
+            try:
+                os.kill(worker, signum)
+            except ProcessLookupError:
+                pass
+
+        for signum in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+            signal.signal(signum, forward)
+        last = replies.readline().split()
+        if not last or last[0] != b"exit":
+            return 1  # the supervisor died: a failure, not a success
+        code = int(last[1])
+        return 128 - code if code < 0 else code
+
+
+if __name__ == "__main__":
+    serve(sys.argv[1], int(sys.argv[2]) if len(sys.argv) > 2 else None)

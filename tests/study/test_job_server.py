@@ -1,0 +1,194 @@
+"""The workflow's job server (lsbg.study.job_server): a job it serves writes the same
+file, prints the same lines and exits with the same code as the ``lsbg`` process it
+stands for; a job whose environment differs, or with no server, runs by itself; a
+cancelled command stops its job; the server goes with the process that started it."""
+
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from lsbg.gear.design import GearPairDesign
+from lsbg.solid.export import write_geometry
+from lsbg.study import job_server
+
+#: A short line-model run (compiled engine): the job the server and a process of its
+#: own both run.
+RUN = ["simulate", "--engine", "compiled", "--set", "contact.model=line",
+       "--set", "simulation.duration_s=0.02", "--set", "simulation.samples=10",
+       "--set", "simulation.ramp_time_s=0.005", "--set", "simulation.full_rate_after_s=0.01"]
+#: The ``lsbg`` command (its console script's code).
+LSBG = "import sys; from lsbg.cli import main; sys.exit(main())"
+#: The ``lsbg`` command's side alone: its last line says whether the server ran the
+#: job, and the job's exit code.
+PROBE = ("import sys; from lsbg.study.job_server import run_on_server; "
+         "code = run_on_server(sys.argv[1:]); print('served' if code is not None else "
+         "'not served', code)")
+
+
+def _environment(**changes):
+    """This process's environment with the thread counts of a one-thread job."""
+    environ = {**os.environ, **job_server.ONE_THREAD, **changes}
+    return {k: v for k, v in environ.items() if v is not None}
+
+
+@pytest.fixture(scope="module")
+def server(tmp_path_factory):
+    """A server as the workflow starts it, ready; stopped at the end."""
+    saved = os.environ.pop(job_server.SERVER_ENV, None)
+    process = job_server.start(directory=tmp_path_factory.mktemp("socket"))
+    # (named for this test's commands only, not for other tests' subprocesses)
+    path = os.environ.pop(job_server.SERVER_ENV)
+    deadline = time.monotonic() + 60
+    while not os.path.exists(path):
+        assert process.poll() is None, "the job server stopped before it was ready"
+        assert time.monotonic() < deadline, "the job server was not ready within 60 s"
+        time.sleep(0.1)
+    yield process, path
+    job_server.stop(process)
+    if saved is not None:
+        os.environ[job_server.SERVER_ENV] = saved
+    assert process.poll() is not None and not os.path.exists(path)
+
+
+@pytest.fixture(scope="module")
+def geometry(tmp_path_factory):
+    path = tmp_path_factory.mktemp("served") / "logarithmic_beta35"
+    write_geometry(GearPairDesign(), path, step=False)
+    return path
+
+
+def _lsbg(args, path, cwd, **changes):
+    """``lsbg args`` as the workflow's shell runs it, with the server named or not."""
+    environ = _environment(**{job_server.SERVER_ENV: path, **changes})
+    return subprocess.run([sys.executable, "-c", LSBG, *args], cwd=cwd, env=environ,
+                          capture_output=True, text=True)
+
+
+def _probe(args, path, cwd, **changes):
+    environ = _environment(**{job_server.SERVER_ENV: path, **changes})
+    return subprocess.run([sys.executable, "-c", PROBE, *args], cwd=cwd, env=environ,
+                          capture_output=True, text=True)
+
+
+def test_a_served_job_writes_the_same_numbers_as_a_process_of_its_own(server, geometry):
+    _, path = server
+    folder = geometry.parent
+    args = [*RUN, "--geometry", str(geometry)]
+    served = _probe([*args, "--out", "served.nc"], path, folder)
+    assert served.returncode == 0, served.stderr
+    assert served.stdout.splitlines()[-1] == "served 0", served.stdout
+    # its own lines reach the command's standard output, into the same file
+    assert "lsbg simulate: compiled engine, line model -> served.nc" in served.stdout
+    alone = _lsbg([*args, "--out", "alone.nc"], job_server.OFF, folder)
+    assert alone.returncode == 0, alone.stderr
+    with xr.open_dataset(folder / "served.nc") as a, xr.open_dataset(folder / "alone.nc") as b:
+        assert set(a.data_vars) == set(b.data_vars) and a.sizes["time"] == 11
+        for name in a.data_vars:
+            np.testing.assert_array_equal(a[name].values, b[name].values, err_msg=name)
+        # the same command in the provenance (after its time stamp)
+        assert a.attrs["history"].split(" ", 1)[1].replace("served.nc", "X") == \
+            b.attrs["history"].split(" ", 1)[1].replace("alone.nc", "X")
+
+
+def test_a_served_job_keeps_the_exit_code_and_message_of_a_bad_input(server, geometry):
+    _, path = server
+    missing = geometry.parent / "missing"
+    served = _probe(["simulate", "--geometry", str(missing), "--out", "x.nc"], path,
+                    geometry.parent)
+    assert served.stdout.splitlines()[-1] == "served 2", served.stdout + served.stderr
+    assert "missing" in served.stderr and "Traceback" not in served.stderr
+    assert not (geometry.parent / "x.nc").exists()
+    # argparse's usage error: exit code 2 from SystemExit in the served process
+    usage = _probe(["simulate", "--geometry", str(geometry), "--out", "x.nc", "--no-such-option"],
+                   path, geometry.parent)
+    assert usage.stdout.splitlines()[-1] == "served 2"
+    assert "unrecognized arguments: --no-such-option" in usage.stderr
+
+
+def test_a_job_in_another_environment_runs_by_itself(server, geometry):
+    _, path = server
+    # two threads (a job with threads: 2) or another package path: not the server's imports
+    for changes in ({"OMP_NUM_THREADS": "2"}, {"PYTHONPATH": str(geometry.parent)},
+                    {"NUMBA_CACHE_DIR": str(geometry.parent / "cache")}):
+        refused = _probe(["--version"], path, geometry.parent, **changes)
+        assert refused.stdout.splitlines()[-1] == "not served None", (changes, refused.stdout)
+    # no server behind the name, or the server turned off: the command runs the job itself
+    for name in (str(geometry.parent / "no.sock"), job_server.OFF):
+        alone = _lsbg(["--version"], name, geometry.parent)
+        assert alone.returncode == 0 and alone.stdout.startswith("lsbg ")
+
+
+def test_a_cancelled_command_stops_its_job(server, geometry):
+    _, path = server
+    folder = geometry.parent
+    long_run = ["simulate", "--engine", "pybullet", "--set", "simulation.duration_s=2",
+                "--set", "simulation.samples=50", "--geometry", str(geometry),
+                "--out", "cancelled.nc"]
+    environ = _environment(**{job_server.SERVER_ENV: path})
+    command = subprocess.Popen([sys.executable, "-c", LSBG, *long_run], cwd=folder,
+                               env=environ, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    time.sleep(2)  # under way: the run takes about 10 s (2 million PyBullet steps)
+    assert command.poll() is None
+    jobs = _served_jobs(path)
+    assert jobs, "the job did not run in a process forked from the server"
+    command.send_signal(signal.SIGTERM)
+    assert command.wait(timeout=30) == 128 + signal.SIGTERM
+    deadline = time.monotonic() + 10
+    while any(_exists(pid) for pid in jobs) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert not any(_exists(pid) for pid in jobs)
+    assert not (folder / "cancelled.nc").exists()
+
+
+def _served_jobs(path):
+    """The processes that run jobs: the server's grandchildren."""
+    server = [p for p in _processes() if p[2] == f"-m lsbg.study.job_server {path}"]
+    children = {pid for pid, parent, _ in _processes() if parent in {p[0] for p in server}}
+    return [pid for pid, parent, _ in _processes() if parent in children]
+
+
+def _processes():
+    rows = []
+    for entry in os.listdir("/proc"):
+        if entry.isdigit():
+            try:
+                with open(f"/proc/{entry}/stat") as stat:
+                    parent = int(stat.read().rsplit(")", 1)[1].split()[1])
+                with open(f"/proc/{entry}/cmdline", "rb") as cmdline:
+                    words = cmdline.read().split(b"\0")
+            except OSError:
+                continue
+            text = " ".join(w.decode(errors="replace") for w in words[1:4] if w)
+            rows.append((int(entry), parent, text))
+    return rows
+
+
+def _exists(pid):
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    with open(f"/proc/{pid}/stat") as stat:
+        return stat.read().rsplit(")", 1)[1].split()[0] != "Z"
+
+
+def test_the_server_stops_when_the_process_that_started_it_is_gone(tmp_path):
+    parent = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(60)"])
+    path = tmp_path / "jobs.sock"
+    server = subprocess.Popen([sys.executable, "-m", "lsbg.study.job_server", str(path),
+                               str(parent.pid)], env=_environment())
+    deadline = time.monotonic() + 60
+    while not path.exists() and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert path.exists() and server.poll() is None
+    assert oct(path.stat().st_mode & 0o777) == oct(0o600)  # only its user connects
+    parent.kill()
+    parent.wait()
+    assert server.wait(timeout=10) == 0
+    assert not path.exists()
