@@ -190,8 +190,8 @@ def main(argv=None):
     """
     if argv is None:
         # the `lsbg` command under a local Snakemake run: a process forked from the
-        # workflow's job server runs the job, if it serves it (lsbg.study.job_server)
-        from lsbg.study.job_server import run_on_server
+        # workflow's job server runs the job, if it serves it (lsbg.cli.job_server)
+        from lsbg.cli.job_server import run_on_server
 
         served = run_on_server(sys.argv[1:])
         if served is not None:

@@ -19,6 +19,7 @@ __all__ = ["PAPER_TRACES", "CONTACT_MODELS", "REPORT_NAMES", "FILES", "design_po
 #: File name patterns of every stage (Snakemake wildcards in braces).
 FILES = {
     "study_config": "results/config.yaml",
+    "kernels": "results/kernels.json",
     "geometry": "results/geometry/{trace}_beta{spiral}",
     "mesh": "results/mesh/{trace}_beta{spiral}.nc",
     "run": "results/runs/{trace}_beta{spiral}_{model}_{engine}.nc",

@@ -44,6 +44,7 @@ COMMANDS = {
     "practice": "--out {root}/practice.yaml",
     "load-curve": "--geometry {geo} --compliance-file {root}/c.nc --out {out}",
     "optimise": "--geometry {geo} --out {out}",
+    "kernels": "--out {root}/kernels.json",
 }
 
 #: Commands that read files only (no configuration, no --set) and a command line of each.

@@ -338,7 +338,9 @@ def test_a_new_spiral_angle_runs_only_its_points_and_the_aggregates(study, tmp_p
     jobs, output = dry_run(study, extra)
     # (the paper report's conclusion says what the sweep finds at the other angles, so it
     # reads the combined sweep and is rendered again; the verification report is not)
-    assert rules_of(jobs) == sorted(["sweep_points"] * 2 + ["sweep_contact_state"] * 2
+    # (the first sweep point: the kernels' job first, lsbg.study.kernels)
+    assert rules_of(jobs) == sorted(["kernels"] + ["sweep_points"] * 2
+                                    + ["sweep_contact_state"] * 2
                                     + ["combine", "summary", "rating_sweep", "report_sweep",
                                        "report_paper", "all"]), output
     assert {out for rule, out in jobs if rule == "sweep_contact_state"} == {

@@ -107,7 +107,7 @@ check_installed_lsbg()
 
 
 # ---------------------------------------------------------------- the job server
-#: The running job server (lsbg.study.job_server), if this run started one.
+#: The running job server (lsbg.cli.job_server), if this run started one.
 JOB_SERVER = []
 
 
@@ -116,13 +116,13 @@ def start_job_server():
     that has done their imports (about 1.2 s a job; LSBG_JOB_SERVER=0 turns it off).
     Not under SLURM or another executor: a job runs where its executor puts it."""
     if workflow.local_exec and not (workflow.remote_exec or workflow.touch or workflow.dryrun):
-        from lsbg.study import job_server
+        from lsbg.cli import job_server
 
         JOB_SERVER.append(job_server.start())
 
 
 def stop_job_server():
-    from lsbg.study import job_server
+    from lsbg.cli import job_server
 
     while JOB_SERVER:
         job_server.stop(JOB_SERVER.pop())

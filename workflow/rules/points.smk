@@ -49,6 +49,24 @@ rule paper_ltca:
         LSBG
 
 
+# The kernels of a design point, compiled into numba's cache by the first job (or
+# loaded from it): from an empty cache both traces' sweeps compiled the same kernels
+# at once. Meanwhile the other core builds the paper point's geometry and FE
+# compliance, which call none. (ancient: a rerun of it reruns nothing else.)
+rule kernels:
+    input:
+        config=ancient(FILES["study_config"]),
+        sources=sources("kernels"),
+    output:
+        out=FILES["kernels"],
+    params:
+        **command("kernels"),
+    log:
+        "logs/kernels.log",
+    shell:
+        LSBG
+
+
 BATCH = STUDY.batch_spirals(STUDY.traces[0])
 # the runs of the batch, one template per contact model
 RUNS = {m: template(FILES["run"], model=m, engine=SWEEP_ENGINE) for m in STUDY.sweep_models}
@@ -58,6 +76,7 @@ if BATCH:
     rule sweep_points:
         input:
             config=ancient(FILES["study_config"]),
+            kernels=ancient(FILES["kernels"]),
             sources=sources("points"),
         output:
             geometry=[geometry_output(s) for s in BATCH],

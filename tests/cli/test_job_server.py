@@ -1,4 +1,4 @@
-"""The workflow's job server (lsbg.study.job_server): a job it serves writes the same
+"""The workflow's job server (lsbg.cli.job_server): a job it serves writes the same
 file, prints the same lines and exits with the same code as the ``lsbg`` process it
 stands for; a job whose environment differs, or with no server, runs by itself; a
 cancelled command stops its job; the server goes with the process that started it."""
@@ -15,7 +15,7 @@ import xarray as xr
 
 from lsbg.gear.design import GearPairDesign
 from lsbg.solid.export import write_geometry
-from lsbg.study import job_server
+from lsbg.cli import job_server
 
 #: A short line-model run (compiled engine): the job the server and a process of its
 #: own both run.
@@ -26,7 +26,7 @@ RUN = ["simulate", "--engine", "compiled", "--set", "contact.model=line",
 LSBG = "import sys; from lsbg.cli import main; sys.exit(main())"
 #: The ``lsbg`` command's side alone: its last line says whether the server ran the
 #: job, and the job's exit code.
-PROBE = ("import sys; from lsbg.study.job_server import run_on_server; "
+PROBE = ("import sys; from lsbg.cli.job_server import run_on_server; "
          "code = run_on_server(sys.argv[1:]); print('served' if code is not None else "
          "'not served', code)")
 
@@ -148,7 +148,7 @@ def test_a_cancelled_command_stops_its_job(server, geometry):
 
 def _served_jobs(path):
     """The processes that run jobs: the server's grandchildren."""
-    server = [p for p in _processes() if p[2] == f"-m lsbg.study.job_server {path}"]
+    server = [p for p in _processes() if p[2] == f"-m lsbg.cli.job_server {path}"]
     children = {pid for pid, parent, _ in _processes() if parent in {p[0] for p in server}}
     return [pid for pid, parent, _ in _processes() if parent in children]
 
@@ -181,7 +181,7 @@ def _exists(pid):
 def test_the_server_stops_when_the_process_that_started_it_is_gone(tmp_path):
     parent = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(60)"])
     path = tmp_path / "jobs.sock"
-    server = subprocess.Popen([sys.executable, "-m", "lsbg.study.job_server", str(path),
+    server = subprocess.Popen([sys.executable, "-m", "lsbg.cli.job_server", str(path),
                                str(parent.pid)], env=_environment())
     deadline = time.monotonic() + 60
     while not path.exists() and time.monotonic() < deadline:

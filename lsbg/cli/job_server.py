@@ -110,7 +110,7 @@ def start(parent_pid=None, directory=None):
     environ = {**os.environ, **ONE_THREAD}
     environ.pop(SERVER_ENV, None)
     process = subprocess.Popen(
-        [sys.executable, "-m", "lsbg.study.job_server", str(path), str(parent_pid)],
+        [sys.executable, "-m", "lsbg.cli.job_server", str(path), str(parent_pid)],
         env=environ, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
         stderr=subprocess.DEVNULL, start_new_session=True)
     os.environ[SERVER_ENV] = str(path)
