@@ -61,10 +61,13 @@ FINGERPRINT = ("PYTHONPATH", "PYTHONHASHSEED", "PYTHONHOME", "NUMBA_", "OMP_NUM_
 ONE_THREAD = {name: "1" for name in FINGERPRINT if name.endswith("_THREADS")}
 #: Modules most jobs import (the stages' packages and what they import).
 PRELOAD = ("numpy", "scipy.integrate", "scipy.optimize", "scipy.sparse.linalg", "xarray",
-           "netCDF4", "numba", "lsbg.cli", "lsbg.files", "lsbg.dynamics",
-           "lsbg.dynamics.compiled_engine", "lsbg.contact.mesh", "lsbg.tca.analysis",
-           "lsbg.tca.loaded", "lsbg.tca.vh_map", "lsbg.tooth.analysis", "lsbg.tooth.load_range",
-           "lsbg.solid.export", "lsbg.optimise.run", "lsbg.rating", "lsbg.aggregate.combine")
+           "netCDF4", "numba", "jsonschema", "PIL.Image", "skfem", "lsbg.cli", "lsbg.files",
+           "lsbg.dynamics", "lsbg.dynamics.compiled_engine", "lsbg.contact.mesh",
+           "lsbg.experiments.verification", "lsbg.experiments.sensitivity",
+           "lsbg.tca.analysis", "lsbg.tca.loaded", "lsbg.tca.vh_map", "lsbg.tooth.analysis",
+           "lsbg.tooth.load_range", "lsbg.tooth.segment", "lsbg.solid.export",
+           "lsbg.optimise.run", "lsbg.optimise.search", "lsbg.practice.design", "lsbg.rating",
+           "lsbg.stats", "lsbg.aggregate.combine")
 #: Seconds without a job after which a server whose Snakemake process is gone stops.
 PARENT_CHECK_S = 1.0
 _HEADER = struct.Struct("!I")
