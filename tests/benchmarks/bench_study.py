@@ -17,8 +17,9 @@ the copied lsbg):
    workflow/config-speed.yaml``: its runs, the curve and the sweep report
    again; target <= 5 min);
 4. start-up costs: a new interpreter importing what each stage imports, the
-   ``lsbg`` command doing nothing, and a notebook kernel executing an empty
-   notebook, each the median of three.
+   ``lsbg`` command doing nothing, a short job in a process of its own and
+   forked by the workflow's job server, and a notebook kernel executing an
+   empty notebook, each the median of three.
 """
 
 import argparse
@@ -96,11 +97,41 @@ def median_seconds(command, repeat=3, **kwargs):
     return sorted(times)[len(times) // 2]
 
 
+def served_startup():
+    """A short job in a process of its own and through the workflow's job server
+    (lsbg.cli.job_server): ``lsbg practice``, the practice design of the default
+    configuration (0.1 s of work; it imports the rating's and the tooth's stages)."""
+    from lsbg.cli import job_server
+
+    folder = tempfile.mkdtemp(prefix="bench_served_")
+    command = [shutil.which("lsbg") or "lsbg", "-v", "practice", "--out",
+               os.path.join(folder, "practice.yaml")]
+    one_thread = dict(os.environ, **job_server.ONE_THREAD)
+    out = {"a job's start, a process of its own": median_seconds(
+        command, env=dict(one_thread, **{job_server.SERVER_ENV: job_server.OFF}))}
+    saved = os.environ.pop(job_server.SERVER_ENV, None)
+    with tempfile.TemporaryDirectory() as tmp:
+        server = job_server.start(directory=tmp)
+        path = os.environ.pop(job_server.SERVER_ENV)
+        try:
+            while not os.path.exists(path):
+                time.sleep(0.05)
+            out["a job's start, forked by the job server"] = median_seconds(
+                command, env=dict(one_thread, **{job_server.SERVER_ENV: path}))
+        finally:
+            job_server.stop(server)
+            if saved is not None:
+                os.environ[job_server.SERVER_ENV] = saved
+            shutil.rmtree(folder, ignore_errors=True)
+    return out
+
+
 def startup_costs():
     """{probe: seconds} for the imports, the ``lsbg`` command and a notebook kernel."""
     out = {name: median_seconds([sys.executable, "-c", code])
            for name, code in STARTUP_PROBES.items()}
     out["lsbg --help"] = median_seconds([shutil.which("lsbg") or "lsbg", "--help"])
+    out.update(served_startup())
     import nbformat
 
     with tempfile.TemporaryDirectory() as tmp:

@@ -9,10 +9,13 @@ import subprocess
 import sys
 import time
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 import xarray as xr
 
+import lsbg
 from lsbg.gear.design import GearPairDesign
 from lsbg.solid.export import write_geometry
 from lsbg.cli import job_server
@@ -31,9 +34,15 @@ PROBE = ("import sys; from lsbg.cli.job_server import run_on_server; "
          "'not served', code)")
 
 
+#: The lsbg under test first on the path of every process here (the server's and the
+#: commands'), whatever folder they start in.
+PYTHONPATH = os.pathsep.join([str(Path(lsbg.__file__).resolve().parents[1]),
+                              *filter(None, [os.environ.get("PYTHONPATH")])])
+
+
 def _environment(**changes):
     """This process's environment with the thread counts of a one-thread job."""
-    environ = {**os.environ, **job_server.ONE_THREAD, **changes}
+    environ = {**os.environ, **job_server.ONE_THREAD, "PYTHONPATH": PYTHONPATH, **changes}
     return {k: v for k, v in environ.items() if v is not None}
 
 
@@ -41,7 +50,14 @@ def _environment(**changes):
 def server(tmp_path_factory):
     """A server as the workflow starts it, ready; stopped at the end."""
     saved = os.environ.pop(job_server.SERVER_ENV, None)
-    process = job_server.start(directory=tmp_path_factory.mktemp("socket"))
+    saved_path = os.environ.get("PYTHONPATH")
+    os.environ["PYTHONPATH"] = PYTHONPATH  # (the server's environment is this process's)
+    try:
+        process = job_server.start(directory=tmp_path_factory.mktemp("socket"))
+    finally:
+        os.environ.pop("PYTHONPATH")
+        if saved_path is not None:
+            os.environ["PYTHONPATH"] = saved_path
     # (named for this test's commands only, not for other tests' subprocesses)
     path = os.environ.pop(job_server.SERVER_ENV)
     deadline = time.monotonic() + 60

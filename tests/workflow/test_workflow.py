@@ -97,9 +97,12 @@ def test_priorities_follow_the_studys_rule_graph(tmp_path):
         waiting = [priorities[b] for a, b in edges if a == rule and b != "all"]
         own = round(10 * job_order.JOB_SECONDS.get(rule, 0.0))
         assert abs(priority - own - max(waiting, default=0)) <= 1, (rule, priority, waiting)
-    # the paper point's geometry opens the longest chain (every paper job waits for it)
-    assert priorities["paper_geometry"] > max(priorities[r] for r in priorities
-                                              if r not in ("paper_geometry", "sweep_points"))
+    # the paper point's geometry opens the longest chain (every paper job waits for it);
+    # the kernels' job opens the sweep's, before the sweep's jobs
+    assert priorities["paper_geometry"] > max(
+        priorities[r] for r in priorities if r not in ("paper_geometry", "sweep_points",
+                                                       "kernels"))
+    assert priorities["kernels"] > priorities["sweep_points"]
 
 
 _COMMAND = re.compile(r"lsbg -v (report \w+|[\w-]+) ")
