@@ -112,8 +112,10 @@ def start(parent_pid=None, directory=None):
     path.unlink(missing_ok=True)
     environ = {**os.environ, **ONE_THREAD}
     environ.pop(SERVER_ENV, None)
+    # (-P: no folder of the run's first on the path, so the server imports lsbg as the
+    # `lsbg` command does, not a folder named lsbg in the working directory)
     process = subprocess.Popen(
-        [sys.executable, "-m", "lsbg.cli.job_server", str(path), str(parent_pid)],
+        [sys.executable, "-P", "-m", "lsbg.cli.job_server", str(path), str(parent_pid)],
         env=environ, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
         stderr=subprocess.DEVNULL, start_new_session=True)
     os.environ[SERVER_ENV] = str(path)
@@ -124,7 +126,7 @@ def stop(process):
     """Stop a server :func:`start` started (its socket removed) and forget it."""
     if process is None:
         return
-    path = process.args[3]  # (see start)
+    path = process.args[4]  # (see start)
     if os.environ.get(SERVER_ENV) == path:
         del os.environ[SERVER_ENV]
     if process.poll() is None:

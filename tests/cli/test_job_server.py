@@ -164,7 +164,7 @@ def test_a_cancelled_command_stops_its_job(server, geometry):
 
 def _served_jobs(path):
     """The processes that run jobs: the server's grandchildren."""
-    server = [p for p in _processes() if p[2] == f"-m lsbg.cli.job_server {path}"]
+    server = [p for p in _processes() if p[2] == f"-P -m lsbg.cli.job_server {path}"]
     children = {pid for pid, parent, _ in _processes() if parent in {p[0] for p in server}}
     return [pid for pid, parent, _ in _processes() if parent in children]
 
@@ -180,7 +180,7 @@ def _processes():
                     words = cmdline.read().split(b"\0")
             except OSError:
                 continue
-            text = " ".join(w.decode(errors="replace") for w in words[1:4] if w)
+            text = " ".join(w.decode(errors="replace") for w in words[1:5] if w)
             rows.append((int(entry), parent, text))
     return rows
 
