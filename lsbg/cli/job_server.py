@@ -4,7 +4,7 @@ Every job of the study is a new ``lsbg`` process, and each paid about 1.2 s
 before its first line of work: importing numpy, scipy, xarray and numba
 (0.75 s) and numba's first dispatch, which loads its lowering registries
 (0.45 s), for jobs whose work is often one or two seconds (measured on the
-2-core reference machine, docs/performance.md). The default study runs 62 such
+2-core reference machine, docs/performance.md). The default study runs 66 such
 jobs. Under a local ``snakemake`` run the workflow starts this server once
 (``onstart``); it imports all that, then forks one process per job, which
 starts where a new ``lsbg`` process would be after its imports.
