@@ -68,8 +68,10 @@ PRELOAD = ("numpy", "scipy.integrate", "scipy.optimize", "scipy.sparse.linalg", 
            "lsbg.tooth.load_range", "lsbg.tooth.segment", "lsbg.solid.export",
            "lsbg.optimise.run", "lsbg.optimise.search", "lsbg.practice.design", "lsbg.rating",
            "lsbg.stats", "lsbg.aggregate.combine")
-#: Seconds without a job after which a server whose Snakemake process is gone stops.
+#: How often the server looks whether the Snakemake process that started it is gone [s].
 PARENT_CHECK_S = 1.0
+#: How often a job's supervisor looks whether the job ended, without a pidfd [s].
+POLL_S = 0.01
 _HEADER = struct.Struct("!I")
 
 
@@ -247,18 +249,26 @@ def _supervise(connection, fingerprint):
         _run_job(request, fds)
     for fd in fds:
         os.close(fd)
-    connection.sendall(f"pid {worker}\n".encode())
-    done = os.pidfd_open(worker)
-    while True:
-        ready, _, _ = select.select([done, connection], [], [])
-        if done in ready:
-            _, status = os.waitpid(worker, 0)
-            connection.sendall(f"exit {os.waitstatus_to_exitcode(status)}\n".encode())
-            return
-        if not connection.recv(1):  # the lsbg command is gone: so is its job
-            os.kill(worker, signal.SIGTERM)
-            os.waitpid(worker, 0)
-            return
+    try:
+        connection.sendall(f"pid {worker}\n".encode())
+        # the job's end wakes the wait (a pidfd; where there is none, a poll every 10 ms)
+        try:
+            done, poll = [os.pidfd_open(worker)], None
+        except (AttributeError, OSError):
+            done, poll = [], POLL_S
+        while True:
+            ready, _, _ = select.select(done + [connection], [], [], poll)
+            ended, status = os.waitpid(worker, os.WNOHANG)
+            if ended:
+                connection.sendall(f"exit {os.waitstatus_to_exitcode(status)}\n".encode())
+                return
+            if connection in ready and not connection.recv(1):
+                break  # the lsbg command is gone
+    except OSError:
+        pass  # the lsbg command is gone (its end of the socket closed)
+    # ... and so is its job
+    os.kill(worker, signal.SIGTERM)
+    os.waitpid(worker, 0)
 
 
 def _run_job(request, fds):

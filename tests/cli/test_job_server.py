@@ -208,3 +208,25 @@ def test_the_server_stops_when_the_process_that_started_it_is_gone(tmp_path):
     parent.wait()
     assert server.wait(timeout=10) == 0
     assert not path.exists()
+
+
+def test_without_pidfds_a_supervisor_polls_for_its_job(tmp_path, geometry):
+    """Where the kernel has no pidfd (``os.pidfd_open`` missing or refused), the supervisor
+    polls: the job's exit code still comes back."""
+    path = tmp_path / "jobs.sock"
+    code = ("import os, sys; del os.pidfd_open; from lsbg.cli.job_server import serve; "
+            "serve(sys.argv[1], int(sys.argv[2]))")
+    server = subprocess.Popen([sys.executable, "-c", code, str(path), str(os.getpid())],
+                              env=_environment())
+    try:
+        deadline = time.monotonic() + 60
+        while not path.exists() and time.monotonic() < deadline:
+            time.sleep(0.1)
+        bad = _probe(["simulate", "--geometry", str(geometry.parent / "missing"), "--out",
+                      "x.nc"], str(path), tmp_path)
+        assert bad.stdout.splitlines()[-1] == "served 2", bad.stdout + bad.stderr
+        good = _probe(["--version"], str(path), tmp_path)
+        assert good.stdout.splitlines() == [f"lsbg {lsbg.__version__}", "served 0"]
+    finally:
+        server.terminate()
+        server.wait(timeout=10)
