@@ -85,7 +85,6 @@ def compile_kernels(design, flanks, point, line, simulation):
     from lsbg.stats.bootstrap import std_ci
     from lsbg.tca.analysis import tooth_contact_analysis
     from lsbg.tca.loaded import ltca_for_geometry
-
     from lsbg.tca.separation import RealFlanks
 
     start = time.perf_counter()
