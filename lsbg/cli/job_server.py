@@ -221,18 +221,26 @@ def _peer_uid(connection):
 
 
 def _receive(connection):
-    """The job's request and its three standard streams' descriptors."""
+    """The job's request and its three standard streams' descriptors.
+
+    Raises
+    ------
+    ConnectionError
+        If the ``lsbg`` command closed its end before the whole request came.
+    """
     data, fds, _, _ = socket.recv_fds(connection, 65536, 3)
-    while len(data) < _HEADER.size:
-        data += connection.recv(65536)
+
+    def at_least(size, data):
+        while len(data) < size:
+            chunk = connection.recv(65536)
+            if not chunk:
+                raise ConnectionError("the lsbg command went away")
+            data += chunk
+        return data
+
+    data = at_least(_HEADER.size, data)
     size = _HEADER.unpack_from(data)[0]
-    data = data[_HEADER.size:]
-    while len(data) < size:
-        chunk = connection.recv(65536)
-        if not chunk:
-            raise ConnectionError("the lsbg command went away")
-        data += chunk
-    return json.loads(data[:size]), fds
+    return json.loads(at_least(_HEADER.size + size, data)[_HEADER.size:]), fds
 
 
 def _supervise(connection, fingerprint):
@@ -289,8 +297,11 @@ def _run_job(request, fds):
 
         try:
             code = main(request["argv"])
-        except SystemExit as exit_:
-            code = exit_.code if isinstance(exit_.code, int) else (exit_.code is not None)
+        except SystemExit as exit_:  # as Python exits: a message is printed, exit code 1
+            code = exit_.code
+            if code is not None and not isinstance(code, int):
+                print(code, file=sys.stderr)
+                code = 1
         except BaseException:
             import traceback
 

@@ -162,10 +162,32 @@ def test_a_cancelled_command_stops_its_job(server, geometry):
     assert not (folder / "cancelled.nc").exists()
 
 
+def test_a_command_gone_before_its_request_is_whole_leaves_no_process(server):
+    """A connection closed after part of the request's header: its supervisor ends (it
+    neither waits nor spins on the closed socket)."""
+    import socket
+
+    _, path = server
+    before = set(_children(path))
+    connection = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+    connection.connect(path)
+    connection.sendall(b"ab")
+    connection.close()
+    deadline = time.monotonic() + 10
+    while set(_children(path)) - before and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert not set(_children(path)) - before
+
+
+def _children(path):
+    """The server's children: the supervisors of the jobs under way."""
+    server = {p[0] for p in _processes() if p[2] == f"-P -m lsbg.cli.job_server {path}"}
+    return [pid for pid, parent, _ in _processes() if parent in server and _exists(pid)]
+
+
 def _served_jobs(path):
     """The processes that run jobs: the server's grandchildren."""
-    server = [p for p in _processes() if p[2] == f"-P -m lsbg.cli.job_server {path}"]
-    children = {pid for pid, parent, _ in _processes() if parent in {p[0] for p in server}}
+    children = set(_children(path))
     return [pid for pid, parent, _ in _processes() if parent in children]
 
 
