@@ -148,6 +148,22 @@ def write_atomically(path, write):
     return path
 
 
+def write_text_atomically(path, text):
+    """Write ``text`` (UTF-8) to ``path`` through :func:`write_atomically`.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+    text : str
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
+    return write_atomically(path, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
+
+
 def write_dataset(ds, path):
     """Write a dataset to NetCDF atomically (see :func:`write_atomically`).
 

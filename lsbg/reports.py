@@ -23,7 +23,7 @@ from pathlib import Path
 
 import lsbg
 from lsbg.files import remove_stale_temporaries, temporary_beside
-from lsbg.files import write_atomically
+from lsbg.files import write_text_atomically
 from lsbg.tables.style import format_table
 
 __all__ = ["NOTEBOOK_DIR", "PATH_PARAMETER_SUFFIXES", "ReportError", "notebook_path",
@@ -314,7 +314,7 @@ def render_report(name, out_html, parameters=None, notebook_dir=None, cwd=None,
         html = notebook_to_html(nb)
     finally:
         shutil.rmtree(work, ignore_errors=True)
-    return write_atomically(out_html, lambda tmp: Path(tmp).write_text(html, encoding="utf-8"))
+    return write_text_atomically(out_html, html)
 
 
 # ------------------------------------------------------ inside a notebook

@@ -41,9 +41,8 @@ def add_kernels_parser(subparsers):
 def run_kernels(args):
     """Handler of ``lsbg kernels``: one summary line."""
     import json
-    from pathlib import Path
 
-    from lsbg.files import write_atomically
+    from lsbg.files import write_text_atomically
     from lsbg.numba_cache import compiled_sources_tag
     from lsbg.study.kernels import compile_kernels
 
@@ -55,6 +54,6 @@ def run_kernels(args):
     record = {"numba_cache": compiled_sources_tag(), "seconds": round(record["seconds"], 3),
               "kernels": record["kernels"], "history": command_line()}
     text = json.dumps(record, indent=1) + "\n"
-    write_atomically(args.out, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
+    write_text_atomically(args.out, text)
     return [f"{len(record['kernels'])} kernels ready in {record['numba_cache']} "
             f"({record['seconds']:.1f} s) -> {args.out}"]

@@ -82,9 +82,7 @@ def run_optimise(args):
 
 def _write_overlay(ds, settings, path):
     """The chosen design's ``flank_modification`` section -> ``path`` (YAML); its line."""
-    from pathlib import Path
-
-    from lsbg.files import write_atomically
+    from lsbg.files import write_text_atomically
     from lsbg.optimise.choice import chosen_modification
     from lsbg.study.params import yaml_text
 
@@ -98,5 +96,5 @@ def _write_overlay(ds, settings, path):
                    f"seed {ds.attrs['seed']})")
     section = {k: v for k, v in section.items() if v is not None}
     text = yaml_text({"flank_modification": section}, comment)
-    write_atomically(path, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
+    write_text_atomically(path, text)
     return f"its ease-off as an overlay -> {path}"

@@ -47,9 +47,7 @@ def add_practice_parser(subparsers):
 
 def run_practice(args):
     """Handler of ``lsbg practice``: its summary lines."""
-    from pathlib import Path
-
-    from lsbg.files import write_atomically
+    from lsbg.files import write_text_atomically
     from lsbg.practice.design import practice_overlay
     from lsbg.study.params import yaml_text
 
@@ -61,7 +59,7 @@ def run_practice(args):
                f"pair's {figures['published_rated_torque_pitting_N_m']:.1f} and "
                f"{figures['published_rated_torque_bending_N_m']:.1f} N m")
     text = yaml_text(overlay, comment)
-    write_atomically(args.out, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
+    write_text_atomically(args.out, text)
     return [f"x_hm1 = {figures['profile_shift']:.4f}, x_smn1 = "
             f"{figures['thickness_modification']:.4f}, rated torque "
             f"{figures['rated_torque_pitting_N_m']:.1f} N m (published pair "
