@@ -42,7 +42,6 @@ import struct
 import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 __all__ = ["SERVER_ENV", "OFF", "FINGERPRINT", "start", "stop", "serve", "run_on_server"]
