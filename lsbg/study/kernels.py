@@ -25,15 +25,15 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["compile_kernels", "kernel_signatures"]
+__all__ = ["compile_kernels", "called_kernels", "kernel_signatures"]
 
 #: Positions of the small case's loaded and unloaded TCA [-] (the fewest they take).
 POSITIONS = 8
 
 
-def kernel_signatures():
-    """``{module.function: number of signatures}`` of every lsbg kernel called in this
-    process (compiled, or loaded from numba's cache).
+def called_kernels():
+    """``{module.function: numba dispatcher}`` of every lsbg kernel called in this process
+    (compiled, or loaded from numba's cache).
 
     A kernel that only other kernels call gets no signature of its own when its callers
     are loaded from the cache (its code is in theirs), so it is not listed then.
@@ -45,17 +45,27 @@ def kernel_signatures():
     """
     from numba.core.dispatcher import Dispatcher
 
-    from lsbg.numba_cache import COMPILED_MODULES
+    from lsbg.numba_cache import COMPILED_MODULES, numba_module_name
 
+    package = Path(__file__).resolve().parents[1]
     found = {}
     for path in COMPILED_MODULES:
-        name = "lsbg." + path.removesuffix(".py").replace("/", ".")
-        module = importlib.import_module(name)
-        for attribute, value in sorted(vars(module).items()):
+        name = numba_module_name(package / path)
+        for attribute, value in sorted(vars(importlib.import_module(name)).items()):
             if isinstance(value, Dispatcher) and value.py_func.__module__ == name \
                     and value.signatures:
-                found[f"{name}.{attribute}"] = len(value.signatures)
+                found[f"{name}.{attribute}"] = value
     return found
+
+
+def kernel_signatures():
+    """``{module.function: number of signatures}`` of :func:`called_kernels`.
+
+    Returns
+    -------
+    dict
+    """
+    return {name: len(kernel.signatures) for name, kernel in called_kernels().items()}
 
 
 def compile_kernels(design, flanks, point, line, simulation):

@@ -28,16 +28,10 @@ from lsbg.tca.modification import FlankModification
 tooth_contact_analysis(GearPair(GearPairDesign()), FlankModification.from_config(
     {"lengthwise_crowning_um": 25}), positions=8)
 std_ci(np.cos(np.arange(50.0)), n_boot=100)
-from numba.core.dispatcher import Dispatcher
-import lsbg.contact.kernels, lsbg.contact.statics, lsbg.dynamics.compiled_engine
-import lsbg.solid.render, lsbg.stats.kernels, lsbg.tca.surface
-stats = {}
-for module in (lsbg.contact.kernels, lsbg.contact.statics, lsbg.dynamics.compiled_engine,
-               lsbg.solid.render, lsbg.stats.kernels, lsbg.tca.surface):
-    for name, value in vars(module).items():
-        if isinstance(value, Dispatcher) and value.signatures:
-            s = value.stats
-            stats[name] = [sum(s.cache_hits.values()), sum(s.cache_misses.values())]
+from lsbg.study.kernels import called_kernels
+stats = {name.rsplit(".", 1)[1]: [sum(k.stats.cache_hits.values()),
+                                  sum(k.stats.cache_misses.values())]
+         for name, k in called_kernels().items()}
 print(json.dumps(stats))
 """
 
