@@ -42,9 +42,11 @@ import struct
 import subprocess
 import sys
 import tempfile
+import time
 from pathlib import Path
 
-__all__ = ["SERVER_ENV", "OFF", "FINGERPRINT", "start", "stop", "serve", "run_on_server"]
+__all__ = ["SERVER_ENV", "OFF", "FINGERPRINT", "start", "socket_path", "wait_ready", "stop",
+           "serve", "run_on_server"]
 
 #: The environment variable that names the server's socket (set for the jobs).
 SERVER_ENV = "LSBG_JOB_SERVER"
@@ -88,8 +90,8 @@ def _package():
 
 
 # ---------------------------------------------------------------- the workflow's side
-def start(parent_pid=None, directory=None):
-    """Start a server for the jobs of this process's Snakemake run.
+def start(parent_pid=None, directory=None, environ=None):
+    """Start a server for the jobs of a Snakemake run.
 
     Parameters
     ----------
@@ -98,36 +100,68 @@ def start(parent_pid=None, directory=None):
     directory : str, optional
         Where its socket goes (default: the temporary directory; a socket's path
         must be short).
+    environ : dict, optional
+        The environment the server imports in, and which the jobs it serves share
+        (default: this process's), with the thread counts of a one-thread job.
 
     Returns
     -------
     subprocess.Popen or None
-        The server; its socket is named in ``os.environ[SERVER_ENV]``, which the
-        jobs inherit. It is ready once the socket exists; until then ``lsbg``
-        runs the jobs itself. None if ``SERVER_ENV`` is :data:`OFF`.
+        The server, None if ``environ[SERVER_ENV]`` is :data:`OFF`. Its socket is
+        :func:`socket_path`, which the jobs find in ``SERVER_ENV`` (the caller
+        sets it); it is ready once it exists (:func:`wait_ready`), and until then
+        ``lsbg`` runs the jobs itself.
     """
-    if os.environ.get(SERVER_ENV) == OFF:
+    environ = dict(os.environ if environ is None else environ)
+    if environ.pop(SERVER_ENV, None) == OFF:
         return None
     parent_pid = os.getpid() if parent_pid is None else parent_pid
     path = Path(directory or tempfile.gettempdir()) / f"lsbg-jobs-{os.getuid()}-{parent_pid}.sock"
     path.unlink(missing_ok=True)
-    environ = {**os.environ, **ONE_THREAD}
-    environ.pop(SERVER_ENV, None)
     # (-P: no folder of the run's first on the path, so the server imports lsbg as the
     # `lsbg` command does, not a folder named lsbg in the working directory)
-    process = subprocess.Popen(
+    return subprocess.Popen(
         [sys.executable, "-P", "-m", "lsbg.cli.job_server", str(path), str(parent_pid)],
-        env=environ, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+        env={**environ, **ONE_THREAD}, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
         stderr=subprocess.DEVNULL, start_new_session=True)
-    os.environ[SERVER_ENV] = str(path)
-    return process
+
+
+def socket_path(process):
+    """The socket of a server :func:`start` started [path]."""
+    return process.args[4]
+
+
+def wait_ready(process, timeout=60.0):
+    """Wait until a server :func:`start` started listens; return its socket's path.
+
+    Parameters
+    ----------
+    process : subprocess.Popen
+    timeout : float
+        Seconds to wait at most [s].
+
+    Raises
+    ------
+    RuntimeError
+        If the server stops first, or is not ready within ``timeout``.
+    """
+    path, deadline = socket_path(process), time.monotonic() + timeout
+    while not os.path.exists(path):
+        if process.poll() is not None:
+            raise RuntimeError(f"the job server stopped (exit code {process.returncode}) "
+                               f"before it was ready")
+        if time.monotonic() > deadline:
+            raise RuntimeError(f"the job server was not ready within {timeout:g} s")
+        time.sleep(0.05)
+    return path
 
 
 def stop(process):
-    """Stop a server :func:`start` started (its socket removed) and forget it."""
+    """Stop a server :func:`start` started (its socket removed); a ``SERVER_ENV`` that
+    names it is removed from this process's environment."""
     if process is None:
         return
-    path = process.args[4]  # (see start)
+    path = socket_path(process)
     if os.environ.get(SERVER_ENV) == path:
         del os.environ[SERVER_ENV]
     if process.poll() is None:

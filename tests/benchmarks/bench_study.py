@@ -109,19 +109,14 @@ def served_startup():
     one_thread = dict(os.environ, **job_server.ONE_THREAD)
     out = {"a job's start, a process of its own": median_seconds(
         command, env=dict(one_thread, **{job_server.SERVER_ENV: job_server.OFF}))}
-    saved = os.environ.pop(job_server.SERVER_ENV, None)
     with tempfile.TemporaryDirectory() as tmp:
-        server = job_server.start(directory=tmp)
-        path = os.environ.pop(job_server.SERVER_ENV)
+        server = job_server.start(directory=tmp, environ=one_thread)
         try:
-            while not os.path.exists(path):
-                time.sleep(0.05)
+            path = job_server.wait_ready(server)
             out["a job's start, forked by the job server"] = median_seconds(
                 command, env=dict(one_thread, **{job_server.SERVER_ENV: path}))
         finally:
             job_server.stop(server)
-            if saved is not None:
-                os.environ[job_server.SERVER_ENV] = saved
             shutil.rmtree(folder, ignore_errors=True)
     return out
 

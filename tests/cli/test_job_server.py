@@ -49,26 +49,11 @@ def _environment(**changes):
 @pytest.fixture(scope="module")
 def server(tmp_path_factory):
     """A server as the workflow starts it, ready; stopped at the end."""
-    saved = os.environ.pop(job_server.SERVER_ENV, None)
-    saved_path = os.environ.get("PYTHONPATH")
-    os.environ["PYTHONPATH"] = PYTHONPATH  # (the server's environment is this process's)
-    try:
-        process = job_server.start(directory=tmp_path_factory.mktemp("socket"))
-    finally:
-        os.environ.pop("PYTHONPATH")
-        if saved_path is not None:
-            os.environ["PYTHONPATH"] = saved_path
-    # (named for this test's commands only, not for other tests' subprocesses)
-    path = os.environ.pop(job_server.SERVER_ENV)
-    deadline = time.monotonic() + 60
-    while not os.path.exists(path):
-        assert process.poll() is None, "the job server stopped before it was ready"
-        assert time.monotonic() < deadline, "the job server was not ready within 60 s"
-        time.sleep(0.1)
+    process = job_server.start(directory=tmp_path_factory.mktemp("socket"),
+                               environ=_environment())
+    path = job_server.wait_ready(process)
     yield process, path
     job_server.stop(process)
-    if saved is not None:
-        os.environ[job_server.SERVER_ENV] = saved
     assert process.poll() is not None and not os.path.exists(path)
 
 
@@ -79,16 +64,12 @@ def geometry(tmp_path_factory):
     return path
 
 
-def _lsbg(args, path, cwd, **changes):
-    """``lsbg args`` as the workflow's shell runs it, with the server named or not."""
+def _command(code, args, path, cwd, **changes):
+    """``python -c code args`` in ``cwd``, the server named by ``path`` (or not: a path
+    where none listens, OFF), the environment changed by ``changes``; ``code`` is
+    :data:`LSBG` (the command as the workflow's shell runs it) or :data:`PROBE`."""
     environ = _environment(**{job_server.SERVER_ENV: path, **changes})
-    return subprocess.run([sys.executable, "-c", LSBG, *args], cwd=cwd, env=environ,
-                          capture_output=True, text=True)
-
-
-def _probe(args, path, cwd, **changes):
-    environ = _environment(**{job_server.SERVER_ENV: path, **changes})
-    return subprocess.run([sys.executable, "-c", PROBE, *args], cwd=cwd, env=environ,
+    return subprocess.run([sys.executable, "-c", code, *args], cwd=cwd, env=environ,
                           capture_output=True, text=True)
 
 
@@ -96,12 +77,12 @@ def test_a_served_job_writes_the_same_numbers_as_a_process_of_its_own(server, ge
     _, path = server
     folder = geometry.parent
     args = [*RUN, "--geometry", str(geometry)]
-    served = _probe([*args, "--out", "served.nc"], path, folder)
+    served = _command(PROBE, [*args, "--out", "served.nc"], path, folder)
     assert served.returncode == 0, served.stderr
     assert served.stdout.splitlines()[-1] == "served 0", served.stdout
     # its own lines reach the command's standard output, into the same file
     assert "lsbg simulate: compiled engine, line model -> served.nc" in served.stdout
-    alone = _lsbg([*args, "--out", "alone.nc"], job_server.OFF, folder)
+    alone = _command(LSBG, [*args, "--out", "alone.nc"], job_server.OFF, folder)
     assert alone.returncode == 0, alone.stderr
     with xr.open_dataset(folder / "served.nc") as a, xr.open_dataset(folder / "alone.nc") as b:
         assert set(a.data_vars) == set(b.data_vars) and a.sizes["time"] == 11
@@ -115,14 +96,14 @@ def test_a_served_job_writes_the_same_numbers_as_a_process_of_its_own(server, ge
 def test_a_served_job_keeps_the_exit_code_and_message_of_a_bad_input(server, geometry):
     _, path = server
     missing = geometry.parent / "missing"
-    served = _probe(["simulate", "--geometry", str(missing), "--out", "x.nc"], path,
-                    geometry.parent)
+    served = _command(PROBE, ["simulate", "--geometry", str(missing), "--out", "x.nc"],
+                      path, geometry.parent)
     assert served.stdout.splitlines()[-1] == "served 2", served.stdout + served.stderr
     assert "missing" in served.stderr and "Traceback" not in served.stderr
     assert not (geometry.parent / "x.nc").exists()
     # argparse's usage error: exit code 2 from SystemExit in the served process
-    usage = _probe(["simulate", "--geometry", str(geometry), "--out", "x.nc", "--no-such-option"],
-                   path, geometry.parent)
+    usage = _command(PROBE, ["simulate", "--geometry", str(geometry), "--out", "x.nc",
+                             "--no-such-option"], path, geometry.parent)
     assert usage.stdout.splitlines()[-1] == "served 2"
     assert "unrecognized arguments: --no-such-option" in usage.stderr
 
@@ -132,11 +113,11 @@ def test_a_job_in_another_environment_runs_by_itself(server, geometry):
     # two threads (a job with threads: 2) or another package path: not the server's imports
     for changes in ({"OMP_NUM_THREADS": "2"}, {"PYTHONPATH": str(geometry.parent)},
                     {"NUMBA_CACHE_DIR": str(geometry.parent / "cache")}):
-        refused = _probe(["--version"], path, geometry.parent, **changes)
+        refused = _command(PROBE, ["--version"], path, geometry.parent, **changes)
         assert refused.stdout.splitlines()[-1] == "not served None", (changes, refused.stdout)
     # no server behind the name, or the server turned off: the command runs the job itself
     for name in (str(geometry.parent / "no.sock"), job_server.OFF):
-        alone = _lsbg(["--version"], name, geometry.parent)
+        alone = _command(LSBG, ["--version"], name, geometry.parent)
         assert alone.returncode == 0 and alone.stdout.startswith("lsbg ")
 
 
@@ -218,13 +199,9 @@ def _exists(pid):
 
 def test_the_server_stops_when_the_process_that_started_it_is_gone(tmp_path):
     parent = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(60)"])
-    path = tmp_path / "jobs.sock"
-    server = subprocess.Popen([sys.executable, "-m", "lsbg.cli.job_server", str(path),
-                               str(parent.pid)], env=_environment())
-    deadline = time.monotonic() + 60
-    while not path.exists() and time.monotonic() < deadline:
-        time.sleep(0.1)
-    assert path.exists() and server.poll() is None
+    server = job_server.start(parent.pid, tmp_path, environ=_environment())
+    path = Path(job_server.wait_ready(server))
+    assert server.poll() is None
     assert oct(path.stat().st_mode & 0o777) == oct(0o600)  # only its user connects
     parent.kill()
     parent.wait()
@@ -244,10 +221,10 @@ def test_without_pidfds_a_supervisor_polls_for_its_job(tmp_path, geometry):
         deadline = time.monotonic() + 60
         while not path.exists() and time.monotonic() < deadline:
             time.sleep(0.1)
-        bad = _probe(["simulate", "--geometry", str(geometry.parent / "missing"), "--out",
-                      "x.nc"], str(path), tmp_path)
+        bad = _command(PROBE, ["simulate", "--geometry", str(geometry.parent / "missing"),
+                               "--out", "x.nc"], str(path), tmp_path)
         assert bad.stdout.splitlines()[-1] == "served 2", bad.stdout + bad.stderr
-        good = _probe(["--version"], str(path), tmp_path)
+        good = _command(PROBE, ["--version"], str(path), tmp_path)
         assert good.stdout.splitlines() == [f"lsbg {lsbg.__version__}", "served 0"]
     finally:
         server.terminate()

@@ -118,7 +118,10 @@ def start_job_server():
     if workflow.local_exec and not (workflow.remote_exec or workflow.touch or workflow.dryrun):
         from lsbg.cli import job_server
 
-        JOB_SERVER.append(job_server.start())
+        server = job_server.start()
+        if server is not None:  # (the jobs inherit the variable that names it)
+            os.environ[job_server.SERVER_ENV] = job_server.socket_path(server)
+            JOB_SERVER.append(server)
 
 
 def stop_job_server():
