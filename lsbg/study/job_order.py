@@ -27,7 +27,8 @@ __all__ = ["JOB_SECONDS", "rule_graph", "levels", "assign_priorities"]
 #: Wall time [s] of one job of each rule of the default study, ``snakemake -j2``
 #: on the 2-core reference machine from a fresh copy with an empty numba cache
 #: (tests/benchmarks/bench_study.py, 2026-11-27: the mean of each rule's jobs), with
-#: the practice design, the load curves, the ease-off searches and the best design point.
+#: the practice design, the load curves, the ease-off searches and the best design point;
+#: the kernels' job measured on 2026-11-28.
 JOB_SECONDS = {"kernels": 12.5, "paper_geometry": 4.5, "paper_ltca": 1.2, "tooth_compliance": 10.6,
                "fe_ltca": 2.6, "fe_sensitivity": 4.2, "sweep_points": 30.9,
                "sweep_contact_state": 11.0, "contact_state": 6.5, "convergence_point": 12.3,
