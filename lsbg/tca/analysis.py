@@ -27,6 +27,7 @@ attributes).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -35,6 +36,7 @@ import numpy as np
 from lsbg.tca import surface
 from lsbg.tca.pattern import (MARKING_COMPOUND, bearing_pattern, chart_ellipses,
                                contact_ellipses, profile_height, raster_centres)
+from lsbg.tca.memo import copied, float_key, memoised
 from lsbg.tca.misalignment import Misalignment, member_frames
 from lsbg.tca.modification import FlankModification, flank_attributes, relieved_flank
 from lsbg.gear.flank import active_polar_range
@@ -100,68 +102,90 @@ class SurfacePair:
         profile_points = profile_points or PROFILE_POINTS
         modification = (modification or FlankModification()).load()
         misalignment = misalignment or Misalignment()
-        design = pair.design
-        plane = pair.planes[side]
-        curve = plane.curve
-        # pinion flank grid: cone distance x plane-of-action polar angle psi
-        # (uniform in psi is uniform along the path of contact)
-        rho = np.linspace(design.inner_cone_distance, design.outer_cone_distance, face_points)
-        polar_range = pair.flank_polar_range(1)
-        psi_ends = (plane.tangency_angle[1]
-                    + plane.roll_sign[1] * pair.roll_angle(1, np.array(polar_range)))
-        psi = np.linspace(psi_ends[0], psi_ends[1], profile_points)
-        big_rho, big_psi = np.meshgrid(rho, psi, indexing="ij")
+        # the grid does not depend on the design, the constants not on the modification:
+        # an ease-off search and a V-H map ask for them again and again
+        rho, psi, big_rho, big_psi, polar_range, flat_turn, order = memoised(
+            pair, "flank_grid", (side, face_points, profile_points),
+            lambda: _flank_grid(pair, side, face_points, profile_points))
         points, normals, relief = relieved_flank(pair, modification, big_rho, big_psi, side,
                                                  polar_range)
-        line_turn = big_psi - curve.polar_angle(big_rho)
-
-        pinion_shift, gear_turn, gear_shift = member_frames(pair, misalignment)
-        u2 = pair.rotation_axis[2]
-        ref2 = unit(pair.pitch_dir - (pair.pitch_dir @ u2) * u2)
-        g = np.zeros(surface.N_GEOMETRY)
-        g[surface.G_U1:surface.G_U1 + 3] = pair.rotation_axis[1]
-        g[surface.G_T1:surface.G_T1 + 3] = pinion_shift
-        g[surface.G_TURN:surface.G_TURN + 9] = gear_turn.ravel()
-        g[surface.G_T2:surface.G_T2 + 3] = gear_shift
-        g[surface.G_A2:surface.G_A2 + 3] = pair.axis[2]
-        g[surface.G_U2:surface.G_U2 + 3] = u2
-        g[surface.G_REF2:surface.G_REF2 + 3] = ref2
-        g[surface.G_OTHER2:surface.G_OTHER2 + 3] = np.cross(u2, ref2)
-        g[surface.G_P:surface.G_P + 3] = plane.pitch_dir
-        g[surface.G_Q:surface.G_Q + 3] = plane.cross_dir
-        g[surface.G_PSI_G2], g[surface.G_ROLL2] = plane.tangency_angle[2], plane.roll_sign[2]
-        g[surface.G_DELTA_B2] = design.base_cone_angle(2)
-        g[surface.G_COS_DELTA_B2] = math.cos(g[surface.G_DELTA_B2])
-        g[surface.G_COS_PSI_G2] = math.cos(g[surface.G_PSI_G2])
-        g[surface.G_SIN_PSI_G2] = math.sin(g[surface.G_PSI_G2])
-        g[surface.G_S2] = pair.axis_normal_component(2, side)
-        g[surface.G_OFFSET2] = pair.flank_offset[(2, side)]
-        g[surface.G_OFFSET1] = pair.flank_offset[(1, side)]
-        g[surface.G_SIDE] = 1.0 if side == "drive" else -1.0
-        g[surface.G_KIND] = 0.0 if curve.kind == "logarithmic" else 1.0
-        g[surface.G_TAN_BETA] = math.tan(curve.plane_spiral_angle)
-        g[surface.G_RM] = curve.mean_distance
-        if curve.kind != "logarithmic":
-            g[surface.G_RHO0], g[surface.G_THETA0], g[surface.G_BRANCH] = curve._arc
-            g[surface.G_RC] = curve.cutter_radius
-        # the gear's active flank: beyond it the gear's tip sweeps the pinion's
-        # undercut, which the generated pinion does not have
-        g[surface.G_THETA_LO2], g[surface.G_THETA_HI2] = active_polar_range(pair, 2, side)
-        g[surface.G_R_IN], g[surface.G_R_OUT] = design.inner_cone_distance, design.outer_cone_distance
-        z1, z2 = design.teeth
-        g[surface.G_GEAR_PITCH], g[surface.G_PINION_PITCH] = 2 * math.pi / z2, 2 * math.pi / z1
-        g[surface.G_RATIO] = z1 / z2
-        g[surface.G_S1] = pair.axis_normal_component(1, side)
-        g[surface.G_ROOT2] = design.root_angle(2)
-        flat_turn = np.ascontiguousarray(line_turn.ravel())
-        return cls(pair, modification, misalignment, g,
+        g = memoised(pair, "surface_constants",
+                     (side, float_key(dataclasses.astuple(misalignment))),
+                     lambda: _surface_constants(pair, misalignment, side))
+        return cls(pair, modification, misalignment, g.copy(),
                    np.ascontiguousarray(points.reshape(-1, 3)),
                    np.ascontiguousarray(normals.reshape(-1, 3)),
-                   flat_turn, np.argsort(flat_turn, kind="stable"), rho, psi, relief)
+                   *copied((flat_turn, order, rho, psi)), relief)
 
     @property
     def grid_shape(self):
         return self.cone_distance.size, self.profile_psi.size
+
+
+def _flank_grid(pair, side, face_points, profile_points):
+    """The pinion flank's grid of :meth:`SurfacePair.build`: cone distances [m] and
+    polar angles psi [rad], both on the grid, the flank's polar range [rad], the
+    conjugate lines' turns through the points [rad] and their order."""
+    design = pair.design
+    plane = pair.planes[side]
+    # pinion flank grid: cone distance x plane-of-action polar angle psi
+    # (uniform in psi is uniform along the path of contact)
+    rho = np.linspace(design.inner_cone_distance, design.outer_cone_distance, face_points)
+    polar_range = pair.flank_polar_range(1)
+    psi_ends = (plane.tangency_angle[1]
+                + plane.roll_sign[1] * pair.roll_angle(1, np.array(polar_range)))
+    psi = np.linspace(psi_ends[0], psi_ends[1], profile_points)
+    big_rho, big_psi = np.meshgrid(rho, psi, indexing="ij")
+    line_turn = big_psi - plane.curve.polar_angle(big_rho)
+    flat_turn = np.ascontiguousarray(line_turn.ravel())
+    return (rho, psi, big_rho, big_psi, polar_range, flat_turn,
+            np.argsort(flat_turn, kind="stable"))
+
+
+def _surface_constants(pair, misalignment, side):
+    """The pair's constants for :mod:`lsbg.tca.surface` (``G_*``) on a side, displaced."""
+    design = pair.design
+    plane = pair.planes[side]
+    curve = plane.curve
+    pinion_shift, gear_turn, gear_shift = member_frames(pair, misalignment)
+    u2 = pair.rotation_axis[2]
+    ref2 = unit(pair.pitch_dir - (pair.pitch_dir @ u2) * u2)
+    g = np.zeros(surface.N_GEOMETRY)
+    g[surface.G_U1:surface.G_U1 + 3] = pair.rotation_axis[1]
+    g[surface.G_T1:surface.G_T1 + 3] = pinion_shift
+    g[surface.G_TURN:surface.G_TURN + 9] = gear_turn.ravel()
+    g[surface.G_T2:surface.G_T2 + 3] = gear_shift
+    g[surface.G_A2:surface.G_A2 + 3] = pair.axis[2]
+    g[surface.G_U2:surface.G_U2 + 3] = u2
+    g[surface.G_REF2:surface.G_REF2 + 3] = ref2
+    g[surface.G_OTHER2:surface.G_OTHER2 + 3] = np.cross(u2, ref2)
+    g[surface.G_P:surface.G_P + 3] = plane.pitch_dir
+    g[surface.G_Q:surface.G_Q + 3] = plane.cross_dir
+    g[surface.G_PSI_G2], g[surface.G_ROLL2] = plane.tangency_angle[2], plane.roll_sign[2]
+    g[surface.G_DELTA_B2] = design.base_cone_angle(2)
+    g[surface.G_COS_DELTA_B2] = math.cos(g[surface.G_DELTA_B2])
+    g[surface.G_COS_PSI_G2] = math.cos(g[surface.G_PSI_G2])
+    g[surface.G_SIN_PSI_G2] = math.sin(g[surface.G_PSI_G2])
+    g[surface.G_S2] = pair.axis_normal_component(2, side)
+    g[surface.G_OFFSET2] = pair.flank_offset[(2, side)]
+    g[surface.G_OFFSET1] = pair.flank_offset[(1, side)]
+    g[surface.G_SIDE] = 1.0 if side == "drive" else -1.0
+    g[surface.G_KIND] = 0.0 if curve.kind == "logarithmic" else 1.0
+    g[surface.G_TAN_BETA] = math.tan(curve.plane_spiral_angle)
+    g[surface.G_RM] = curve.mean_distance
+    if curve.kind != "logarithmic":
+        g[surface.G_RHO0], g[surface.G_THETA0], g[surface.G_BRANCH] = curve._arc
+        g[surface.G_RC] = curve.cutter_radius
+    # the gear's active flank: beyond it the gear's tip sweeps the pinion's
+    # undercut, which the generated pinion does not have
+    g[surface.G_THETA_LO2], g[surface.G_THETA_HI2] = active_polar_range(pair, 2, side)
+    g[surface.G_R_IN], g[surface.G_R_OUT] = design.inner_cone_distance, design.outer_cone_distance
+    z1, z2 = design.teeth
+    g[surface.G_GEAR_PITCH], g[surface.G_PINION_PITCH] = 2 * math.pi / z2, 2 * math.pi / z1
+    g[surface.G_RATIO] = z1 / z2
+    g[surface.G_S1] = pair.axis_normal_component(1, side)
+    g[surface.G_ROOT2] = design.root_angle(2)
+    return g
 
 
 def mesh_cycle_pinion_angles(pair, positions=POSITIONS):
@@ -265,6 +289,12 @@ def backlash(surface_pair, pinion_angles, drive=None):
     numpy.ndarray
         Gear rotation from drive to coast contact [rad] (NaN where either
         side has no contact).
+
+    Notes
+    -----
+    The coast contact depends on the displacements and the positions only
+    (the coast flanks stay conjugate), and is kept per pair
+    (:func:`lsbg.tca.memo.memoised`).
     """
     pair = surface_pair.pair
     if drive is None:
@@ -272,12 +302,22 @@ def backlash(surface_pair, pinion_angles, drive=None):
     # half the grid: the play only has to be told from zero (a few µrad against the
     # design's 1406), and the conjugate coast flanks touch along lines
     face, profile = surface_pair.grid_shape
-    coast_pair = SurfacePair.build(pair, surface_pair.modification, surface_pair.misalignment,
-                                   max(21, face // 2 + 1), max(41, profile // 2 + 1),
-                                   side="coast")
-    coast, _, _ = search(coast_pair, pinion_angles)
+    grid = (max(21, face // 2 + 1), max(41, profile // 2 + 1))
+    misalignment = surface_pair.misalignment
+    angles = np.ascontiguousarray(np.atleast_1d(np.asarray(pinion_angles, dtype=float)))
+
+    def coast_contact():
+        coast_pair = SurfacePair.build(pair, surface_pair.modification, misalignment, *grid,
+                                       side="coast")
+        return search(coast_pair, angles)[0][:, surface.O_PHI2].copy()
+
+    # the coast flanks are conjugate whatever the modification: an ease-off search
+    # meets each displacement's coast contact again at every design
+    coast = memoised(pair, "coast_contact",
+                     (grid, float_key(dataclasses.astuple(misalignment)), angles.tobytes()),
+                     coast_contact)
     # the coast search runs on -phi2: its maximum is the gear's coast contact
-    return -coast[:, surface.O_PHI2] - drive[:, surface.O_PHI2]
+    return -coast - drive[:, surface.O_PHI2]
 
 
 def tooth_contact_analysis(pair, modification=None, misalignment=None, positions=POSITIONS,

@@ -46,11 +46,12 @@ in micrometres in the configuration (``flank_modification:``).
 from __future__ import annotations
 
 import math
-import weakref
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
+
+from lsbg.tca.memo import copied, memoised
 
 __all__ = ["FlankModification", "TopographyError", "MODIFICATION_CONFIG_KEYS",
            "read_topography", "profile_coordinate", "pinion_tip_end", "lengthwise_coordinate", "pinion_relief",
@@ -408,23 +409,21 @@ def relieved_flank(pair, modification, cone_distance, psi, side="drive", polar_r
     The flank does not depend on the assembly's displacements, so the cells
     of a V-H map ask for the same grids again and again; the last
     :data:`FLANK_MEMO_SIZE` results per pair are kept (keyed by the
-    modification, the side, the clip and the points' values) and copies
-    returned.
+    modification, the side, the clip and the points' values and memory
+    layout, which numpy's vectorised transcendental functions may round
+    differently; :func:`lsbg.tca.memo.memoised`) and copies returned.
     """
     rho, psi = np.broadcast_arrays(np.asarray(cone_distance, float), np.asarray(psi, float))
     clip = None if polar_range is None else tuple(float(x) for x in polar_range)
-    key = (modification, side, clip, rho.shape, rho.tobytes(), psi.tobytes())
-    memo = _FLANK_MEMO.setdefault(pair, {})
-    if key not in memo:
-        if len(memo) >= FLANK_MEMO_SIZE:
-            memo.pop(next(iter(memo)))
-        memo[key] = _relieved_flank(pair, modification, rho, psi, side, clip)
-    return tuple(a.copy() for a in memo[key])
+    key = (modification, side, clip, rho.shape, rho.strides, psi.strides, rho.tobytes(),
+           psi.tobytes())
+    return copied(memoised(pair, "relieved_flank", key,
+                           lambda: _relieved_flank(pair, modification, rho, psi, side, clip),
+                           FLANK_MEMO_SIZE))
 
 
 #: Flank grids kept per pair by :func:`relieved_flank`.
 FLANK_MEMO_SIZE = 8
-_FLANK_MEMO = weakref.WeakKeyDictionary()
 
 
 def _relieved_flank(pair, modification, rho, psi, side, polar_range):
