@@ -15,6 +15,7 @@ point (:func:`calibrated_line_stiffness`, docs/model.md).
 
 from __future__ import annotations
 
+import copy
 import math
 from dataclasses import dataclass
 from typing import NamedTuple
@@ -196,7 +197,8 @@ class MeshContact:
                                  "the line model")
             self._sides, self._table = self._point_tables(samples_per_pitch)
         else:
-            self._sides, self._table = self._line_bands(self.params.slices, separation)
+            self._bands = self._line_bands(self.params.slices)
+            self._sides, self._table = self._separation_bands(separation)
             if slice_stiffness is not None:
                 self._add_slice_stiffness(slice_stiffness)
         # Stiffness-proportional damping of each slice, c_l = 2 zeta k_l / omega_n,
@@ -280,10 +282,12 @@ class MeshContact:
             table[s, :len(columns)] = columns
         return sides, table
 
-    def _line_bands(self, bands, separation=None):
+    def _line_bands(self, bands):
         """Per side, the bands (slices) of the face width: mid distance, lever,
-        length of the curve inside the band, and the curve's polar angles;
-        with ``separation``, the drive side's separation table after them."""
+        length of the curve inside the band, and the curve's polar angles, on
+        conjugate flanks. Returns ``(sides, table, edges, rho, lever)``: the
+        kernel's rows and the bands' edges, mid distances [m] and the last
+        side's levers [m] for :meth:`_separation_bands`."""
         design = self.pair.design
         edges = np.linspace(design.inner_cone_distance, design.outer_cone_distance, bands + 1)
         rho = 0.5 * (edges[:-1] + edges[1:])
@@ -303,8 +307,17 @@ class MeshContact:
             table[s, :, k.B_SIN], table[s, :, k.B_D_SIN] = np.sin(theta), np.diff(np.sin(theta_edge))
             table[s, :, k.B_LENGTH] = np.diff(edges) * rho / lever  # d rho / cos(beta_p)
             table[s, :, k.B_THETA_IN], table[s, :, k.B_THETA_OUT] = theta_edge[:-1], theta_edge[1:]
+        return sides, table, edges, rho, lever
+
+    def _separation_bands(self, separation):
+        """The kernel's (sides, table) of :meth:`_line_bands`' conjugate bands with,
+        for a ``separation`` field, the drive side's separation table after them
+        (the conjugate rows themselves are not changed)."""
+        sides, table, edges, rho, lever = self._bands
+        sides = sides.copy()  # the conjugate rows stay as they are for other flanks
         if separation is None:
-            return sides, table
+            return sides, table.copy()
+        bands = rho.size
         # Drive side: the separation at each band's centre and its change
         # across the band, on rows of line turn over the lines' whole range.
         first, last = sides[0, k.S_FIRST], sides[0, k.S_LAST]
@@ -322,11 +335,46 @@ class MeshContact:
         sides[0, k.S_SEP_FIRST], sides[0, k.S_SEP_INV_STEP] = first, 1.0 / step_
         sides[0, k.S_SEP_ROWS] = rows
         # contact can begin at a negative mismatch where the flanks interfere
+        # (``lever`` is the last side's, as it always was: both sides' planes
+        # carry the same generating curve, so it is the drive side's too)
         lever_edge = edges * np.cos(self.pair.planes["drive"].curve.ray_angle(edges))
         lead = min(float(np.min(centre / lever)), float(np.min(edge / lever_edge)))
         sides[0, k.S_SEP_LEAD] = min(0.0, 1.1 * lead)
         return sides, full
 
+    def with_separation(self, separation):
+        """This line-model contact on other real flanks.
+
+        The same as ``MeshContact(pair, params, gear_inertia, separation=separation)``
+        bit for bit, without building the conjugate bands again: an ease-off
+        search builds a contact per design and displacement on one pair.
+
+        Parameters
+        ----------
+        separation : callable or None
+            As the constructor's ``separation``.
+
+        Returns
+        -------
+        MeshContact
+
+        Raises
+        ------
+        ValueError
+            For the point model or a contact with a slice stiffness (whose
+            columns follow the separation's).
+        """
+        self._require_line("with_separation")
+        if self.slice_stiffness is not None:
+            raise ValueError("with_separation is defined for the uniform bed (no slice "
+                             "stiffness)")
+        other = copy.copy(self)
+        other.separation = separation
+        # the kernel parameters do not depend on the separation (nor does the
+        # damping: it follows the conjugate bands' mean stiffness)
+        other._sides, other._table = other._separation_bands(separation)
+        other.arrays = (self.arrays[0], other._sides, other._table)
+        return other
     def _add_slice_stiffness(self, slice_stiffness):
         """Append the drive side's slice-stiffness columns to the band table."""
         from lsbg.contact.slices import stiffness_columns

@@ -24,7 +24,9 @@ SI units.
 
 from __future__ import annotations
 
+import dataclasses
 import math
+from collections import namedtuple
 from dataclasses import dataclass
 
 import numpy as np
@@ -32,8 +34,10 @@ import numpy as np
 from lsbg.contact import kernels as k
 from lsbg.contact.bands import band_points
 from lsbg.gear.flank import mesh_phase_pinion_angle
+from lsbg.tca.memo import cached, float_key
 
-__all__ = ["MeshPoints", "LoadedPoints", "SeparationCache", "mesh_points", "loaded_points"]
+__all__ = ["MeshPoints", "LoadedPoints", "SeparationCache", "mesh_points", "mesh_positions",
+           "loaded_points"]
 
 
 class SeparationCache:
@@ -41,18 +45,25 @@ class SeparationCache:
 
     :class:`lsbg.tca.separation.SeparationField` relieves the pinion's flank
     at the points the line model asks for, which are the same for every
-    modification: this keeps the conjugate flank's points and normals there
-    (:func:`lsbg.tca.modification.relieved_flank` of no modification,
-    memoised) and each displacement's kernel constants, and removes each
+    modification and displacement: this keeps, per grid of points asked for,
+    the conjugate flank's points and normals there
+    (:func:`lsbg.tca.modification.relieved_flank` of no modification), their
+    ease-off coordinates and pinion rotations, the current modification's
+    relieved points on each grid (one design's displacements all ask for
+    them) and each displacement's kernel constants, and removes each
     modification's relief along the normals, as ``relieved_flank`` does. The
     values are :class:`~lsbg.tca.separation.SeparationField`'s (tested to
-    rounding); an optimisation's evaluation builds its five fields in a third
-    of the time.
+    rounding), computed by the same operations on the same numbers whether
+    kept or not (tested bit for bit).
 
     Parameters
     ----------
     pair : lsbg.gear.geometry.GearPair
     """
+
+    #: Grids of points kept (a line-model evaluation asks for three: the bands'
+    #: centres and edges on the separation table's rows, and the mesh points).
+    GRIDS = 8
 
     def __init__(self, pair):
         from lsbg.tca.modification import pinion_tip_end
@@ -60,6 +71,9 @@ class SeparationCache:
         self.pair = pair
         self.tip = pinion_tip_end(pair)
         self._constants = {}
+        self._grids = {}
+        # the modification whose relieved points are kept, and those points per grid
+        self._modification, self._relieved = None, {}
 
     def field(self, modification, misalignment):
         """The separation field ``field(turn, cone_distance)`` [m] of a modification
@@ -72,11 +86,12 @@ class SeparationCache:
         modification = modification.load()
         if modification.is_zero and misalignment.is_zero:
             return None
-        if misalignment not in self._constants:
-            # the kernel constants depend on the displacement only
-            self._constants[misalignment] = SeparationField(
+        # the kernel constants depend on the displacement only (its exact bits)
+        key = float_key(dataclasses.astuple(misalignment))
+        if key not in self._constants:
+            self._constants[key] = SeparationField(
                 self.pair, type(modification)(), misalignment)._constants
-        constants = self._constants[misalignment]
+        constants = self._constants[key]
         cache = self
 
         def separation(turn, cone_distance):
@@ -89,21 +104,41 @@ class SeparationCache:
     def separation(self, modification, constants, turn, cone_distance):
         """:meth:`lsbg.tca.separation.SeparationField.__call__` on the cached flank [m]."""
         from lsbg.tca import surface
+
+        turn, rho = np.broadcast_arrays(np.asarray(turn, float), np.asarray(cone_distance, float))
+        key = (turn.shape, turn.strides, rho.strides, turn.tobytes(), rho.tobytes())
+        grid = cached(self._grids, key, lambda: self._grid(turn, rho), self.GRIDS)
+        if modification != self._modification:
+            self._modification, self._relieved = modification, {}
+        if key not in self._relieved:
+            relief = modification.relief(grid.u, grid.v, self.tip)
+            points = grid.points - relief[..., None] * grid.normals
+            self._relieved[key] = np.ascontiguousarray(points.reshape(-1, 3))
+        gap = surface.point_separations(grid.angles, self._relieved[key], grid.flat_normals,
+                                        constants)
+        return gap.reshape(turn.shape)
+
+    def _grid(self, turn, rho):
+        """What a grid of points (turn, rho) gives every modification: the conjugate
+        flank's points and normals, the ease-off coordinates and the pinion rotations."""
         from lsbg.tca.modification import (FlankModification, field_profile_coordinate,
                                            lengthwise_coordinate, relieved_flank)
 
         pair = self.pair
         plane = pair.planes["drive"]
-        turn, rho = np.broadcast_arrays(np.asarray(turn, float), np.asarray(cone_distance, float))
         psi = turn + plane.curve.polar_angle(rho)
         points, normals, _ = relieved_flank(pair, FlankModification(), rho, psi)
-        relief = modification.relief(lengthwise_coordinate(pair.design, rho),
-                                     field_profile_coordinate(plane, psi), self.tip)
-        points = points - relief[..., None] * normals
+        # tooth 0 carries the line of turn Psi at pinion rotation Psi / s1
         angles = np.ascontiguousarray((turn / pair.axis_normal_component(1, "drive")).ravel())
-        gap = surface.point_separations(angles, np.ascontiguousarray(points.reshape(-1, 3)),
-                                        np.ascontiguousarray(normals.reshape(-1, 3)), constants)
-        return gap.reshape(turn.shape)
+        return _FlankGrid(points, normals, np.ascontiguousarray(normals.reshape(-1, 3)),
+                          lengthwise_coordinate(pair.design, rho),
+                          field_profile_coordinate(plane, psi), angles)
+
+
+#: A grid of :class:`SeparationCache`: the conjugate flank's points [m] and normals [-],
+#: the normals as the kernel reads them, the ease-off coordinates u, v [-] and the
+#: pinion rotations [rad].
+_FlankGrid = namedtuple("_FlankGrid", "points normals flat_normals u v angles")
 
 
 @dataclass(frozen=True)
@@ -222,7 +257,7 @@ class LoadedPoints:
         return self.e2 * np.sum(self.force * self.points.lever, axis=(2, 3))
 
 
-def mesh_points(contact, pinion_angles):
+def mesh_points(contact, pinion_angles, layout=None):
     """The line model's contact points of every tooth pair at some pinion rotations.
 
     The bands of the face width on each line that can meet the field, cut
@@ -237,18 +272,37 @@ def mesh_points(contact, pinion_angles):
         A line-model contact.
     pinion_angles : array_like
         Pinion rotations phi1 [rad].
+    layout : MeshPoints, optional
+        This function's points at the same rotations for a contact of the
+        same pair and parameters on any flanks (conjugate ones, say): the
+        points do not depend on the flanks, so only the separation is
+        computed (an ease-off search's contacts all share them).
 
     Returns
     -------
     MeshPoints
     """
+    phi1 = np.atleast_1d(np.asarray(pinion_angles, dtype=float))
+    if layout is None:
+        layout = _mesh_layout(contact, phi1)
+    elif not np.array_equal(layout.pinion_angle, phi1):
+        raise ValueError("the layout's points are at other pinion rotations")
+    inside, rho = layout.inside, layout.rho
+    separation = np.zeros(rho.shape)
+    if contact.separation is not None and np.any(inside):
+        turns = np.broadcast_to(layout.turn[..., None], rho.shape)
+        separation[inside] = contact.separation(turns[inside], rho[inside])
+    return dataclasses.replace(layout, separation=separation)
+
+
+def _mesh_layout(contact, phi1):
+    """:func:`mesh_points` without the separation (zero) at pinion rotations phi1 [rad]."""
     sides, table = contact.arrays[1], contact.arrays[2]
     first, last = sides[0, k.S_FIRST], sides[0, k.S_LAST]
     psi_lo, psi_hi = sides[0, k.S_PSI_LO], sides[0, k.S_PSI_HI]
     bands = int(sides[0, k.S_ROWS])
     band = table[0, :bands]
     pitch = contact.pitch
-    phi1 = np.atleast_1d(np.asarray(pinion_angles, dtype=float))
     # the turn of tooth 0's line at the pinion's rotation, then every line after it
     mismatch_turn = contact.orientation * phi1 * contact.e1
     start = mismatch_turn + np.ceil((first - mismatch_turn) / pitch) * pitch
@@ -256,16 +310,24 @@ def mesh_points(contact, pinion_angles):
     turn = start[:, None] + pitch * np.arange(lines)[None, :]
     at = band_points(band, turn, psi_lo, psi_hi, last)
     inside, rho = at.inside, at.rho
-    separation = np.zeros(rho.shape)
-    if contact.separation is not None and np.any(inside):
-        turns = np.broadcast_to(turn[..., None], rho.shape)
-        separation[inside] = contact.separation(turns[inside], rho[inside])
-    return MeshPoints(phi1, turn, rho, at.psi, at.lever, at.length, separation, inside,
+    return MeshPoints(phi1, turn, rho, at.psi, at.lever, at.length, np.zeros(rho.shape), inside,
                       at.edge.astype(np.int8), np.where(inside, at.bottom, np.nan),
                       np.where(inside, at.top, np.nan), np.arange(bands))
 
 
-def loaded_points(contact, torques, phases):
+def mesh_positions(pair, phases):
+    """The pinion rotations of :func:`loaded_points` over one base pitch [rad].
+
+    Parameters
+    ----------
+    pair : lsbg.gear.geometry.GearPair
+    phases : int
+        Mesh positions over one base pitch [-].
+    """
+    return mesh_phase_pinion_angle(pair, np.arange(int(phases)) / int(phases))
+
+
+def loaded_points(contact, torques, phases, layout=None):
     """The line model's equilibria at each torque over one mesh cycle, point by point.
 
     Parameters
@@ -278,6 +340,10 @@ def loaded_points(contact, torques, phases):
     phases : int
         Mesh positions over one base pitch [-], at least 4; the positions of
         :func:`lsbg.tca.loaded.loaded_tca` with as many phases.
+    layout : MeshPoints, optional
+        :func:`mesh_points` of a contact of the same pair and parameters at
+        these positions (:func:`mesh_positions`), on any flanks: the points
+        are taken from it, the separation computed.
 
     Returns
     -------
@@ -288,7 +354,7 @@ def loaded_points(contact, torques, phases):
     ValueError
         For a point-model contact, the tooth's own compliance (the loads
         here are the uniform bed's), a negative torque, fewer than 4 phases,
-        or a torque the contact cannot carry.
+        a layout at other positions, or a torque the contact cannot carry.
     """
     if contact.params.model != "line" or contact.slice_stiffness is not None:
         raise ValueError("loaded points are defined for the line model on the uniform bed")
@@ -298,8 +364,8 @@ def loaded_points(contact, torques, phases):
     if isinstance(phases, bool) or int(phases) != phases or phases < 4:
         raise ValueError(f"phases = {phases!r}: must be a whole number >= 4")
     z1, z2 = contact.pair.design.teeth
-    pinion = mesh_phase_pinion_angle(contact.pair, np.arange(int(phases)) / int(phases))
-    points = mesh_points(contact, pinion)
+    pinion = mesh_positions(contact.pair, phases)
+    points = mesh_points(contact, pinion, layout)
     te = np.zeros((torques.size, pinion.size))
     eps = np.zeros((torques.size, pinion.size))
     for i, torque in enumerate(torques):

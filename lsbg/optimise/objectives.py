@@ -64,7 +64,7 @@ import numpy as np
 from lsbg.optimise.friction import (Lubricant, friction_coefficients, mesh_efficiency,
                                     mesh_power_loss, nominal_values)
 from lsbg.optimise.kinematics import CurvatureTable, contact_speeds
-from lsbg.optimise.loaded import SeparationCache, loaded_points
+from lsbg.optimise.loaded import SeparationCache, loaded_points, mesh_points, mesh_positions
 
 __all__ = ["OBJECTIVES", "CONSTRAINTS", "QUANTITIES", "DEFAULT_OBJECTIVES", "PHASES",
            "EvaluationSettings", "Evaluator"]
@@ -209,12 +209,14 @@ class Evaluator:
     Notes
     -----
     What does not depend on the design is built once: the separation
-    fields' flank (:class:`lsbg.optimise.loaded.SeparationCache`), the
-    relative curvature's table, ISO/TR 14179-2's nominal values.
+    fields' flank (:class:`lsbg.optimise.loaded.SeparationCache`), the line
+    model's conjugate bands (:meth:`lsbg.contact.MeshContact.with_separation`)
+    and mesh points (``layout`` of :func:`lsbg.optimise.loaded.loaded_points`),
+    the relative curvature's table, ISO/TR 14179-2's nominal values.
     """
 
     def __init__(self, pair, settings):
-        from lsbg.contact import ContactParameters
+        from lsbg.contact import ContactParameters, MeshContact
         from lsbg.tca.checks import normal_backlash
         from lsbg.tca.misalignment import Misalignment
 
@@ -225,6 +227,10 @@ class Evaluator:
         self.states = [("aligned", base)] + [(label, base.shifted(**shift))
                                              for label, shift in settings.corners]
         self.cache = SeparationCache(pair)
+        # the conjugate bands and the mesh points are the same for every design and
+        # displacement: each contact takes them from these (bit for bit)
+        self._conjugate = MeshContact(pair, self.params)
+        self._layout = mesh_points(self._conjugate, mesh_positions(pair, settings.phases))
         design = pair.design
         edges = np.linspace(design.inner_cone_distance, design.outer_cone_distance,
                             self.params.slices + 1)
@@ -246,10 +252,7 @@ class Evaluator:
 
     def contact(self, modification, misalignment):
         """The line model on the flanks of a design and a displacement."""
-        from lsbg.contact import MeshContact
-
-        return MeshContact(self.pair, self.params,
-                           separation=self.cache.field(modification, misalignment))
+        return self._conjugate.with_separation(self.cache.field(modification, misalignment))
 
     def evaluate(self, modification):
         """Every quantity of :data:`QUANTITIES` for one design, in their units.
@@ -270,7 +273,8 @@ class Evaluator:
         edge, edge_share, envelope_te = [], [], []
         for k, (_, misalignment) in enumerate(self.states):
             state = loaded_points(self.contact(modification, misalignment),
-                                  torques if k == 0 else [s.rated_torque], s.phases)
+                                  torques if k == 0 else [s.rated_torque], s.phases,
+                                  self._layout)
             at = rated if k == 0 else 0
             at_edge = state.points.at_edge(*self.active)
             approach = state.approach[at][at_edge]
