@@ -14,8 +14,10 @@ these numbers live in :mod:`lsbg.gear.geometry`.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -51,6 +53,27 @@ def _hint(name, value):
         return f"{value:g} kg/m^3 is outside what gears are made of"
     return (f"{value:g} mm is {value * 1e-3:g} m (GearPairDesign.from_units({name}_mm="
             f"{value:g}))")
+
+
+def _per_member(method):
+    """Memoise a method of a member (1: pinion, 2: gear) of the frozen design.
+
+    The derived quantities are asked for hundreds of thousands of times in an
+    ease-off search; the design's fields never change after it is built, so
+    each member's value is computed once, by the method's own expression (the
+    same float), and kept in the instance (the derived properties are
+    ``functools.cached_property`` for the same reason).
+    """
+    memo_name = f"_{method.__name__}_memo"
+
+    @functools.wraps(method)
+    def memoised(self, member):
+        memo = self.__dict__.setdefault(memo_name, {})
+        if member not in memo:
+            memo[member] = method(self, member)
+        return memo[member]
+
+    return memoised
 
 
 @dataclass(frozen=True)
@@ -273,7 +296,12 @@ class GearPairDesign:
         ``GearPairDesign.from_config(design.to_config()) == design`` holds bit
         for bit: a converted value that does not come back to the same float
         (about one angle in twenty) is moved by a few units in the last place.
+        Converted once per design (a copy each call).
         """
+        return dict(self._config)
+
+    @cached_property
+    def _config(self) -> dict:
         out = {}
         for key in CONFIG_KEYS:
             name, scale = _config_key(key)
@@ -310,11 +338,12 @@ class GearPairDesign:
         return dataclasses.replace(self, **changes)
 
     # --------------------------------------------------------------- derived
-    @property
+    @cached_property
     def teeth(self) -> tuple[int, int]:
         """(z1, z2) [-]."""
         return int(self.pinion_teeth), int(self.gear_teeth)
 
+    @_per_member
     def pitch_angle(self, member: int) -> float:
         """Pitch cone angle delta_i of member 1 (pinion) or 2 (gear) [rad].
 
@@ -324,40 +353,42 @@ class GearPairDesign:
         d1 = math.atan2(math.sin(self.shaft_angle), z2 / z1 + math.cos(self.shaft_angle))
         return d1 if member == 1 else self.shaft_angle - d1
 
+    @_per_member
     def pitch_diameter(self, member: int) -> float:
         """Outer pitch diameter d_i = m z_i [m]."""
         return self.module * self.teeth[member - 1]
 
-    @property
+    @cached_property
     def outer_cone_distance(self) -> float:
         """Outer cone distance R_e = d1 / (2 sin delta_1) [m]."""
         return self.pitch_diameter(1) / (2 * math.sin(self.pitch_angle(1)))
 
-    @property
+    @cached_property
     def mean_cone_distance(self) -> float:
         """Mean cone distance R_m = R_e - b/2 [m]."""
         return self.outer_cone_distance - self.face_width / 2
 
-    @property
+    @cached_property
     def inner_cone_distance(self) -> float:
         """Inner cone distance R_i = R_e - b [m]."""
         return self.outer_cone_distance - self.face_width
 
-    @property
+    @cached_property
     def mean_module(self) -> float:
         """Mean transverse module m_m = m R_m / R_e [m]."""
         return self.module * self.mean_cone_distance / self.outer_cone_distance
 
-    @property
+    @cached_property
     def mean_circular_pitch(self) -> float:
         """Circular pitch on the mean pitch circle, pi m_m [m]."""
         return math.pi * self.mean_module
 
+    @_per_member
     def mean_pitch_radius(self, member: int) -> float:
         """Mean pitch radius r_m,i = R_m sin delta_i [m]."""
         return self.mean_cone_distance * math.sin(self.pitch_angle(member))
 
-    @property
+    @cached_property
     def mean_normal_module(self) -> float:
         """Mean normal module m_mn = m_m cos(beta_m) [m] (ISO 23509's unit of a shift)."""
         return self.mean_module * math.cos(self.spiral_angle)
@@ -365,6 +396,7 @@ class GearPairDesign:
     def _shift_sign(self, member):
         return 1.0 if member == 1 else -1.0
 
+    @_per_member
     def outer_shift(self, member: int) -> float:
         """The profile shift's depth at the outer cone distance, +-x_hm1 m_mn R_e/R_m [m].
 
@@ -375,14 +407,17 @@ class GearPairDesign:
         return (self._shift_sign(member) * self.profile_shift * self.mean_normal_module
                 * self.outer_cone_distance / self.mean_cone_distance)
 
+    @_per_member
     def outer_addendum(self, member: int) -> float:
         """Outer addendum of a member, h_a +- the profile shift [m]."""
         return self.addendum + self.outer_shift(member)
 
+    @_per_member
     def outer_dedendum(self, member: int) -> float:
         """Outer dedendum of a member, h_f -+ the profile shift [m]."""
         return self.dedendum - self.outer_shift(member)
 
+    @_per_member
     def mean_tooth_thickness(self, member: int) -> float:
         """Circular tooth thickness on the mean pitch circle [m].
 
@@ -397,39 +432,44 @@ class GearPairDesign:
                   / math.cos(self.spiral_angle))
         return (self.mean_circular_pitch - self.backlash) / 2 + self._shift_sign(member) * change
 
+    @_per_member
     def mean_normal_tooth_thickness(self, member: int) -> float:
         """Normal tooth thickness at the mean point, s_m cos(beta_m) [m] (ISO 23509's
         s_mn, less half the backlash's normal share)."""
         return self.mean_tooth_thickness(member) * math.cos(self.spiral_angle)
 
-    @property
+    @cached_property
     def addendum_angle(self) -> float:
         """Addendum angle of the unshifted teeth, atan(h_a / R_e) [rad] (depth tapers
         to the apex); a member's own: :meth:`member_addendum_angle`."""
         return math.atan(self.addendum / self.outer_cone_distance)
 
-    @property
+    @cached_property
     def dedendum_angle(self) -> float:
         """Dedendum angle of the unshifted teeth, atan(h_f / R_e) [rad]."""
         return math.atan(self.dedendum / self.outer_cone_distance)
 
+    @_per_member
     def member_addendum_angle(self, member: int) -> float:
         """Addendum angle theta_a,i = atan(h_a,i / R_e) of a member [rad]."""
         return math.atan(self.outer_addendum(member) / self.outer_cone_distance)
 
+    @_per_member
     def member_dedendum_angle(self, member: int) -> float:
         """Dedendum angle theta_f,i = atan(h_f,i / R_e) of a member [rad]."""
         return math.atan(self.outer_dedendum(member) / self.outer_cone_distance)
 
+    @_per_member
     def tip_angle(self, member: int) -> float:
         """Face (tip) cone angle delta_a,i = delta_i + theta_a,i [rad]."""
         return self.pitch_angle(member) + self.member_addendum_angle(member)
 
+    @_per_member
     def root_angle(self, member: int) -> float:
         """Root cone angle delta_f,i = delta_i - theta_f,i [rad]."""
         return self.pitch_angle(member) - self.member_dedendum_angle(member)
 
-    @property
+    @cached_property
     def plane_of_action_tilt(self) -> float:
         """Tilt gamma of the plane of action from the pitch-cone tangent plane [rad].
 
@@ -442,16 +482,17 @@ class GearPairDesign:
             return math.pi / 2 - self.spiral_angle
         return math.atan(math.tan(self.normal_pressure_angle) / math.cos(self.spiral_angle))
 
-    @property
+    @cached_property
     def base_cone_constant(self) -> float:
         """c = sin(delta_b,i) / sin(delta_i), the same for both members [-]."""
         return math.cos(self.plane_of_action_tilt)
 
+    @_per_member
     def base_cone_angle(self, member: int) -> float:
         """Base cone angle delta_b,i = asin(c sin delta_i) [rad]."""
         return math.asin(self.base_cone_constant * math.sin(self.pitch_angle(member)))
 
-    @property
+    @cached_property
     def plane_spiral_angle(self) -> float:
         """Angle beta_p between the generating curve and the ray at the mean point [rad].
 
@@ -462,7 +503,7 @@ class GearPairDesign:
         """
         return math.atan(math.tan(self.spiral_angle) * math.cos(self.plane_of_action_tilt))
 
-    @property
+    @cached_property
     def mean_normal_pressure_angle(self) -> float:
         """Normal pressure angle that the base-cone rule gives at the mean point [rad].
 
@@ -471,7 +512,7 @@ class GearPairDesign:
         """
         return math.asin(math.cos(self.plane_spiral_angle) * math.sin(self.plane_of_action_tilt))
 
-    @property
+    @cached_property
     def base_pitch_angle(self) -> float:
         """Angular pitch of the contact lines in the plane of action,
         Psi_p = 2 pi sin(delta_b,1) / z1 = 2 pi sin(delta_b,2) / z2 [rad]."""

@@ -34,7 +34,7 @@ import numpy as np
 from lsbg.contact import kernels as k
 from lsbg.contact.bands import band_points
 from lsbg.gear.flank import mesh_phase_pinion_angle
-from lsbg.tca.memo import cached, float_key
+from lsbg.tca.memo import cached, fields_key
 
 __all__ = ["MeshPoints", "LoadedPoints", "SeparationCache", "mesh_points", "mesh_positions",
            "loaded_points"]
@@ -87,7 +87,7 @@ class SeparationCache:
         if modification.is_zero and misalignment.is_zero:
             return None
         # the kernel constants depend on the displacement only (its exact bits)
-        key = float_key(dataclasses.astuple(misalignment))
+        key = fields_key(misalignment)
         if key not in self._constants:
             self._constants[key] = SeparationField(
                 self.pair, type(modification)(), misalignment)._constants

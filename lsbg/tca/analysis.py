@@ -27,7 +27,6 @@ attributes).
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -36,7 +35,7 @@ import numpy as np
 from lsbg.tca import surface
 from lsbg.tca.pattern import (MARKING_COMPOUND, bearing_pattern, chart_ellipses,
                                contact_ellipses, profile_height, raster_centres)
-from lsbg.tca.memo import copied, float_key, memoised
+from lsbg.tca.memo import copied, fields_key, memoised
 from lsbg.tca.misalignment import Misalignment, member_frames
 from lsbg.tca.modification import FlankModification, flank_attributes, relieved_flank
 from lsbg.gear.flank import active_polar_range
@@ -110,7 +109,7 @@ class SurfacePair:
         points, normals, relief = relieved_flank(pair, modification, big_rho, big_psi, side,
                                                  polar_range)
         g = memoised(pair, "surface_constants",
-                     (side, float_key(dataclasses.astuple(misalignment))),
+                     (side, fields_key(misalignment)),
                      lambda: _surface_constants(pair, misalignment, side))
         return cls(pair, modification, misalignment, g.copy(),
                    np.ascontiguousarray(points.reshape(-1, 3)),
@@ -314,7 +313,7 @@ def backlash(surface_pair, pinion_angles, drive=None):
     # the coast flanks are conjugate whatever the modification: an ease-off search
     # meets each displacement's coast contact again at every design
     coast = memoised(pair, "coast_contact",
-                     (grid, float_key(dataclasses.astuple(misalignment)), angles.tobytes()),
+                     (grid, fields_key(misalignment), angles.tobytes()),
                      coast_contact)
     # the coast search runs on -phi2: its maximum is the gear's coast contact
     return -coast - drive[:, surface.O_PHI2]

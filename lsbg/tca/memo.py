@@ -12,9 +12,10 @@ them (:func:`copied`).
 
 from __future__ import annotations
 
+import dataclasses
 import weakref
 
-__all__ = ["memoised", "cached", "copied", "float_key", "MEMO_SIZE"]
+__all__ = ["memoised", "cached", "copied", "float_key", "fields_key", "MEMO_SIZE"]
 
 #: Results kept per pair and kind unless the caller says otherwise.
 MEMO_SIZE = 16
@@ -78,3 +79,9 @@ def float_key(values):
     """The exact bits of some floats as a key: 0.0 and -0.0 (equal, but not the
     same input to the arithmetic) are told apart."""
     return tuple(float(v).hex() for v in values)
+
+
+def fields_key(instance):
+    """:func:`float_key` of a dataclass of numbers (its fields in order), such as a
+    :class:`lsbg.tca.misalignment.Misalignment`."""
+    return float_key(getattr(instance, f.name) for f in dataclasses.fields(instance))
