@@ -1,5 +1,6 @@
 """Design parameters and closed-form bevel gear quantities (paper Table 1)."""
 
+import functools
 import math
 
 import pytest
@@ -118,3 +119,29 @@ def test_from_units_takes_the_paper_units():
     assert GearPairDesign.from_units(module_mm=4.5, spiral_angle_deg=35) == GearPairDesign()
     design = GearPairDesign.from_units(face_width_mm=30, trace="circular")
     assert design.face_width == pytest.approx(0.030) and design.trace == "circular"
+
+
+def test_derived_quantities_are_memoised_bit_for_bit():
+    design = GearPairDesign.from_units(module_mm=4.5, spiral_angle_deg=30, trace="circular",
+                                       profile_shift=0.3)
+    first = design.derived()
+    assert design.derived() == first
+    cls = type(design)
+    properties = [name for name, attribute in vars(cls).items()
+                  if isinstance(attribute, functools.cached_property)]
+    assert {"outer_cone_distance", "base_pitch_angle", "teeth"} <= set(properties)
+    for name in properties:
+        assert getattr(design, name) == vars(cls)[name].func(design), name
+    for name in ("pitch_angle", "pitch_diameter", "mean_pitch_radius", "outer_shift",
+                 "outer_addendum", "outer_dedendum", "mean_tooth_thickness",
+                 "mean_normal_tooth_thickness", "member_addendum_angle",
+                 "member_dedendum_angle", "tip_angle", "root_angle", "base_cone_angle"):
+        for member in (1, 2):
+            value = getattr(design, name)(member)
+            assert f"_{name}_memo" in vars(design), name
+            computed = getattr(cls, name).__wrapped__(design, member)
+            assert float(value).hex() == float(computed).hex(), (name, member)
+    config = design.to_config()
+    config["module_mm"] = 1.0  # a copy: the memo keeps the design's
+    assert design.to_config()["module_mm"] == 4.5
+    assert GearPairDesign.from_config(design.to_config()) == design

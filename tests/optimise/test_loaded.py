@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from lsbg.contact import ContactParameters, MeshContact
-from lsbg.optimise.loaded import SeparationCache, loaded_points, mesh_points
+from lsbg.optimise.loaded import MeshPoints, SeparationCache, loaded_points, mesh_points
 from lsbg.tca.loaded import loaded_tca
 from lsbg.tca.misalignment import Misalignment
 from lsbg.tca.modification import FlankModification
@@ -77,3 +77,49 @@ def test_bad_input_is_refused(pairs, contact):
         loaded_points(contact, [RATED], 2)
     with pytest.raises(ValueError, match="torques"):
         loaded_points(contact, [-1.0], 8)
+
+
+def same_bits(a, b):
+    a, b = np.asarray(a), np.asarray(b)
+    return a.shape == b.shape and a.dtype == b.dtype and a.tobytes() == b.tobytes()
+
+
+def test_contacts_with_a_separation_are_built_ones_bit_for_bit(pairs):
+    pair = pairs["circular"]
+    conjugate = MeshContact(pair, LINE)
+    cache = SeparationCache(pair)
+    for modification in (CROWNED, FlankModification(profile_crowning=6e-6, bias=4e-6)):
+        for misalignment in (Misalignment(), DISPLACED):
+            field = cache.field(modification, misalignment)
+            built = MeshContact(pair, LINE, separation=field)
+            shared = conjugate.with_separation(field)
+            assert all(same_bits(a, b) for a, b in zip(shared.arrays, built.arrays))
+            assert shared.separation is field
+    assert all(same_bits(a, b) for a, b in zip(conjugate.with_separation(None).arrays,
+                                               conjugate.arrays))
+    with pytest.raises(ValueError, match="line model"):
+        MeshContact(pair).with_separation(None)
+
+
+def test_separation_cache_is_keyed_on_the_design_and_the_displacement(pairs):
+    pair = pairs["logarithmic"]
+    turn = np.linspace(-0.3, 0.3, 7)[:, None]
+    rho = np.linspace(0.062, 0.084, 5)[None, :]
+    used = SeparationCache(pair)  # keeps the grid and each design's relieved points
+    for modification in (FlankModification(bias=5e-6), CROWNED):
+        for misalignment in (Misalignment(), DISPLACED):
+            kept = used.field(modification, misalignment)(turn, rho)
+            afresh = SeparationCache(pair).field(modification, misalignment)(turn, rho)
+            assert same_bits(kept, afresh)
+            exact = separation_field(pair, modification, misalignment)(turn, rho)
+            np.testing.assert_allclose(kept, exact, rtol=0, atol=1e-15)
+
+
+def test_points_from_a_layout_are_the_contacts_own(pairs, contact):
+    angles = [0.0, 0.013]
+    layout = mesh_points(MeshContact(pairs["logarithmic"], LINE), angles)
+    direct, shared = mesh_points(contact, angles), mesh_points(contact, angles, layout)
+    for name in MeshPoints.__dataclass_fields__:
+        assert same_bits(getattr(shared, name), getattr(direct, name)), name
+    with pytest.raises(ValueError, match="other pinion rotations"):
+        mesh_points(contact, [0.0], layout)
