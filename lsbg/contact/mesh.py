@@ -285,9 +285,9 @@ class MeshContact:
     def _line_bands(self, bands):
         """Per side, the bands (slices) of the face width: mid distance, lever,
         length of the curve inside the band, and the curve's polar angles, on
-        conjugate flanks. Returns ``(sides, table, edges, rho, lever)``: the
-        kernel's rows and the bands' edges, mid distances [m] and the last
-        side's levers [m] for :meth:`_separation_bands`."""
+        conjugate flanks. Returns ``(sides, table, edges, rho)``: the kernel's
+        rows and the bands' edges and mid distances [m] for
+        :meth:`_separation_bands`."""
         design = self.pair.design
         edges = np.linspace(design.inner_cone_distance, design.outer_cone_distance, bands + 1)
         rho = 0.5 * (edges[:-1] + edges[1:])
@@ -307,13 +307,13 @@ class MeshContact:
             table[s, :, k.B_SIN], table[s, :, k.B_D_SIN] = np.sin(theta), np.diff(np.sin(theta_edge))
             table[s, :, k.B_LENGTH] = np.diff(edges) * rho / lever  # d rho / cos(beta_p)
             table[s, :, k.B_THETA_IN], table[s, :, k.B_THETA_OUT] = theta_edge[:-1], theta_edge[1:]
-        return sides, table, edges, rho, lever
+        return sides, table, edges, rho
 
     def _separation_bands(self, separation):
         """The kernel's (sides, table) of :meth:`_line_bands`' conjugate bands with,
         for a ``separation`` field, the drive side's separation table after them
         (the conjugate rows themselves are not changed)."""
-        sides, table, edges, rho, lever = self._bands
+        sides, table, edges, rho = self._bands
         sides = sides.copy()  # the conjugate rows stay as they are for other flanks
         if separation is None:
             return sides, table.copy()
@@ -335,8 +335,7 @@ class MeshContact:
         sides[0, k.S_SEP_FIRST], sides[0, k.S_SEP_INV_STEP] = first, 1.0 / step_
         sides[0, k.S_SEP_ROWS] = rows
         # contact can begin at a negative mismatch where the flanks interfere
-        # (``lever`` is the last side's, as it always was: both sides' planes
-        # carry the same generating curve, so it is the drive side's too)
+        lever = table[0, :, k.B_LEVER]
         lever_edge = edges * np.cos(self.pair.planes["drive"].curve.ray_angle(edges))
         lead = min(float(np.min(centre / lever)), float(np.min(edge / lever_edge)))
         sides[0, k.S_SEP_LEAD] = min(0.0, 1.1 * lead)
