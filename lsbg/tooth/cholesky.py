@@ -14,6 +14,7 @@ import contextlib
 
 import numpy as np
 import scipy.sparse as sp
+from numba import njit
 
 __all__ = ["NodalCholesky", "single_threaded_blas"]
 
@@ -154,23 +155,22 @@ class NodalCholesky:
         permuted.sum_duplicates()
         permuted.sort_indices()
         owner = np.repeat(np.arange(len(blocks)), [b - a for a, b, _ in blocks])
+        # the DOFs of every front, all fronts end to end: front k's rows[ptr[k]:ptr[k + 1]]
+        nodes_of = np.concatenate([front for _, _, front in blocks])
+        dofs = width[nodes_of]
+        rows = np.repeat(first[nodes_of] - np.cumsum(dofs) + dofs, dofs) + np.arange(dofs.sum())
+        ptr = np.concatenate([[0], np.cumsum(dofs)])[
+            np.concatenate([[0], np.cumsum([front.size for _, _, front in blocks])])]
         position = np.empty(n, dtype=np.int64)
         updates, self.fronts = {}, []
         kp, ki, kd = permuted.indptr, permuted.indices, permuted.data
         for k, (a, b, front) in enumerate(blocks):  # front: nodes a ... b - 1, those below
-            idx = np.repeat(first[front], width[front]) + np.arange(width[front].sum()) \
-                - np.repeat(np.cumsum(width[front]) - width[front], width[front])
+            idx = rows[ptr[k]:ptr[k + 1]]
             m, c0, c1 = idx.size, first[a], first[b]
             ns = c1 - c0
-            position[idx] = np.arange(m)
-            dense = np.zeros((m, m), order="F")
-            lo, hi = kp[c0], kp[c1]
-            r = ki[lo:hi]
-            lower = r >= c0
-            column = np.repeat(np.arange(ns), np.diff(kp[c0:c1 + 1]))
-            dense[position[r[lower]], column[lower]] = kd[lo:hi][lower]
+            dense = _assemble_front(kp, ki, kd, idx, c0, c1, position)
             for update, where in updates.pop(k, ()):
-                _extend_add(dense, update, position[where])
+                _extend_add(dense, update, where, position)
             l11, info = lapack.dpotrf(dense[:ns, :ns], lower=1, clean=0)
             if info != 0:
                 raise np.linalg.LinAlgError(f"the stiffness matrix is not positive definite "
@@ -299,23 +299,59 @@ def _supernodes(pattern, small=4, most=32, zeros=0.3):
     return out, renumber
 
 
-def _extend_add(dense, update, position):
+@njit(cache=True)
+def _assemble_front(indptr, indices, data, rows, c0, c1, position):
+    """A supernode's dense front, its columns of the matrix put in; the others zero.
+
+    Parameters
+    ----------
+    indptr, indices, data : numpy.ndarray
+        The permuted matrix, CSC with sorted indices and no duplicates (its
+        entries at or below the supernode's first column are all read) [N/m].
+    rows : numpy.ndarray, shape (m,)
+        The front's DOFs, increasing: the supernode's columns c0 ... c1 - 1
+        first, then the rows below [-].
+    c0, c1 : int
+        The supernode's columns [-].
+    position : numpy.ndarray, shape (n,)
+        Filled here: the row of each of ``rows`` in the front (read by
+        :func:`_extend_add` for the children's updates) [-].
+
+    Returns
+    -------
+    numpy.ndarray, shape (m, m)
+        Fortran order, as LAPACK takes it [N/m].
+    """
+    for i in range(rows.size):
+        position[rows[i]] = i
+    dense = np.zeros((rows.size, rows.size)).T  # Fortran order: a column is contiguous
+    for j in range(c1 - c0):
+        for p in range(indptr[c0 + j], indptr[c0 + j + 1]):
+            if indices[p] >= c0:
+                dense[position[indices[p]], j] = data[p]
+    return dense
+
+
+@njit(cache=True)
+def _extend_add(dense, update, where, position):
     """Add a child's update matrix (lower triangle) into its parent's front, in place.
 
-    ``position`` (increasing) are the update's rows in the front; by blocks of
-    contiguous runs (slices, at memory speed) when that costs less than one
-    fancy-indexed addition (about 1.5 us a slice against 10 us and 5 ns an
-    entry, measured).
+    Each entry of the lower triangle is added once, ``front + update`` as numpy's
+    ``+=`` would; the upper triangles are never read (``dpotrf``, ``dtrsm`` and
+    ``dsyrk`` take the lower one), so they are left out.
+
+    Parameters
+    ----------
+    dense : numpy.ndarray, shape (m, m)
+        The parent's front [N/m].
+    update : numpy.ndarray, shape (p, p)
+        The child's update matrix [N/m].
+    where : numpy.ndarray, shape (p,)
+        The update's DOFs, increasing, all among the front's [-].
+    position : numpy.ndarray, shape (n,)
+        The row of each of the front's DOFs in it (:func:`_assemble_front`) [-].
     """
-    cut = np.flatnonzero(np.diff(position) != 1) + 1
-    runs = cut.size + 1
-    if runs * (runs + 1) / 2 * 1.5e-6 > 1e-5 + 5e-9 * position.size ** 2:
-        dense[np.ix_(position, position)] += update
-        return
-    starts = np.concatenate([[0], cut])
-    ends = np.concatenate([cut, [position.size]])
-    for j in range(starts.size):
-        sj, ej, fj = starts[j], ends[j], position[starts[j]]
-        for i in range(j, starts.size):
-            si, ei, fi = starts[i], ends[i], position[starts[i]]
-            dense[fi:fi + ei - si, fj:fj + ej - sj] += update[si:ei, sj:ej]
+    for j in range(where.size):
+        column = position[where[j]]
+        for i in range(j, where.size):
+            dense[position[where[i]], column] += update[i, j]
