@@ -168,19 +168,20 @@ class NodalCholesky:
             idx = rows[ptr[k]:ptr[k + 1]]
             m, c0, c1 = idx.size, first[a], first[b]
             ns = c1 - c0
-            dense = _assemble_front(kp, ki, kd, idx, c0, c1, position)
+            a11, a21, a22 = _assemble_front(kp, ki, kd, idx, c0, c1, position)
             for update, where in updates.pop(k, ()):
-                _extend_add(dense, update, where, position)
-            l11, info = lapack.dpotrf(dense[:ns, :ns], lower=1, clean=0)
+                _extend_add(a11, a21, a22, update, where, position)
+            # the blocks are Fortran-ordered arrays of their own: LAPACK works in
+            # place on the same values and leading dimensions f2py's copies had
+            l11, info = lapack.dpotrf(a11, lower=1, clean=0, overwrite_a=1)
             if info != 0:
                 raise np.linalg.LinAlgError(f"the stiffness matrix is not positive definite "
                                             f"(supernode {k}, pivot {info})")
+            l21 = a21
             if m > ns:
-                l21 = blas.dtrsm(1.0, l11, dense[ns:, :ns], side=1, lower=1, trans_a=1)
-                update = blas.dsyrk(-1.0, l21, beta=1.0, c=dense[ns:, ns:], lower=1)
+                l21 = blas.dtrsm(1.0, l11, a21, side=1, lower=1, trans_a=1, overwrite_b=1)
+                update = blas.dsyrk(-1.0, l21, beta=1.0, c=a22, lower=1, overwrite_c=1)
                 updates.setdefault(owner[front[b - a]], []).append((update, idx[ns:]))
-            else:
-                l21 = np.zeros((0, ns))
             self.fronts.append((c0, c1, idx[ns:], l11, l21))
 
     def solve(self, rhs):
@@ -301,7 +302,10 @@ def _supernodes(pattern, small=4, most=32, zeros=0.3):
 
 @njit(cache=True)
 def _assemble_front(indptr, indices, data, rows, c0, c1, position):
-    """A supernode's dense front, its columns of the matrix put in; the others zero.
+    """A supernode's dense front, its columns of the matrix put in; the rest zero.
+
+    The front is three Fortran-ordered blocks: ``[[a11, .], [a21, a22]]``, the
+    supernode's columns (``ns = c1 - c0``) first.
 
     Parameters
     ----------
@@ -319,21 +323,29 @@ def _assemble_front(indptr, indices, data, rows, c0, c1, position):
 
     Returns
     -------
-    numpy.ndarray, shape (m, m)
-        Fortran order, as LAPACK takes it [N/m].
+    a11 : numpy.ndarray, shape (ns, ns)
+    a21 : numpy.ndarray, shape (m - ns, ns)
+    a22 : numpy.ndarray, shape (m - ns, m - ns)
+        [N/m].
     """
-    for i in range(rows.size):
+    ns, m = c1 - c0, rows.size
+    for i in range(m):
         position[rows[i]] = i
-    dense = np.zeros((rows.size, rows.size)).T  # Fortran order: a column is contiguous
-    for j in range(c1 - c0):
+    # transposed C arrays: Fortran order, a column contiguous
+    a11, a21, a22 = np.zeros((ns, ns)).T, np.zeros((ns, m - ns)).T, np.zeros((m - ns, m - ns)).T
+    for j in range(ns):
         for p in range(indptr[c0 + j], indptr[c0 + j + 1]):
             if indices[p] >= c0:
-                dense[position[indices[p]], j] = data[p]
-    return dense
+                i = position[indices[p]]
+                if i < ns:
+                    a11[i, j] = data[p]
+                else:
+                    a21[i - ns, j] = data[p]
+    return a11, a21, a22
 
 
 @njit(cache=True)
-def _extend_add(dense, update, where, position):
+def _extend_add(a11, a21, a22, update, where, position):
     """Add a child's update matrix (lower triangle) into its parent's front, in place.
 
     Each entry of the lower triangle is added once, ``front + update`` as numpy's
@@ -342,8 +354,8 @@ def _extend_add(dense, update, where, position):
 
     Parameters
     ----------
-    dense : numpy.ndarray, shape (m, m)
-        The parent's front [N/m].
+    a11, a21, a22 : numpy.ndarray
+        The parent's front (:func:`_assemble_front`) [N/m].
     update : numpy.ndarray, shape (p, p)
         The child's update matrix [N/m].
     where : numpy.ndarray, shape (p,)
@@ -351,7 +363,16 @@ def _extend_add(dense, update, where, position):
     position : numpy.ndarray, shape (n,)
         The row of each of the front's DOFs in it (:func:`_assemble_front`) [-].
     """
-    for j in range(where.size):
-        column = position[where[j]]
-        for i in range(j, where.size):
-            dense[position[where[i]], column] += update[i, j]
+    ns, size = a11.shape[0], where.size
+    row = np.empty(size, dtype=np.int64)  # the update's rows in the front
+    for i in range(size):
+        row[i] = position[where[i]]
+    split = np.searchsorted(row, ns)  # rows before it in the supernode's columns
+    for j in range(split):
+        for i in range(j, split):
+            a11[row[i], row[j]] += update[i, j]
+        for i in range(split, size):
+            a21[row[i] - ns, row[j]] += update[i, j]
+    for j in range(split, size):
+        for i in range(j, size):
+            a22[row[i] - ns, row[j] - ns] += update[i, j]
