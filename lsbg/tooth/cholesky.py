@@ -144,11 +144,8 @@ class NodalCholesky:
             # assembled straight into the new order, lower triangle only (all the
             # factorisation reads): half the entries, no permutation of a matrix
             at = np.where(local >= 0, new[np.maximum(local, 0)], -1).astype(np.int32)
-            row = np.broadcast_to(at[:, None, :], (30, 30, at.shape[1]))
-            col = np.broadcast_to(at[None, :, :], (30, 30, at.shape[1]))
-            lower = (col >= 0) & (row >= col)
-            values = np.transpose(element_matrices, (1, 2, 0))[lower]
-            permuted = sp.csc_matrix((values, (row[lower], col[lower])), shape=(n, n))
+            values, row, col = _lower_entries(element_matrices, at)
+            permuted = sp.csc_matrix((values, (row, col)), shape=(n, n))
         else:
             kept = free[self.order]
             permuted = matrix[kept][:, kept].tocsc()
@@ -268,7 +265,7 @@ def _supernodes(pattern, small=4, most=32, zeros=0.3):
         children[k] = []
         for c in sorted(mine, key=lambda c: columns[c].size):
             together = columns[c].size + columns[k].size
-            merged = np.union1d(structure[c], structure[k])
+            merged = _union(structure[c], structure[k])
             extra = storage(together, merged.size) - storage(columns[c].size, structure[c].size) \
                 - storage(columns[k].size, structure[k].size)
             if together <= small or (together <= most
@@ -298,6 +295,68 @@ def _supernodes(pattern, small=4, most=32, zeros=0.3):
         out.append((at, at + width, np.sort(renumber[structure[k]])))
         at += width
     return out, renumber
+
+
+@njit(cache=True)
+def _lower_entries(element_matrices, at):
+    """The elements' entries in the lower triangle, as COO triplets.
+
+    In the order of numpy's boolean indexing of the ``(30, 30, m)`` arrays
+    (local row, local column, element), so that scipy sums the duplicates
+    in the same order; a count first, so that nothing is allocated per
+    entry of the ``30 x 30 x m`` (measured: half the time of the indexing).
+
+    Parameters
+    ----------
+    element_matrices : numpy.ndarray, shape (m, 30, 30)
+        [N/m].
+    at : numpy.ndarray, shape (30, m)
+        The position of each element's DOFs in the factor's order, -1 where
+        clamped [-].
+
+    Returns
+    -------
+    values : numpy.ndarray
+        [N/m].
+    row, col : numpy.ndarray
+        Positions, ``row >= col >= 0`` [-].
+    """
+    size, m = at.shape
+    count = 0
+    for i in range(size):
+        for j in range(size):
+            for e in range(m):
+                count += 0 <= at[j, e] <= at[i, e]
+    values = np.empty(count)
+    row, col = np.empty(count, dtype=at.dtype), np.empty(count, dtype=at.dtype)
+    k = 0
+    for i in range(size):
+        for j in range(size):
+            for e in range(m):
+                if 0 <= at[j, e] <= at[i, e]:
+                    values[k], row[k], col[k] = element_matrices[e, i, j], at[i, e], at[j, e]
+                    k += 1
+    return values, row, col
+
+
+@njit(cache=True)
+def _union(a, b):
+    """The union of two increasing arrays, increasing (``numpy.union1d`` of them)."""
+    out = np.empty(a.size + b.size, dtype=a.dtype)
+    i = j = k = 0
+    while i < a.size or j < b.size:
+        if j == b.size or (i < a.size and a[i] < b[j]):
+            out[k] = a[i]
+            i += 1
+        elif i == a.size or b[j] < a[i]:
+            out[k] = b[j]
+            j += 1
+        else:  # in both
+            out[k] = a[i]
+            i += 1
+            j += 1
+        k += 1
+    return out[:k].copy()
 
 
 @njit(cache=True)
