@@ -5,7 +5,8 @@ definite with 3 x 3 blocks per node; scipy has only SuperLU, a general L U.
 :class:`NodalCholesky` orders the node graph with SuperLU's minimum degree,
 groups the columns into relaxed supernodes and factors the dense fronts with
 LAPACK/BLAS, one OpenBLAS thread (:func:`single_threaded_blas`) so that a
-study's parallel jobs do not wait on each other's threads.
+study's parallel jobs do not wait on each other's threads. The work by entry
+around them (the fronts' assembly, the extend-add) is compiled with numba.
 """
 
 from __future__ import annotations
@@ -75,8 +76,8 @@ class NodalCholesky:
     SuperLU: an M-matrix with the same graph, whose elimination has no
     cancellation. Columns with nested structure form supernodes; each is a
     dense front: the matrix's columns and its children's update matrices,
-    added in (extend-add, by contiguous runs of rows), then ``dpotrf``,
-    ``dtrsm`` and ``dsyrk``.
+    added in (extend-add), then ``dpotrf``, ``dtrsm`` and ``dsyrk``, in
+    place on the front's three blocks.
 
     Parameters
     ----------
@@ -152,7 +153,8 @@ class NodalCholesky:
         permuted.sum_duplicates()
         permuted.sort_indices()
         owner = np.repeat(np.arange(len(blocks)), [b - a for a, b, _ in blocks])
-        # the DOFs of every front, all fronts end to end: front k's rows[ptr[k]:ptr[k + 1]]
+        # the DOFs of every front, all fronts end to end: front k's rows[ptr[k]:ptr[k + 1]],
+        # node f's first[f] ... first[f] + width[f] - 1 in turn
         nodes_of = np.concatenate([front for _, _, front in blocks])
         dofs = width[nodes_of]
         rows = np.repeat(first[nodes_of] - np.cumsum(dofs) + dofs, dofs) + np.arange(dofs.sum())
@@ -174,7 +176,7 @@ class NodalCholesky:
             if info != 0:
                 raise np.linalg.LinAlgError(f"the stiffness matrix is not positive definite "
                                             f"(supernode {k}, pivot {info})")
-            l21 = a21
+            l21 = a21  # empty if nothing is below
             if m > ns:
                 l21 = blas.dtrsm(1.0, l11, a21, side=1, lower=1, trans_a=1, overwrite_b=1)
                 update = blas.dsyrk(-1.0, l21, beta=1.0, c=a22, lower=1, overwrite_c=1)
@@ -303,8 +305,8 @@ def _lower_entries(element_matrices, at):
 
     In the order of numpy's boolean indexing of the ``(30, 30, m)`` arrays
     (local row, local column, element), so that scipy sums the duplicates
-    in the same order; a count first, so that nothing is allocated per
-    entry of the ``30 x 30 x m`` (measured: half the time of the indexing).
+    in the same order; counted, then filled, without the ``(30, 30, m)``
+    masks (measured: 0.10 s instead of 0.18-0.34 s on a 56 k DOF segment).
 
     Parameters
     ----------
@@ -341,7 +343,18 @@ def _lower_entries(element_matrices, at):
 
 @njit(cache=True)
 def _union(a, b):
-    """The union of two increasing arrays, increasing (``numpy.union1d`` of them)."""
+    """The union of two increasing arrays (``numpy.union1d``, without its sort).
+
+    Parameters
+    ----------
+    a, b : numpy.ndarray
+        Increasing [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        Increasing, of ``a``'s type [-].
+    """
     out = np.empty(a.size + b.size, dtype=a.dtype)
     i = j = k = 0
     while i < a.size or j < b.size:
