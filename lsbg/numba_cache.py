@@ -20,7 +20,7 @@ from pathlib import Path
 #: The modules with numba-compiled code (``cache=True``), relative to the package.
 COMPILED_MODULES = ("contact/law.py", "contact/kernels.py", "contact/statics.py",
                     "dynamics/settings.py", "dynamics/compiled_engine.py", "solid/render.py",
-                    "stats/kernels.py", "tca/surface.py")
+                    "stats/kernels.py", "tca/surface.py", "tooth/cholesky.py")
 #: Versions of the compiled code whose numba caches are kept (the most recently used).
 KEEP_CACHES = 3
 #: Lock file of each cache sub-directory (see :func:`numba_cache_locator`).

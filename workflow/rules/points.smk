@@ -51,8 +51,8 @@ rule paper_ltca:
 
 # The kernels of a design point, compiled into numba's cache by the first job (or
 # loaded from it): from an empty cache both traces' sweeps compiled the same kernels
-# at once. Meanwhile the other core builds the paper point's geometry and FE
-# compliance, which call none. (ancient: a rerun of it reruns nothing else.)
+# at once; the FE compliance's factor too. Meanwhile the other core builds the paper
+# point's geometry, which calls none. (ancient: a rerun of it reruns nothing else.)
 rule kernels:
     input:
         config=ancient(FILES["study_config"]),
