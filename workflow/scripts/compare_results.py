@@ -35,7 +35,7 @@ import numpy as np
 #: Attributes that record how a file was made, not what it holds.
 PROVENANCE = re.compile(r"^(history|source|command|wall_time_s|wall_time|created|date_created|"
                         r"lsbg_version|.*_version|.*inputs_hash|python|platform|machine|"
-                        r"fe_seconds.*|.*_seconds|compliance_file|geometry_dir)$")
+                        r"fe_seconds.*|.*_seconds|seconds_per_.*|compliance_file|geometry_dir)$")
 #: What a report's text may differ by: time stamps, durations, absolute paths.
 VOLATILE = [re.compile(p) for p in (r"\d{4}-\d{2}-\d{2}[ T]\d{2}:\d{2}(:\d{2}(\.\d+)?)?",
                                     r"\d+(\.\d+)? ?s wall", r"/tmp/[\w/.-]+", r"/work/[\w/.-]+",
