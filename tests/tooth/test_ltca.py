@@ -320,3 +320,27 @@ def test_compliance_of_another_design_is_refused(compliance):
     with pytest.raises(ValueError, match="design trace"):
         fe_loaded_tca(MeshContact(other, ContactParameters(model="line")), compliance, TORQUE,
                       phases=8)
+
+
+def test_root_stresses_are_those_of_every_fillet_point(problem):
+    """The fillet points left out cannot hold a position's largest tension: the root
+    stresses are those of all points' tensors to the last bit, with loads from the
+    grid's own weights, extrapolated ones (< 0) and an unloaded tooth pair."""
+    from lsbg.tooth.elasticity import largest_principal
+
+    fe, points = problem[:2]
+    weights = fe.weights(points)
+    rng = np.random.default_rng(3)
+    loads = rng.uniform(0.0, 2e3, (5, points.rho.size))
+    loads[2] = 0.0  # a pair in mesh without load
+    on_grid = loads @ weights
+    on_grid[3] += rng.uniform(-200.0, 0.0, on_grid.shape[1])  # extrapolated weights
+    on_grid[4] = -on_grid[4]  # every fillet in compression: no tension
+    position = np.array([0, 0, 1, 2, 3])
+    root = fe.root_stresses([(position, on_grid)], 4)
+    for name in ("pinion", "gear"):
+        stress = np.moveaxis(fe.stress[name] @ on_grid.T, -1, 0)
+        expected = np.zeros(4)
+        np.maximum.at(expected, position, largest_principal(stress).max(axis=1))
+        assert root[name].tobytes() == expected.tobytes()
+        assert root[name][0] > 0 and root[name][1] == 0.0  # position 1 unloaded
