@@ -103,7 +103,7 @@ def solve_contact(compliance, points, torque, e2, local, tangent=None, start=Non
     """
     lever, s = points.lever, points.separation
     n = lever.size
-    if start is not None and np.any(np.asarray(start) > 0):
+    if start is not None and (np.asarray(start) > 0).any():
         loads = np.where(np.asarray(start, float) > 0, np.asarray(start, float), 0.0)
         active = loads > 0
     else:
@@ -114,46 +114,57 @@ def solve_contact(compliance, points, torque, e2, local, tangent=None, start=Non
     entering = local(np.full(n, guess)) / guess
     # points linearised by their secant, a line through d(0) = 0 (see below)
     secant = np.zeros(n, bool) if tangent is not None else np.ones(n, bool)
+    # local(loads) and tangent(loads), evaluated once per loads (an iteration that
+    # changes the active set or the secant points keeps the loads)
+    approach = slopes = None
     for _ in range(MAX_ITERATIONS):
         index = np.flatnonzero(active)
+        size = index.size
         f = loads[index]
         on = f > 0
-        slope = entering[index].copy()
-        offset = np.zeros(index.size)
+        slope = entering[index]  # a copy (fancy indexing)
+        offset = np.zeros(size)
         newton = on & ~secant[index]
-        if np.any(on):
-            d = local(loads)[index]
+        if on.any():
+            if approach is None:
+                approach = local(loads)
+            d = approach[index]
             slope[on] = d[on] / f[on]
-            if np.any(newton):
-                slope[newton] = tangent(loads)[index][newton]
+            if newton.any():
+                if slopes is None:
+                    slopes = tangent(loads)
+                slope[newton] = slopes[index][newton]
                 offset[newton] = d[newton] - slope[newton] * f[newton]
-        system = np.zeros((index.size + 1, index.size + 1))
-        system[:-1, :-1] = compliance[np.ix_(index, index)]
-        system[np.arange(index.size), np.arange(index.size)] += slope
+        system = np.zeros((size + 1, size + 1))
+        system[:-1, :-1] = compliance[index[:, None], index]
+        system.reshape(-1)[:size * (size + 2):size + 2] += slope  # the diagonal's view
         system[:-1, -1] = -lever[index]
         system[-1, :-1] = e2 * lever[index]
-        rhs = np.concatenate([-s[index] - offset, [torque]])
+        rhs = np.empty(size + 1)
+        rhs[:-1] = -s[index] - offset
+        rhs[-1] = torque
         solution = np.linalg.solve(system, rhs)
         forces, mismatch = solution[:-1], solution[-1]
-        if np.any(forces[newton] < 0):
+        negative = forces < 0
+        if (negative & newton).any():
             # the tangent of the concave approach passes above d(0) = 0: a
             # point whose load tends to 0 could be dropped and re-opened
             # forever; its secant, exact at 0, decides whether it is in contact
-            secant[index[newton & (forces < 0)]] = True
+            secant[index[newton & negative]] = True
             continue
-        if np.any(forces < 0):
-            active[index[forces < 0]] = False
+        if negative.any():
+            active[index[negative]] = False
             continue
         new = np.zeros(n)
         new[index] = forces
         # the unloaded points' gap: their local approach is zero
         gap = compliance @ new - (lever * mismatch - s)
         open_ = ~active & (gap < -1e-12 * np.abs(lever * mismatch).max())
-        if np.any(open_):
+        if open_.any():
             active |= open_
             continue
-        change = np.max(np.abs(new - loads)) / max(np.max(new), 1e-300)
-        loads = new
+        change = np.abs(new - loads).max() / max(new.max(), 1e-300)
+        loads, approach, slopes = new, None, None
         if change < TOLERANCE:
             return loads, mismatch
     raise RuntimeError(f"the contact problem did not settle in {MAX_ITERATIONS} iterations "
