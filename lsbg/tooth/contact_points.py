@@ -93,7 +93,7 @@ class ContactPoints:
         self.edge, self.psi_from, self.psi_to = edge, psi_from, psi_to
 
 
-def contact_points(contact, mismatch_turn, field=None):
+def contact_points(contact, mismatch_turn, field=None, separations=None):
     """Contact points of the line model at a line turn of tooth pair 0.
 
     Parameters
@@ -106,6 +106,11 @@ def contact_points(contact, mismatch_turn, field=None):
         Polar angles (psi_lo, psi_hi) bounding the field across the profile
         [rad], scalars or one per band (:func:`active_field`), within the line
         model's; by default the line model's.
+    separations : dict, optional
+        The separation of each contact line's bands [m] by the line's turn
+        and the bands' cone distances, filled in here and read by the next
+        call at the same position: the line model's points and the field's
+        share most lines (all but those a field's end cuts into a band of).
 
     Returns
     -------
@@ -128,10 +133,9 @@ def contact_points(contact, mismatch_turn, field=None):
         at = band_points(band, turn, psi_lo, psi_hi)
         inside, rho = at.inside, at.rho
         if np.any(inside):
-            s = (contact.separation(np.full(rho.size, turn), rho)
-                 if contact.separation is not None else np.zeros(rho.size))
+            s = _separation(contact, turn, rho, {} if separations is None else separations)
             rows.append(tuple(np.asarray(v)[inside] for v in (
-                np.full(rho.size, n), rho, at.psi, at.lever, at.length, np.asarray(s, float),
+                np.full(rho.size, n), rho, at.psi, at.lever, at.length, s,
                 np.arange(rho.size), np.full(rho.size, turn), at.edge,
                 np.broadcast_to(at.bottom, rho.shape), np.broadcast_to(at.top, rho.shape))))
         turn += pitch
@@ -139,6 +143,18 @@ def contact_points(contact, mismatch_turn, field=None):
     if not rows:
         raise ValueError("no contact line meets the field of contact")
     return ContactPoints(*(np.concatenate(c) for c in zip(*rows)))
+
+
+def _separation(contact, turn, rho, known):
+    """The separation of real flanks [m] on the line of turn ``turn`` [rad] at the
+    cone distances ``rho`` [m], from ``known`` (see :func:`contact_points`)
+    when it holds the same line and distances."""
+    if contact.separation is None:
+        return np.zeros(rho.size)
+    key = (turn, rho.tobytes())
+    if key not in known:
+        known[key] = np.asarray(contact.separation(np.full(rho.size, turn), rho), float)
+    return known[key]
 
 
 class FECompliance:
@@ -280,8 +296,9 @@ class FECompliance:
         from lsbg.tooth.elasticity import largest_principal_over_points
 
         upper_node, lower_node, scale = self._principal_bounds(name)
-        bound = (upper_node @ np.maximum(on_grid, 0.0).T
-                 + lower_node @ np.minimum(on_grid, 0.0).T)  # (q, lines) [Pa]
+        bound = upper_node @ np.maximum(on_grid, 0.0).T  # (q, lines) [Pa]
+        if (on_grid < 0).any():  # extrapolated weights
+            bound += lower_node @ np.minimum(on_grid, 0.0).T
         slack = 1e-9 * scale * np.abs(on_grid).sum(axis=1)
 
         def largest(points):

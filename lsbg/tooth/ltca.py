@@ -334,12 +334,25 @@ class Position:
     key : numpy.ndarray of int
         Tooth pair times the bands plus the band: a point's from one position
         to the next [-].
+    separations : dict
+        The separations of the position's contact lines
+        (:func:`lsbg.tooth.contact_points.contact_points`).
     """
 
-    def __init__(self, cycle, mismatch_turn, points, weights, matrix, curvature, hertz, key):
+    def __init__(self, cycle, mismatch_turn, points, weights, matrix, curvature, hertz, key,
+                 separations=None):
         self.cycle, self.mismatch_turn, self.points = cycle, mismatch_turn, points
         self.weights, self.matrix, self.curvature = weights, matrix, curvature
         self.hertz, self.key = hertz, key
+        self.separations = {} if separations is None else separations
+
+    def nominal_points(self):
+        """The line model's points at this position (its whole field), or
+        :attr:`points` where the cycle keeps the line model's field."""
+        if self.cycle.field is None:
+            return self.points
+        return contact_points(self.cycle.contact, self.mismatch_turn,
+                              separations=self.separations)
 
     def start(self, previous):
         """Loads [N] of the same tooth pairs and bands at the last position, given its
@@ -392,7 +405,8 @@ def position_setup(cycle, pinion_angle):
 
     contact, fe = cycle.contact, cycle.fe
     mismatch_turn = contact.orientation * pinion_angle * contact.e1
-    points = contact_points(contact, mismatch_turn, cycle.field)
+    separations = {}  # the lines' separations, for the line model's points too
+    points = contact_points(contact, mismatch_turn, cycle.field, separations)
     w = fe.weights(points)
     curvature, h1, h2 = fe.point_values(points, w)
     hertz = HertzLines(points.length, curvature, h1, h2, fe.young, fe.poisson)
@@ -402,7 +416,8 @@ def position_setup(cycle, pinion_angle):
     # unique, the local approach being monotone: lsbg.tooth.local)
     key = np.rint((points.turn - mismatch_turn) / contact.pitch).astype(int) * cycle.bands \
         + points.band
-    return Position(cycle, mismatch_turn, points, w, fe.matrix(points, w), curvature, hertz, key)
+    return Position(cycle, mismatch_turn, points, w, fe.matrix(points, w), curvature, hertz, key,
+                    separations)
 
 
 def _slice_records(points, nominal, loads, eps, bands):
@@ -530,7 +545,7 @@ def fe_loaded_tca(contact, compliance, load_torque, phases=200, form_limit=True)
         points = position.points
         loads, eps = position.solve(load_torque, position.start(previous))
         previous = position.key, loads
-        nominal = points if field is None else contact_points(contact, position.mismatch_turn)
+        nominal = position.nominal_points()
         records.append(_slice_records(points, nominal, loads, eps, bands))
         # mesh stiffness: central difference of the torque over the mismatch;
         # from the solution at the torque itself Newton needs one or two steps

@@ -344,3 +344,25 @@ def test_root_stresses_are_those_of_every_fillet_point(problem):
         np.maximum.at(expected, position, largest_principal(stress).max(axis=1))
         assert root[name].tobytes() == expected.tobytes()
         assert root[name][0] > 0 and root[name][1] == 0.0  # position 1 unloaded
+
+
+def test_separations_shared_by_a_positions_calls_change_no_point(pair):
+    """The line model's points read the field's separations where a line and its
+    bands' cone distances are the same: every array as from a call of its own."""
+    from lsbg.tca.modification import FlankModification
+    from lsbg.tca.separation import separation_field
+
+    crowned = MeshContact(pair, ContactParameters(model="line"),
+                          separation=separation_field(pair, FlankModification(25e-6, 5e-6)))
+    band_rho = crowned.arrays[2][0, :crowned.params.slices, 0]
+    field = active_field(pair, 0.25 * pair.design.mean_module
+                         * math.cos(pair.design.spiral_angle), band_rho)
+    turn = 0.3 * crowned.pitch
+    known = {}
+    shared = (contact_points(crowned, turn, field, known), contact_points(crowned, turn,
+                                                                          separations=known))
+    own = contact_points(crowned, turn, field), contact_points(crowned, turn)
+    assert len(known) > 0
+    for a, b in zip(shared, own):
+        for name, value in vars(b).items():
+            assert np.asarray(getattr(a, name)).tobytes() == np.asarray(value).tobytes(), name
