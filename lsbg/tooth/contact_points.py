@@ -270,18 +270,19 @@ class FECompliance:
         of loads on the flank grid [Pa], where it is > 0 (a value <= 0 otherwise).
 
         ``largest_principal_over_points`` of every fillet point's stress to the
-        last bit, computed for the points that can hold a positive maximum only
-        (about 5 % in a loaded tooth's fillets). The stress is linear in the
-        loads, S = sum_k w_k A_k, and the largest principal stress is convex
-        and positively homogeneous: lambda_1(S) <= sum_k w_k lambda_1(A_k) for
-        w_k >= 0, w_k lambda_3(A_k) for w_k < 0, each bounded by
-        :meth:`_principal_bounds`. The exact maxima of the points with the
-        largest bound of each row (a lower bound of the row's maximum) leave
-        out every point whose bound is below it, less 1e-9 of the loads' sum
-        times the largest tensor (the products' rounding is ~1e-14 of it).
-        Each point's stress is the same product as for all points (one matrix
-        product per point and tensor row, :func:`numpy.matmul`'s loop), so
-        its tensor, and its principal stresses, are the same to the last bit.
+        last bit, with the principal stresses of only the points that can hold
+        a row's positive maximum (a few per row in a loaded tooth's fillets).
+        The stress is linear in the loads, S = sum_k w_k A_k, and the largest
+        principal stress is convex and positively homogeneous: lambda_1(S) <=
+        sum_k w_k lambda_1(A_k) for w_k >= 0, w_k lambda_3(A_k) for w_k < 0,
+        each bounded by :meth:`_principal_bounds`. The exact maxima of the
+        points with the largest bound of each row (a lower bound of the row's
+        maximum) leave out every point whose bound is below it, less 1e-9 of
+        the loads' sum times the largest tensor (the products' rounding is
+        ~1e-14 of it). Each point's stress is the same product as for all
+        points (one matrix product per point and tensor row,
+        :func:`numpy.matmul`'s loop), so its tensor, and its principal
+        stresses, are the same to the last bit.
 
         Parameters
         ----------
@@ -293,7 +294,7 @@ class FECompliance:
         -------
         numpy.ndarray, shape (lines,)
         """
-        from lsbg.tooth.elasticity import largest_principal_over_points
+        from lsbg.tooth.elasticity import largest_principal, largest_principal_over_points
 
         upper_node, lower_node, scale = self._principal_bounds(name)
         bound = upper_node @ np.maximum(on_grid, 0.0).T  # (q, lines) [Pa]
@@ -301,16 +302,17 @@ class FECompliance:
             bound += lower_node @ np.minimum(on_grid, 0.0).T
         slack = 1e-9 * scale * np.abs(on_grid).sum(axis=1)
 
-        def largest(points):
-            stress = np.moveaxis(self.stress[name][points] @ on_grid.T, -1, 0)
-            return largest_principal_over_points(stress)  # (lines, points, 3, 3) in
+        def stress(points):  # (points, 3, 3, lines) [Pa]
+            return self.stress[name][points] @ on_grid.T
 
         seeds = np.unique(np.argmax(bound, axis=0))
-        floor = np.maximum(largest(seeds), 0.0)
+        out = largest_principal_over_points(np.moveaxis(stress(seeds), -1, 0))
         # a row whose maximum is <= 0 adds nothing to the root stress (0 where
-        # no point is in tension): only points that may be in tension stay
-        points = np.union1d(seeds, np.flatnonzero(np.any(bound > floor - slack, axis=1)))
-        return largest(points)
+        # no point is in tension): only points that may be in tension are taken
+        point, row = np.nonzero(bound > np.maximum(out, 0.0) - slack)
+        points, which = np.unique(point, return_inverse=True)
+        np.maximum.at(out, row, largest_principal(stress(points)[which, :, :, row]))
+        return out
 
     def root_stresses(self, grid_loads, phases):
         """Largest tensile principal stress in both members' fillets at each position.
@@ -330,11 +332,17 @@ class FECompliance:
             ``pinion``, ``gear``: shape (phases,) [Pa], 0 where no fillet point
             is in tension.
         """
+        from lsbg.tooth.cholesky import single_threaded_blas
+
         # every tooth pair's loads at every position in one product per member
         position = np.concatenate([g[0] for g in grid_loads])
         on_grid = np.concatenate([g[1] for g in grid_loads])  # (lines, f * p)
         root = {}
-        for name in ("pinion", "gear"):
-            root[name] = np.zeros(phases)
-            np.maximum.at(root[name], position, self._largest_tension(name, on_grid))
+        # OpenBLAS's threads split a product's rows and columns, not its sums (the
+        # same bits); with the other core busy they wait for each other: 3-5 times
+        # slower here
+        with single_threaded_blas():
+            for name in ("pinion", "gear"):
+                root[name] = np.zeros(phases)
+                np.maximum.at(root[name], position, self._largest_tension(name, on_grid))
         return root
