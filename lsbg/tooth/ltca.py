@@ -114,8 +114,7 @@ def solve_contact(compliance, points, torque, e2, local, tangent=None, start=Non
     entering = local(np.full(n, guess)) / guess
     # points linearised by their secant, a line through d(0) = 0 (see below)
     secant = np.zeros(n, bool) if tangent is not None else np.ones(n, bool)
-    # local(loads) and tangent(loads), evaluated once per loads (an iteration that
-    # changes the active set or the secant points keeps the loads)
+    # local(loads), tangent(loads): once per loads (not per active set or secants)
     approach = slopes = None
     for _ in range(MAX_ITERATIONS):
         index = np.flatnonzero(active)
@@ -140,10 +139,7 @@ def solve_contact(compliance, points, torque, e2, local, tangent=None, start=Non
         system.reshape(-1)[:size * (size + 2):size + 2] += slope  # the diagonal's view
         system[:-1, -1] = -lever[index]
         system[-1, :-1] = e2 * lever[index]
-        rhs = np.empty(size + 1)
-        rhs[:-1] = -s[index] - offset
-        rhs[-1] = torque
-        solution = np.linalg.solve(system, rhs)
+        solution = np.linalg.solve(system, np.concatenate([-s[index] - offset, [torque]]))
         forces, mismatch = solution[:-1], solution[-1]
         negative = forces < 0
         if (negative & newton).any():
@@ -158,8 +154,9 @@ def solve_contact(compliance, points, torque, e2, local, tangent=None, start=Non
         new = np.zeros(n)
         new[index] = forces
         # the unloaded points' gap: their local approach is zero
-        gap = compliance @ new - (lever * mismatch - s)
-        open_ = ~active & (gap < -1e-12 * np.abs(lever * mismatch).max())
+        rigid = lever * mismatch
+        gap = compliance @ new - (rigid - s)
+        open_ = ~active & (gap < -1e-12 * np.abs(rigid).max())
         if open_.any():
             active |= open_
             continue
@@ -335,24 +332,14 @@ class Position:
         Tooth pair times the bands plus the band: a point's from one position
         to the next [-].
     separations : dict
-        The separations of the position's contact lines
-        (:func:`lsbg.tooth.contact_points.contact_points`).
+        Its lines' separations (:func:`lsbg.tooth.contact_points.contact_points`).
     """
 
     def __init__(self, cycle, mismatch_turn, points, weights, matrix, curvature, hertz, key,
-                 separations=None):
+                 separations):
         self.cycle, self.mismatch_turn, self.points = cycle, mismatch_turn, points
         self.weights, self.matrix, self.curvature = weights, matrix, curvature
-        self.hertz, self.key = hertz, key
-        self.separations = {} if separations is None else separations
-
-    def nominal_points(self):
-        """The line model's points at this position (its whole field), or
-        :attr:`points` where the cycle keeps the line model's field."""
-        if self.cycle.field is None:
-            return self.points
-        return contact_points(self.cycle.contact, self.mismatch_turn,
-                              separations=self.separations)
+        self.hertz, self.key, self.separations = hertz, key, separations
 
     def start(self, previous):
         """Loads [N] of the same tooth pairs and bands at the last position, given its
@@ -545,7 +532,8 @@ def fe_loaded_tca(contact, compliance, load_torque, phases=200, form_limit=True)
         points = position.points
         loads, eps = position.solve(load_torque, position.start(previous))
         previous = position.key, loads
-        nominal = position.nominal_points()
+        nominal = points if field is None else contact_points(
+            contact, position.mismatch_turn, separations=position.separations)
         records.append(_slice_records(points, nominal, loads, eps, bands))
         # mesh stiffness: central difference of the torque over the mismatch;
         # from the solution at the torque itself Newton needs one or two steps
