@@ -32,10 +32,6 @@ from lsbg.gear.geometry import MEMBERS, SIDES
 #: 1 µs time step.
 PHASE_SAMPLES_PER_PITCH = 20000
 
-#: Contact lines per block of the point model's deepest-point search
-#: (:func:`_deepest_points`): about 0.3 MB per work array.
-POINT_TABLE_BLOCK_ROWS = 1024
-
 #: Mesh stiffness per unit face width of steel gears, ISO 6336-1 c_γ (and
 #: ISO 10300-1 for bevel gears through the virtual cylindrical gear)
 #: [N/m per m: 20 N/(mm·µm)].
@@ -122,7 +118,7 @@ class PairContact:
     contact_length: float
 
 
-def _deepest_points(plane, lo, hi, inside, samples=33, rows=POINT_TABLE_BLOCK_ROWS):
+def _deepest_points(plane, lo, hi, inside, samples=33, rows=1024):
     """Deepest point of each contact line segment: the maximum of the lever
     rho cos(beta_p) over ``samples`` evenly spaced points of the segment.
 
@@ -132,22 +128,18 @@ def _deepest_points(plane, lo, hi, inside, samples=33, rows=POINT_TABLE_BLOCK_RO
     lo, hi : numpy.ndarray
         Ends of the segments [m] (:meth:`~lsbg.gear.plane.PlaneOfAction.line_segment`).
     inside : numpy.ndarray of bool
-        Which segments are not empty; an empty one is sampled at the field's
-        outer distance and gets the lever 0.
+        Segments that are not empty; an empty one gets the lever 0 [-].
     samples : int
         Points per segment [-].
     rows : int
-        Segments per block: the (rows, samples) work arrays of a block stay
-        in the processor's cache, where those of all segments at once (1.8
-        million points, 14 MB each) took twice as long. Each point's
-        arithmetic is the same either way, so the result does not depend on it.
+        Segments per block [-]: a block's (rows, samples) work arrays (0.3 MB)
+        stay in cache, those of all segments at once (14 MB) took twice as
+        long. Each point's arithmetic is the same, so the result is too.
 
     Returns
     -------
-    rho_star : numpy.ndarray
-        Distance of the deepest point from the apex [m].
-    lever : numpy.ndarray
-        rho cos(beta_p) there [m] (0 for an empty segment).
+    rho_star, lever : numpy.ndarray
+        Distance of the deepest point from the apex and rho cos(beta_p) there [m].
     """
     t = np.linspace(0.0, 1.0, samples)
     rho_star, lever = np.empty(lo.size), np.empty(lo.size)
