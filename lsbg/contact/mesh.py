@@ -118,6 +118,42 @@ class PairContact:
     contact_length: float
 
 
+def _deepest_points(plane, lo, hi, inside, samples=33, rows=1024):
+    """Deepest point of each contact line segment: the maximum of the lever
+    rho cos(beta_p) over ``samples`` evenly spaced points of the segment.
+
+    Parameters
+    ----------
+    plane : lsbg.gear.plane.PlaneOfAction
+    lo, hi : numpy.ndarray
+        Ends of the segments [m] (:meth:`~lsbg.gear.plane.PlaneOfAction.line_segment`).
+    inside : numpy.ndarray of bool
+        Segments that are not empty; an empty one gets the lever 0 [-].
+    samples : int
+        Points per segment [-].
+    rows : int
+        Segments per block [-]: a block's (rows, samples) work arrays (0.3 MB)
+        stay in cache, those of all segments at once (14 MB) took twice as
+        long. Each point's arithmetic is the same, so the result is too.
+
+    Returns
+    -------
+    rho_star, lever : numpy.ndarray
+        Distance of the deepest point from the apex and rho cos(beta_p) there [m].
+    """
+    t = np.linspace(0.0, 1.0, samples)
+    rho_star, lever = np.empty(lo.size), np.empty(lo.size)
+    for start in range(0, lo.size, rows):
+        block = slice(start, start + rows)
+        rho = lo[block, None] + (hi[block] - lo[block])[:, None] * t
+        rho = np.where(inside[block, None], rho, plane.field[3])
+        lever_all = rho * np.cos(plane.curve.ray_angle(rho))
+        best = np.argmax(lever_all, axis=1)
+        index = np.arange(best.size)
+        rho_star[block], lever[block] = rho[index, best], lever_all[index, best]
+    return rho_star, np.where(inside, lever, 0.0)
+
+
 class MeshContact:
     """Contact kernel data of a gear pair, point or line model.
 
@@ -258,14 +294,7 @@ class MeshContact:
             phases = first + step_ * np.arange(n)
             lo, hi = plane.line_segment(phases)
             inside = hi > lo
-            # Deepest point: maximum of the lever rho cos(beta_p) on the segment.
-            t = np.linspace(0.0, 1.0, 33)
-            rho = lo[:, None] + (hi - lo)[:, None] * t
-            rho = np.where(inside[:, None], rho, plane.field[3])
-            lever_all = rho * np.cos(plane.curve.ray_angle(rho))
-            best = np.argmax(lever_all, axis=1)
-            rho_star = rho[np.arange(n), best]
-            lever = np.where(inside, lever_all[np.arange(n), best], 0.0)
+            rho_star, lever = _deepest_points(plane, lo, hi, inside)
             point = plane.point(rho_star, phases + plane.curve.polar_angle(rho_star))
             a = np.cross(pair.rotation_axis[1], point)  # pinion circumferential x radius
             b = np.cross(pair.rotation_axis[2], point)  # gear circumferential x radius

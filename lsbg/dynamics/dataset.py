@@ -8,6 +8,7 @@ each variable with ``units`` and ``long_name`` (CF-1.11).
 from __future__ import annotations
 
 import datetime
+import functools
 import math
 import platform
 
@@ -61,7 +62,13 @@ def _series_data(series, design):
     }
 
 
+@functools.lru_cache(maxsize=1)
 def _library_versions():
+    """``{version_<name>: version}`` of the libraries a run depends on.
+
+    Looked up once per process (about 6 ms a time: each looks through the
+    installed distributions); a running process keeps the versions it imported.
+    """
     import importlib.metadata as md
 
     out = {}
@@ -104,12 +111,15 @@ def run_dataset(record, model, settings, command=""):
             "units": "s", "long_name": f"time of the full-rate record "
                                       f"({settings.full_rate:g} per s)"}),
     })
-    for name, (units, long_name) in VARIABLES.items():
-        ds[name] = ("time", data[name], {"units": units, "long_name": long_name})
+    variables = {name: ("time", data[name], {"units": units, "long_name": long_name})
+                 for name, (units, long_name) in VARIABLES.items()}
     for name, source in FULL_RATE_VARIABLES.items():
         units, long_name = VARIABLES[source]
-        ds[name] = ("time_full", full[source], {"units": units,
-                                                "long_name": f"{long_name}, full rate"})
+        variables[name] = ("time_full", full[source], {"units": units,
+                                                       "long_name": f"{long_name}, full rate"})
+    # one merge for all of them (a merge per variable took 3 ms each); the
+    # variables still follow the coordinates, in this order
+    ds.update(variables)
     attrs = {
         "Conventions": "CF-1.11",
         "title": f"Meshing simulation of a {design.trace} spiral bevel gear pair "
