@@ -189,12 +189,14 @@ def _processes():
 
 
 def _exists(pid):
+    """True for a process that runs (not a zombie); False once it is gone, also when it
+    goes between the two looks."""
     try:
         os.kill(pid, 0)
-    except ProcessLookupError:
+        with open(f"/proc/{pid}/stat") as stat:
+            return stat.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except (ProcessLookupError, FileNotFoundError):
         return False
-    with open(f"/proc/{pid}/stat") as stat:
-        return stat.read().rsplit(")", 1)[1].split()[0] != "Z"
 
 
 def test_the_server_stops_when_the_process_that_started_it_is_gone(tmp_path):
