@@ -15,7 +15,7 @@ PLOTTING = ("figures", "reports", "cli")
 #: Top-level modules in the order the data flows: a module may import only
 #: modules of its own layer or of layers before it.
 LAYERS = (
-    ("numba_cache", "files", "config"),
+    ("numba_cache", "files", "config", "memo"),
     ("gear",),
     ("solid",),
     ("contact",),

@@ -14,12 +14,13 @@ these numbers live in :mod:`lsbg.gear.geometry`.
 from __future__ import annotations
 
 import dataclasses
-import functools
 import math
 from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
+
+from lsbg.memo import per_member
 
 TRACES = ("logarithmic", "circular")
 #: Tooth trace -> the paper's name of the gear type.
@@ -53,27 +54,6 @@ def _hint(name, value):
         return f"{value:g} kg/m^3 is outside what gears are made of"
     return (f"{value:g} mm is {value * 1e-3:g} m (GearPairDesign.from_units({name}_mm="
             f"{value:g}))")
-
-
-def _per_member(method):
-    """Memoise a method of a member (1: pinion, 2: gear) of the frozen design.
-
-    The derived quantities are asked for hundreds of thousands of times in an
-    ease-off search; the design's fields never change after it is built, so
-    each member's value is computed once, by the method's own expression (the
-    same float), and kept in the instance (the derived properties are
-    ``functools.cached_property`` for the same reason).
-    """
-    memo_name = f"_{method.__name__}_memo"
-
-    @functools.wraps(method)
-    def memoised(self, member):
-        memo = self.__dict__.setdefault(memo_name, {})
-        if member not in memo:
-            memo[member] = method(self, member)
-        return memo[member]
-
-    return memoised
 
 
 @dataclass(frozen=True)
@@ -343,7 +323,7 @@ class GearPairDesign:
         """(z1, z2) [-]."""
         return int(self.pinion_teeth), int(self.gear_teeth)
 
-    @_per_member
+    @per_member
     def pitch_angle(self, member: int) -> float:
         """Pitch cone angle delta_i of member 1 (pinion) or 2 (gear) [rad].
 
@@ -353,7 +333,7 @@ class GearPairDesign:
         d1 = math.atan2(math.sin(self.shaft_angle), z2 / z1 + math.cos(self.shaft_angle))
         return d1 if member == 1 else self.shaft_angle - d1
 
-    @_per_member
+    @per_member
     def pitch_diameter(self, member: int) -> float:
         """Outer pitch diameter d_i = m z_i [m]."""
         return self.module * self.teeth[member - 1]
@@ -383,7 +363,7 @@ class GearPairDesign:
         """Circular pitch on the mean pitch circle, pi m_m [m]."""
         return math.pi * self.mean_module
 
-    @_per_member
+    @per_member
     def mean_pitch_radius(self, member: int) -> float:
         """Mean pitch radius r_m,i = R_m sin delta_i [m]."""
         return self.mean_cone_distance * math.sin(self.pitch_angle(member))
@@ -396,7 +376,7 @@ class GearPairDesign:
     def _shift_sign(self, member):
         return 1.0 if member == 1 else -1.0
 
-    @_per_member
+    @per_member
     def outer_shift(self, member: int) -> float:
         """The profile shift's depth at the outer cone distance, +-x_hm1 m_mn R_e/R_m [m].
 
@@ -407,17 +387,17 @@ class GearPairDesign:
         return (self._shift_sign(member) * self.profile_shift * self.mean_normal_module
                 * self.outer_cone_distance / self.mean_cone_distance)
 
-    @_per_member
+    @per_member
     def outer_addendum(self, member: int) -> float:
         """Outer addendum of a member, h_a +- the profile shift [m]."""
         return self.addendum + self.outer_shift(member)
 
-    @_per_member
+    @per_member
     def outer_dedendum(self, member: int) -> float:
         """Outer dedendum of a member, h_f -+ the profile shift [m]."""
         return self.dedendum - self.outer_shift(member)
 
-    @_per_member
+    @per_member
     def mean_tooth_thickness(self, member: int) -> float:
         """Circular tooth thickness on the mean pitch circle [m].
 
@@ -432,7 +412,7 @@ class GearPairDesign:
                   / math.cos(self.spiral_angle))
         return (self.mean_circular_pitch - self.backlash) / 2 + self._shift_sign(member) * change
 
-    @_per_member
+    @per_member
     def mean_normal_tooth_thickness(self, member: int) -> float:
         """Normal tooth thickness at the mean point, s_m cos(beta_m) [m] (ISO 23509's
         s_mn, less half the backlash's normal share)."""
@@ -449,22 +429,22 @@ class GearPairDesign:
         """Dedendum angle of the unshifted teeth, atan(h_f / R_e) [rad]."""
         return math.atan(self.dedendum / self.outer_cone_distance)
 
-    @_per_member
+    @per_member
     def member_addendum_angle(self, member: int) -> float:
         """Addendum angle theta_a,i = atan(h_a,i / R_e) of a member [rad]."""
         return math.atan(self.outer_addendum(member) / self.outer_cone_distance)
 
-    @_per_member
+    @per_member
     def member_dedendum_angle(self, member: int) -> float:
         """Dedendum angle theta_f,i = atan(h_f,i / R_e) of a member [rad]."""
         return math.atan(self.outer_dedendum(member) / self.outer_cone_distance)
 
-    @_per_member
+    @per_member
     def tip_angle(self, member: int) -> float:
         """Face (tip) cone angle delta_a,i = delta_i + theta_a,i [rad]."""
         return self.pitch_angle(member) + self.member_addendum_angle(member)
 
-    @_per_member
+    @per_member
     def root_angle(self, member: int) -> float:
         """Root cone angle delta_f,i = delta_i - theta_f,i [rad]."""
         return self.pitch_angle(member) - self.member_dedendum_angle(member)
@@ -487,7 +467,7 @@ class GearPairDesign:
         """c = sin(delta_b,i) / sin(delta_i), the same for both members [-]."""
         return math.cos(self.plane_of_action_tilt)
 
-    @_per_member
+    @per_member
     def base_cone_angle(self, member: int) -> float:
         """Base cone angle delta_b,i = asin(c sin delta_i) [rad]."""
         return math.asin(self.base_cone_constant * math.sin(self.pitch_angle(member)))

@@ -34,7 +34,7 @@ import numpy as np
 from lsbg.contact import kernels as k
 from lsbg.contact.bands import band_points
 from lsbg.gear.flank import mesh_phase_pinion_angle
-from lsbg.tca.memo import cached, fields_key
+from lsbg.memo import cached, fields_key
 
 __all__ = ["MeshPoints", "LoadedPoints", "SeparationCache", "mesh_points", "mesh_positions",
            "loaded_points"]

@@ -35,7 +35,7 @@ import numpy as np
 from lsbg.tca import surface
 from lsbg.tca.pattern import (MARKING_COMPOUND, bearing_pattern, chart_ellipses,
                                contact_ellipses, profile_height, raster_centres)
-from lsbg.tca.memo import copied, fields_key, memoised
+from lsbg.memo import copied, fields_key, memoised
 from lsbg.tca.misalignment import Misalignment, member_frames
 from lsbg.tca.modification import FlankModification, flank_attributes, relieved_flank
 from lsbg.gear.flank import active_polar_range
@@ -293,7 +293,7 @@ def backlash(surface_pair, pinion_angles, drive=None):
     -----
     The coast contact depends on the displacements and the positions only
     (the coast flanks stay conjugate), and is kept per pair
-    (:func:`lsbg.tca.memo.memoised`).
+    (:func:`lsbg.memo.memoised`).
     """
     pair = surface_pair.pair
     if drive is None:

@@ -51,7 +51,7 @@ from pathlib import Path
 
 import numpy as np
 
-from lsbg.tca.memo import copied, memoised
+from lsbg.memo import copied, memoised
 
 __all__ = ["FlankModification", "TopographyError", "MODIFICATION_CONFIG_KEYS",
            "read_topography", "profile_coordinate", "pinion_tip_end", "lengthwise_coordinate", "pinion_relief",
@@ -411,7 +411,7 @@ def relieved_flank(pair, modification, cone_distance, psi, side="drive", polar_r
     :data:`FLANK_MEMO_SIZE` results per pair are kept (keyed by the
     modification, the side, the clip and the points' values and memory
     layout, which numpy's vectorised transcendental functions may round
-    differently; :func:`lsbg.tca.memo.memoised`) and copies returned.
+    differently; :func:`lsbg.memo.memoised`) and copies returned.
     """
     rho, psi = np.broadcast_arrays(np.asarray(cone_distance, float), np.asarray(psi, float))
     clip = None if polar_range is None else tuple(float(x) for x in polar_range)

@@ -1,4 +1,4 @@
-"""The unloaded TCA's memos (lsbg.tca.memo) give what computing afresh gives, bit for
+"""The memos (lsbg.memo) of the unloaded TCA and the search give what computing afresh gives, bit for
 bit, are keyed on what the values depend on, and stay bounded."""
 
 import numpy as np
@@ -6,7 +6,7 @@ import pytest
 
 from lsbg.gear.design import GearPairDesign
 from lsbg.gear.geometry import GearPair
-from lsbg.tca import memo
+from lsbg import memo
 from lsbg.tca.analysis import SurfacePair, backlash, mesh_cycle_pinion_angles
 from lsbg.tca.misalignment import Misalignment
 from lsbg.tca.modification import FlankModification

@@ -1,4 +1,4 @@
-"""Small per-pair memos of results that do not depend on what a search varies.
+"""Small memos of results that do not depend on what a search varies.
 
 A V-H map asks for the same flank grids at every cell, and an ease-off
 search for the same grids, kernel constants and coast-side contacts at every
@@ -7,15 +7,17 @@ design: :func:`memoised` keeps the last few results of each kind per
 memo of a kind never holds more than its ``size``), dropped with the pair.
 The key must name everything the value depends on besides the pair; a value
 is returned as stored, so a caller that hands out mutable arrays copies
-them (:func:`copied`).
+them (:func:`copied`). :func:`per_member` keeps a frozen design's derived
+quantities of each member in the design itself.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import functools
 import weakref
 
-__all__ = ["memoised", "cached", "copied", "float_key", "fields_key", "MEMO_SIZE"]
+__all__ = ["memoised", "cached", "copied", "float_key", "fields_key", "per_member", "MEMO_SIZE"]
 
 #: Results kept per pair and kind unless the caller says otherwise.
 MEMO_SIZE = 16
@@ -85,3 +87,24 @@ def fields_key(instance):
     """:func:`float_key` of a dataclass of numbers (its fields in order), such as a
     :class:`lsbg.tca.misalignment.Misalignment`."""
     return float_key(getattr(instance, f.name) for f in dataclasses.fields(instance))
+
+
+def per_member(method):
+    """Memoise a method of a member (1: pinion, 2: gear) of a frozen design.
+
+    The derived quantities are asked for hundreds of thousands of times in an
+    ease-off search; the design's fields never change after it is built, so
+    each member's value is computed once, by the method's own expression (the
+    same float), and kept in the instance (its derived properties are
+    ``functools.cached_property`` for the same reason).
+    """
+    memo_name = f"_{method.__name__}_memo"
+
+    @functools.wraps(method)
+    def memoised_method(self, member):
+        memo = self.__dict__.setdefault(memo_name, {})
+        if member not in memo:
+            memo[member] = method(self, member)
+        return memo[member]
+
+    return memoised_method
