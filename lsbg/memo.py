@@ -17,7 +17,8 @@ import dataclasses
 import functools
 import weakref
 
-__all__ = ["memoised", "cached", "copied", "float_key", "fields_key", "per_member", "MEMO_SIZE"]
+__all__ = ["memoised", "cached", "copied", "float_key", "fields_key", "arrays_key", "per_member",
+           "MEMO_SIZE"]
 
 #: Results kept per pair and kind unless the caller says otherwise.
 MEMO_SIZE = 16
@@ -87,6 +88,14 @@ def fields_key(instance):
     """:func:`float_key` of a dataclass of numbers (its fields in order), such as a
     :class:`lsbg.tca.misalignment.Misalignment`."""
     return float_key(getattr(instance, f.name) for f in dataclasses.fields(instance))
+
+
+def arrays_key(*arrays):
+    """The exact values of some arrays as a key, with their types, shapes and memory
+    layouts: numpy's vectorised transcendental functions may round an element
+    differently in another layout, so arrays of the same values laid out otherwise
+    are other inputs."""
+    return tuple((a.dtype.str, a.shape, a.strides, a.tobytes()) for a in arrays)
 
 
 def per_member(method):

@@ -47,6 +47,16 @@ def test_keys_tell_signed_zeros_apart():
     assert memo.fields_key(Misalignment()) != memo.fields_key(Misalignment(offset=-0.0))
 
 
+
+def test_array_keys_tell_values_shapes_and_layouts_apart():
+    a = np.arange(6.0).reshape(2, 3)
+    assert memo.arrays_key(a, a[0]) == memo.arrays_key(a.copy(), a[0].copy())
+    assert memo.arrays_key(a) != memo.arrays_key(a.reshape(3, 2))          # shape
+    assert memo.arrays_key(a.T) != memo.arrays_key(np.ascontiguousarray(a.T))  # layout
+    assert memo.arrays_key(np.zeros(2)) != memo.arrays_key(-np.zeros(2))   # signed zeros
+    assert memo.arrays_key(a) != memo.arrays_key(a.astype(np.float32))     # type
+
+
 def test_memos_are_per_pair_and_kind(pair):
     other = GearPair(pair.design)
     assert memo.memoised(pair, "a", 1, lambda: "x") == "x"

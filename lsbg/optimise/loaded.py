@@ -34,7 +34,7 @@ import numpy as np
 from lsbg.contact import kernels as k
 from lsbg.contact.bands import band_points
 from lsbg.gear.flank import mesh_phase_pinion_angle
-from lsbg.memo import cached, fields_key
+from lsbg.memo import arrays_key, cached, fields_key
 
 __all__ = ["MeshPoints", "LoadedPoints", "SeparationCache", "mesh_points", "mesh_positions",
            "loaded_points"]
@@ -106,7 +106,7 @@ class SeparationCache:
         from lsbg.tca import surface
 
         turn, rho = np.broadcast_arrays(np.asarray(turn, float), np.asarray(cone_distance, float))
-        key = (turn.shape, turn.strides, rho.strides, turn.tobytes(), rho.tobytes())
+        key = arrays_key(turn, rho)
         grid = cached(self._grids, key, lambda: self._grid(turn, rho), self.GRIDS)
         if modification != self._modification:
             self._modification, self._relieved = modification, {}

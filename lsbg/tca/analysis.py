@@ -35,7 +35,7 @@ import numpy as np
 from lsbg.tca import surface
 from lsbg.tca.pattern import (MARKING_COMPOUND, bearing_pattern, chart_ellipses,
                                contact_ellipses, profile_height, raster_centres)
-from lsbg.memo import copied, fields_key, memoised
+from lsbg.memo import arrays_key, copied, fields_key, memoised
 from lsbg.tca.misalignment import Misalignment, member_frames
 from lsbg.tca.modification import FlankModification, flank_attributes, relieved_flank
 from lsbg.gear.flank import active_polar_range
@@ -313,7 +313,7 @@ def backlash(surface_pair, pinion_angles, drive=None):
     # the coast flanks are conjugate whatever the modification: an ease-off search
     # meets each displacement's coast contact again at every design
     coast = memoised(pair, "coast_contact",
-                     (grid, fields_key(misalignment), angles.tobytes()),
+                     (grid, fields_key(misalignment), arrays_key(angles)),
                      coast_contact)
     # the coast search runs on -phi2: its maximum is the gear's coast contact
     return -coast - drive[:, surface.O_PHI2]

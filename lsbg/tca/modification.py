@@ -51,7 +51,7 @@ from pathlib import Path
 
 import numpy as np
 
-from lsbg.memo import copied, memoised
+from lsbg.memo import arrays_key, copied, memoised
 
 __all__ = ["FlankModification", "TopographyError", "MODIFICATION_CONFIG_KEYS",
            "read_topography", "profile_coordinate", "pinion_tip_end", "lengthwise_coordinate", "pinion_relief",
@@ -410,13 +410,12 @@ def relieved_flank(pair, modification, cone_distance, psi, side="drive", polar_r
     of a V-H map ask for the same grids again and again; the last
     :data:`FLANK_MEMO_SIZE` results per pair are kept (keyed by the
     modification, the side, the clip and the points' values and memory
-    layout, which numpy's vectorised transcendental functions may round
-    differently; :func:`lsbg.memo.memoised`) and copies returned.
+    layout, :func:`lsbg.memo.arrays_key`; :func:`lsbg.memo.memoised`) and
+    copies returned.
     """
     rho, psi = np.broadcast_arrays(np.asarray(cone_distance, float), np.asarray(psi, float))
     clip = None if polar_range is None else tuple(float(x) for x in polar_range)
-    key = (modification, side, clip, rho.shape, rho.strides, psi.strides, rho.tobytes(),
-           psi.tobytes())
+    key = (modification, side, clip, arrays_key(rho, psi))
     return copied(memoised(pair, "relieved_flank", key,
                            lambda: _relieved_flank(pair, modification, rho, psi, side, clip),
                            FLANK_MEMO_SIZE))

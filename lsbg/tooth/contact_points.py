@@ -151,6 +151,10 @@ def _separation(contact, turn, rho, known):
     when it holds the same line and distances."""
     if contact.separation is None:
         return np.zeros(rho.size)
+    # the values alone: the field's rows and the line model's are laid out otherwise,
+    # so lsbg.memo.arrays_key would never meet (1048 of 2096 calls are met here); the
+    # separation read back is the one computed afresh, bit for bit (checked on the
+    # study's FE loaded TCAs)
     key = (turn, rho.tobytes())
     if key not in known:
         known[key] = np.asarray(contact.separation(np.full(rho.size, turn), rho), float)
