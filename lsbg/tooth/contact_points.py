@@ -247,9 +247,8 @@ class FECompliance:
         """Bounds of the principal stresses of each fillet point under a unit load at
         each grid node, and the largest tensor's norm, computed once per member.
 
-        A stress tensor of mean normal stress m and deviator of squared norm J
-        has its principal stresses within m -+ sqrt(2 J/3) (the deviator's
-        principal stresses sum to 0, their squares to J).
+        A stress tensor's principal stresses lie within m -+ sqrt(2 J/3)
+        (:func:`lsbg.tooth.elasticity.mean_and_deviator`).
 
         Returns
         -------
@@ -258,12 +257,12 @@ class FECompliance:
         scale : float
             The largest Frobenius norm of a fillet point's tensor [Pa/N].
         """
+        from lsbg.tooth.elasticity import mean_and_deviator
+
         if name not in self._bounds:
             stress = self.stress[name]
-            xx, yy, zz = (stress[:, i, i] for i in range(3))
-            mean = (xx + yy + zz) / 3
-            j2 = ((xx - mean) ** 2 + (yy - mean) ** 2 + (zz - mean) ** 2
-                  + 2 * (stress[:, 0, 1] ** 2 + stress[:, 0, 2] ** 2 + stress[:, 1, 2] ** 2))
+            mean, j2 = mean_and_deviator(*(stress[:, i, j] for i, j in
+                                           ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))))
             radius = np.sqrt(2 * j2 / 3)
             scale = float(np.sqrt(3 * mean**2 + j2).max())
             self._bounds[name] = mean + radius, mean - radius, scale

@@ -22,7 +22,8 @@ import scipy.sparse as sp
 from lsbg.tooth.cholesky import NodalCholesky, single_threaded_blas
 
 __all__ = ["ElasticSegment", "NodalCholesky", "single_threaded_blas", "element_stiffness",
-           "largest_principal", "largest_principal_over_points", "check_material"]
+           "mean_and_deviator", "largest_principal", "largest_principal_over_points",
+           "check_material"]
 
 
 def element_stiffness(mesh, lam, mu):
@@ -276,6 +277,30 @@ class ElasticSegment:
         np.add.at(out, owner, around)
         return out / np.bincount(owner, minlength=len(points))[:, None, None, None]
 
+def mean_and_deviator(xx, yy, zz, xy, xz, yz):
+    """Mean normal stress and the deviator's squared norm of stress tensors.
+
+    The deviator's principal stresses s_k sum to 0 and their squares to J, so
+    every principal stress lies within m -+ sqrt(2 J/3), and the tensor's
+    Frobenius norm is sqrt(3 m^2 + J).
+
+    Parameters
+    ----------
+    xx, yy, zz, xy, xz, yz : numpy.ndarray
+        The tensors' six components, broadcast [Pa].
+
+    Returns
+    -------
+    mean : numpy.ndarray
+        m = (xx + yy + zz) / 3 [Pa].
+    j2 : numpy.ndarray
+        J = |S - m I|^2 from the components (no difference of large squares) [Pa^2].
+    """
+    mean = (xx + yy + zz) / 3
+    j2 = (xx - mean) ** 2 + (yy - mean) ** 2 + (zz - mean) ** 2 + 2 * (xy ** 2 + xz ** 2 + yz ** 2)
+    return mean, j2
+
+
 def largest_principal(stress):
     """Largest principal stress of stress tensors [Pa].
 
@@ -315,10 +340,8 @@ def largest_principal_over_points(stress):
     stress = np.asarray(stress, float)
     # entry by entry, each (rows, points) in the caller's memory order
     xx, yy, zz = (stress[..., i, i] for i in range(3))
-    shear = stress[..., 0, 1] ** 2 + stress[..., 0, 2] ** 2 + stress[..., 1, 2] ** 2
-    mean = (xx + yy + zz) / 3
-    # the deviator's norm from its entries (no difference of large squares)
-    j2 = (xx - mean) ** 2 + (yy - mean) ** 2 + (zz - mean) ** 2 + 2 * shear
+    mean, j2 = mean_and_deviator(xx, yy, zz, stress[..., 0, 1], stress[..., 0, 2],
+                                 stress[..., 1, 2])
     largest = np.maximum(np.maximum(xx, yy), zz)
     lower = np.maximum(largest, mean + np.sqrt(j2 / 6)).max(axis=1)
     size = np.sqrt(3 * mean**2 + j2).max(axis=1)  # Frobenius norm: >= every entry
