@@ -188,10 +188,11 @@ class FECompliance:
         self.young = float(dataset.attrs["material_young_modulus"])
         self.poisson = float(dataset.attrs["material_poisson_ratio"])
         f, p = dataset.sizes["face"], dataset.sizes["profile"]
-        self.blocks = {}
-        for name in ("pinion", "gear"):
-            c = dataset[f"compliance_{name}"].values.reshape(3, f * p, f * p)
-            self.blocks[name] = c
+        # in the layout a file gives (C order), whatever made the dataset: the matrix
+        # products' last bits depend on it (a compliance computed in this process
+        # holds its fillet stress as a strided view)
+        self.blocks = {name: np.ascontiguousarray(dataset[f"compliance_{name}"].values).reshape(
+            3, f * p, f * p) for name in ("pinion", "gear")}
         # the relative curvature, exact on a fine grid of the whole field at the
         # line model's band centres (it grows without bound towards a base cone,
         # where the pinion's field of contact can end: no coarse grid follows it)
@@ -213,8 +214,8 @@ class FECompliance:
         self.radius = (1.0 / relative_curvature(pair, rho.ravel(), psi.ravel())).reshape(rho.shape)
         self.depth = {name: dataset[f"half_thickness_{name}"].values.ravel()
                       for name in ("pinion", "gear")}
-        self.stress = {name: dataset[f"fillet_stress_{name}"].values.reshape(
-            -1, 3, 3, f * p) for name in ("pinion", "gear")}
+        self.stress = {name: np.ascontiguousarray(dataset[f"fillet_stress_{name}"].values)
+                       .reshape(-1, 3, 3, f * p) for name in ("pinion", "gear")}
         self._bounds = {}  # per member, _principal_bounds
 
     def weights(self, points):

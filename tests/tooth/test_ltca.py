@@ -346,6 +346,27 @@ def test_root_stresses_are_those_of_every_fillet_point(problem):
         assert root[name][0] > 0 and root[name][1] == 0.0  # position 1 unloaded
 
 
+
+def test_root_stresses_are_the_same_from_the_file(problem, compliance, pair, contact, tmp_path):
+    """An FE compliance computed in this process (its fillet stress a strided view) and
+    the same read back from its file (what a study's jobs read) give the same root
+    stresses to the last bit: the products do not depend on the arrays' layout."""
+    import xarray as xr
+
+    from lsbg.files import write_dataset
+
+    fe, points = problem[:2]
+    write_dataset(compliance, tmp_path / "compliance.nc")
+    read = FECompliance(xr.load_dataset(tmp_path / "compliance.nc"), pair, contact.orientation,
+                        contact.arrays[2][0, :contact.params.slices, 0])
+    on_grid = np.random.default_rng(4).uniform(0.0, 2e3, (3, points.rho.size)) \
+        @ fe.weights(points)
+    position = np.array([0, 1, 1])
+    here, there = fe.root_stresses([(position, on_grid)], 2), read.root_stresses(
+        [(position, on_grid)], 2)
+    for name in ("pinion", "gear"):
+        assert here[name].tobytes() == there[name].tobytes()
+
 def test_separations_shared_by_a_positions_calls_change_no_point(pair):
     """The line model's points read the field's separations where a line and its
     bands' cone distances are the same: every array as from a call of its own."""
