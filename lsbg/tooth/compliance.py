@@ -394,8 +394,8 @@ def compliance_hash(design, material, settings):
     digest.update(json.dumps({"design": design.to_config(), "material": asdict(material),
                               "settings": asdict(settings)}, sort_keys=True).encode())
     here = Path(__file__).parent
-    for path in (here / "segment.py", here / "elasticity.py", here / "compliance.py",
-                 here.parent / "gear" / "flank.py"):
+    for path in (here / "segment.py", here / "elasticity.py", here / "cholesky.py",
+                 here / "compliance.py", here.parent / "gear" / "flank.py"):
         digest.update(path.read_bytes())
     return digest.hexdigest()[:16]
 
