@@ -403,6 +403,7 @@ class MeshContact:
         other._sides, other._table = other._separation_bands(separation)
         other.arrays = (self.arrays[0], other._sides, other._table)
         return other
+
     def _add_slice_stiffness(self, slice_stiffness):
         """Append the drive side's slice-stiffness columns to the band table."""
         from lsbg.contact.slices import stiffness_columns

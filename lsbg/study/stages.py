@@ -445,6 +445,9 @@ def write_if_changed(path, text):
     except OSError:
         pass
     path.parent.mkdir(parents=True, exist_ok=True)
+    # not lsbg.files.write_text_atomically: it removes every temporary of the target
+    # as a dead writer's, and two Snakemakes may parse one study at once (a dry run
+    # beside a run); a temporary named by the process is only ever its own
     part = path.with_name(f".{path.name}.{os.getpid()}.part")
     part.write_text(text, encoding="utf-8")
     part.replace(path)
