@@ -64,10 +64,13 @@ for extension in config["extensions"]:
 
 
 # results/config.yaml (the settings lsbg reads) follows the configuration of
-# every run that executes jobs (see lsbg.study.plan.write_study_config).
+# every run that executes jobs (see lsbg.study.plan.write_study_config). A local
+# run forks its jobs from the job server and runs without Snakemake's default job
+# rate limit, whose timers kept Snakemake itself busy (lsbg.study.job_order).
 onstart:
     plan.write_study_config(FILES["study_config"], config)
     start_job_server()
+    plan.lift_job_rate_limit(workflow)
 
 
 onsuccess:

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import re
 
-__all__ = ["JOB_SECONDS", "rule_graph", "levels", "assign_priorities"]
+__all__ = ["JOB_SECONDS", "rule_graph", "levels", "assign_priorities", "lift_job_rate_limit"]
 
 #: Wall time [s] of one job of each rule of the default study, ``snakemake -j2``
 #: on the 2-core reference machine from a fresh copy with an empty numba cache
@@ -151,3 +151,42 @@ def assign_priorities(rules, samples=None, seconds=JOB_SECONDS):
         priorities[rule.name] = round(10 * found.get(rule.name, 0.0))
         rule.priority = priorities[rule.name]
     return priorities
+
+
+#: Snakemake's default limit on job starts (``--max-jobs-per-timespan 100/1s``):
+#: (jobs, timespan [s]).
+DEFAULT_RATE_LIMIT = (100, 1.0)
+
+
+def lift_job_rate_limit(workflow):
+    """Take Snakemake's default job rate limit off a local run (from ``onstart``).
+
+    Snakemake 9 keeps a rate limiter even for local jobs (100 starts a second
+    by default). With it, every pass of the scheduler that finds jobs waiting
+    for a core arms a one-second timer that wakes the scheduler again, and every
+    such wake-up arms another: the timers multiply with the jobs that finished,
+    and each wake-up checks the size of every ready job's input files. On the
+    study's 66 jobs over two cores this kept the Snakemake process busy 9 to 15 s
+    of a core's time, against 3 to 4 s without the limiter
+    (docs/performance.md), time the jobs lost to it. A local run starts at most
+    ``-j`` jobs at a time, so the limit never bites there. A limit the user set
+    (any other value than the default), SLURM and other executors keep theirs.
+
+    Parameters
+    ----------
+    workflow : snakemake.workflow.Workflow
+        The running workflow (``workflow`` in the Snakefile), its scheduler made.
+
+    Returns
+    -------
+    bool
+        Whether the limiter was taken off.
+    """
+    scheduler = getattr(workflow, "scheduler", None)
+    limiter = getattr(scheduler, "job_rate_limiter", None)
+    if limiter is None or not workflow.local_exec or workflow.remote_exec:
+        return False
+    if (limiter.max_jobs, float(limiter.timespan)) != DEFAULT_RATE_LIMIT:
+        return False
+    scheduler.job_rate_limiter = None
+    return True

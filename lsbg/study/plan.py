@@ -6,7 +6,8 @@ defaults) and builds a :class:`Study`, whose attributes the rules read.
 The design points and the file-name table are :mod:`lsbg.study.points`, what
 each rule depends on (its ``params``) :mod:`lsbg.study.params`, the rules'
 priorities :mod:`lsbg.study.job_order`; the rules read them all through this
-module (``plan.FILES``, ``plan.simulation_params``, ``plan.assign_priorities``).
+module (``plan.FILES``, ``plan.simulation_params``, ``plan.assign_priorities``,
+``plan.lift_job_rate_limit``).
 Everything here is tested by pytest without Snakemake
 (tests/study/test_plan.py, tests/study/test_checks.py).
 
@@ -20,7 +21,7 @@ import re
 from dataclasses import dataclass, field
 
 from lsbg.files import number_label
-from lsbg.study.job_order import JOB_SECONDS, assign_priorities
+from lsbg.study.job_order import JOB_SECONDS, assign_priorities, lift_job_rate_limit
 from lsbg.study.params import (CONTACT_STATE_SECTIONS, STUDY_SECTIONS, canonical,
                                contact_state_params, simulation_params,
                                simulation_runtime, write_study_config,
@@ -32,7 +33,7 @@ __all__ = ["PAPER_TRACES", "CONTACT_MODELS", "REPORT_NAMES", "STUDY_SECTIONS", "
            "design_points", "speed_labels", "canonical", "yaml_text",
            "write_study_config", "simulation_params", "simulation_runtime", "map_steps",
            "CONTACT_STATE_SECTIONS", "contact_state_params", "JOB_SECONDS",
-           "assign_priorities", "DESIGN_SETS", "Study"]
+           "assign_priorities", "lift_job_rate_limit", "DESIGN_SETS", "Study"]
 
 
 #: The designs of the load curves: the pair as published, and as practice makes it.

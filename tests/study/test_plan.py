@@ -295,3 +295,34 @@ def test_jobs_run_highest_level_first():
                if b != "new_stage")
     # the measured seconds are the default study's rules
     assert {"paper_geometry", "sweep_points", "report_paper"} <= set(job_order.JOB_SECONDS)
+
+
+def _workflow(rate_limit, local=True):
+    """A stand-in for the running Workflow: its scheduler's rate limiter as Snakemake makes
+    it from ``--max-jobs-per-timespan``."""
+    from types import SimpleNamespace
+
+    from snakemake.scheduling.job_scheduler import JobRateLimiter
+    from snakemake.settings.types import MaxJobsPerTimespan
+
+    limiter = JobRateLimiter(MaxJobsPerTimespan.parse_choice(rate_limit))
+    return SimpleNamespace(local_exec=local, remote_exec=not local,
+                           scheduler=SimpleNamespace(job_rate_limiter=limiter))
+
+
+def test_a_local_run_drops_only_snakemakes_default_job_rate_limit():
+    from snakemake.cli import get_argument_parser
+
+    # the limit taken off is Snakemake's own default (a new default fails here first)
+    default = get_argument_parser().get_default("max_jobs_per_timespan")
+    workflow = _workflow(default)
+    assert (workflow.scheduler.job_rate_limiter.max_jobs,
+            workflow.scheduler.job_rate_limiter.timespan) == job_order.DEFAULT_RATE_LIMIT
+    assert job_order.lift_job_rate_limit(workflow) is True
+    assert workflow.scheduler.job_rate_limiter is None
+    assert job_order.lift_job_rate_limit(workflow) is False  # nothing left to take off
+    # a limit the user chose, and one under SLURM, stay
+    for chosen, local in (("50/1m", True), ("100/2s", True), (default, False)):
+        workflow = _workflow(chosen, local)
+        assert job_order.lift_job_rate_limit(workflow) is False
+        assert workflow.scheduler.job_rate_limiter is not None
