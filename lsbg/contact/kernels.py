@@ -434,26 +434,37 @@ def _mesh(phi1, phi2, w1, w2, params, sides, table, details, slices):
     shift = params[P_LINE_SHIFT]
     # both sides' lines turn at the rate of the drive side's phase
     phase_rate = params[P_ORIENTATION] * (w1 * e1 - shift * rate)
-    if drive > sides[0, S_SEP_LEAD]:
-        phase = params[P_ORIENTATION] * (phi1 * e1 - shift * drive)
-        gear, pinion, deepest, tangential, normal, pairs, count = _side(
-            0, drive, rate, 1.0, phase, phase_rate, w1, w2, params, sides, table, details, count,
-            slices)
-    else:
-        deepest = drive
     coast = (params[P_COAST_OFFSET] - drive + half) % pitch - half
-    if coast > 0.0:
-        phase = params[P_ORIENTATION] * ((phi1 + params[P_COAST_PINION_OFFSET]) * e1 + shift * coast)
-        g, p, x, t, n, k, count = _side(1, coast, -rate, -1.0, phase, phase_rate, w1, w2, params,
-                                        sides, table, details, count, slices)
-        gear += g
-        pinion += p
-        tangential += t
-        normal += n
-        pairs += k
-        deepest = max(deepest, x)
-    elif deepest <= 0.0:
-        deepest = max(deepest, coast)
+    deepest = drive
+    # One call of _side for both sides, the side a run-time integer: numba compiles a
+    # function once per constant argument, and LLVM copies a callee into each call
+    # site; two calls with the constants 0 and 1 doubled the compile time of every
+    # kernel that reaches this one (the same arithmetic either way).
+    for side in range(2):
+        if side == 0:
+            if not drive > sides[0, S_SEP_LEAD]:
+                continue
+            eps, eps_rate, sign = drive, rate, 1.0
+            phase = params[P_ORIENTATION] * (phi1 * e1 - shift * drive)
+        else:
+            if not coast > 0.0:
+                if deepest <= 0.0:
+                    deepest = max(deepest, coast)
+                continue
+            eps, eps_rate, sign = coast, -rate, -1.0
+            phase = params[P_ORIENTATION] * ((phi1 + params[P_COAST_PINION_OFFSET]) * e1
+                                             + shift * coast)
+        g, p, x, t, n, k, count = _side(side, eps, eps_rate, sign, phase, phase_rate, w1, w2,
+                                        params, sides, table, details, count, slices)
+        if side == 0:
+            gear, pinion, deepest, tangential, normal, pairs = g, p, x, t, n, k
+        else:
+            gear += g
+            pinion += p
+            tangential += t
+            normal += n
+            pairs += k
+            deepest = max(deepest, x)
     return gear, pinion, deepest, tangential, normal, pairs, count
 
 
