@@ -233,7 +233,7 @@ def notebook_to_html(nb) -> str:
 
 
 def render_report(name, out_html, parameters=None, notebook_dir=None, cwd=None,
-                  kernel_name="python3", timeout=None) -> Path:
+                  kernel_name="python3", timeout=None, kernel_manager=None) -> Path:
     """Execute a report notebook with papermill and write it as one HTML file.
 
     Parameters
@@ -255,6 +255,10 @@ def render_report(name, out_html, parameters=None, notebook_dir=None, cwd=None,
         Jupyter kernel; ``python3`` runs the current Python interpreter.
     timeout : float, optional
         Limit per cell [s] (none by default).
+    kernel_manager : type, optional
+        The kernel's manager (a :class:`jupyter_client.manager.AsyncKernelManager`
+        subclass; default: papermill's own), e.g. the workflow job server's
+        (:func:`lsbg.cli.job_server.forked_kernel_manager`).
 
     Returns
     -------
@@ -292,12 +296,13 @@ def render_report(name, out_html, parameters=None, notebook_dir=None, cwd=None,
     work = temporary_beside(out_html, "tmp", directory=True)
     try:
         executed = work / f"{name}.ipynb"
+        manager = {} if kernel_manager is None else {"kernel_manager_class": kernel_manager}
         try:
             papermill.execute_notebook(
                 str(notebook), str(executed), parameters=parameters, kernel_name=kernel_name,
                 cwd=str(cwd), progress_bar=False, log_output=False,
                 request_save_on_cell_execute=False, execution_timeout=timeout,
-                extra_arguments=quiet)
+                extra_arguments=quiet, **manager)
         except papermill.PapermillExecutionError as err:
             raise ReportError(f"report {name!r}: notebook {notebook.name} failed in cell "
                               f"{err.exec_count}: {err.ename}: {err.evalue}") from None

@@ -19,7 +19,8 @@ from lsbg.cli.options import (
     read_results,
 )
 
-__all__ = ["add_ltca_parser", "add_combine_parser", "add_summary_parser", "add_report_parser"]
+__all__ = ["add_ltca_parser", "add_combine_parser", "add_summary_parser", "add_report_parser",
+           "add_notebook_kernel_parser"]
 
 
 # ------------------------------------------------------------------- ltca
@@ -238,13 +239,40 @@ def add_report_parser(subparsers):
 
 def run_report(args):
     """Handler of ``lsbg report``: its summary line."""
+    from lsbg.cli.job_server import forked_kernel_manager
     from lsbg.reports import ReportError, parse_parameter, render_report
 
     parameters = dict(checked(lambda: parse_parameter(text)) for text in args.param)
     try:
         out = checked(lambda: render_report(args.name, args.out, parameters,
                                             notebook_dir=args.notebook_dir,
-                                            timeout=args.timeout))
+                                            timeout=args.timeout,
+                                            kernel_manager=forked_kernel_manager()))
     except ReportError as err:  # the failing cell and its error, in one line: exit 2
         raise CommandError(str(err).splitlines()[0] if str(err) else repr(err)) from None
     return f"{args.name} -> {out}"
+
+
+def add_notebook_kernel_parser(subparsers):
+    """``lsbg notebook-kernel``: the reports' Jupyter kernel."""
+    parser = subparsers.add_parser(
+        "notebook-kernel",
+        help="the Jupyter kernel of lsbg's reports (started by lsbg report)",
+        description="An IPython kernel (ipykernel's IPKernelApp) on a connection file. "
+                    "`lsbg report` starts its notebook's kernel this way under a local "
+                    "Snakemake run, so that the workflow's job server forks it with the "
+                    "reports' imports done (lsbg.cli.job_server.forked_kernel_manager).")
+    parser.add_argument("--connection-file", required=True, metavar="FILE",
+                        help="the kernel's connection file (Jupyter's -f)")
+    parser.add_argument("--kernel-option", action="append", default=[], metavar="OPTION",
+                        help="an option of the kernel itself, e.g. "
+                             "--kernel-option=--IPKernelApp.log_level=CRITICAL")
+    parser.set_defaults(handler=run_notebook_kernel)
+
+
+def run_notebook_kernel(args):
+    """Handler of ``lsbg notebook-kernel``: runs the kernel until it is shut down."""
+    from ipykernel.kernelapp import IPKernelApp
+
+    IPKernelApp.launch_instance(argv=["-f", args.connection_file, *args.kernel_option])
+    return 0

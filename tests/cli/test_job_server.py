@@ -236,3 +236,36 @@ def test_without_pidfds_a_supervisor_polls_for_its_job(tmp_path, geometry):
     finally:
         server.terminate()
         server.wait(timeout=10)
+
+
+def _probe_notebook(folder):
+    """A report notebook that says whether its kernel started with the reports' imports
+    done (forked by the server) or not (a Python of its own)."""
+    import nbformat
+
+    notebook = nbformat.v4.new_notebook()
+    notebook.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3",
+                                       "language": "python"}
+    parameters = nbformat.v4.new_code_cell("x = 1")
+    parameters.metadata["tags"] = ["parameters"]
+    probe = nbformat.v4.new_code_cell(
+        'import sys\nprint("kernel:", "forked" if "lsbg.figures.mesh" in sys.modules '
+        'else "fresh", x)')
+    notebook.cells = [parameters, probe]
+    folder.mkdir(exist_ok=True)
+    nbformat.write(notebook, folder / "probe.ipynb")
+    return folder
+
+
+def test_a_served_report_runs_its_notebook_in_a_kernel_the_server_forks(server, tmp_path):
+    _, path = server
+    notebooks = _probe_notebook(tmp_path / "notebooks")
+    args = ["report", "probe", "--notebook-dir", str(notebooks), "--param", "x=2"]
+    served = _command(LSBG, [*args, "--out", "served.html"], path, tmp_path)
+    assert served.returncode == 0, served.stderr
+    alone = _command(LSBG, [*args, "--out", "alone.html"], job_server.OFF, tmp_path)
+    assert alone.returncode == 0, alone.stderr
+    forked, fresh = ((tmp_path / name).read_text() for name in ("served.html", "alone.html"))
+    # the kernel came with the server's imports, and without a server it starts as before
+    assert "kernel: forked 2" in forked and "kernel: fresh 2" in fresh
+    assert forked.replace("forked", "fresh") == fresh

@@ -50,7 +50,8 @@ COMMANDS = {
 #: Commands that read files only (no configuration, no --set) and a command line of each.
 FILES_ONLY = {"check-config": "config.yaml", "combine": "--runs r.nc --out o.nc",
               "speed-curve": "--runs r.nc --out o.nc", "report": "paper --out o.html",
-              "checks": "--geometry g --mesh m.nc --run r.nc --out o.nc"}
+              "checks": "--geometry g --mesh m.nc --run r.nc --out o.nc",
+              "notebook-kernel": "--connection-file kernel.json"}
 
 #: A valid value other than the default of one key per section, and the value it reads as.
 GOOD = {
