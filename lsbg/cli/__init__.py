@@ -64,17 +64,33 @@ import logging
 import sys
 
 from lsbg import __version__
-from lsbg.cli import options
-from lsbg.cli.options import CommandError, check_outputs, settings_of
-from lsbg.config import ConfigError
-from lsbg.files import InputError
-from lsbg.gear.design import DesignError
 
 __all__ = ["main", "build_parser", "parser_adders", "handler_of", "command_parsers",
            "CommandError", "USER_ERRORS"]
 
-#: Exceptions that are a user's mistake: exit code 2 with the message, no traceback.
-USER_ERRORS = (ConfigError, DesignError, CommandError, InputError)
+
+def _user_errors():
+    """The exceptions that are a user's mistake: exit code 2 with the message, no
+    traceback."""
+    from lsbg.cli.options import CommandError
+    from lsbg.config import ConfigError
+    from lsbg.files import InputError
+    from lsbg.gear.design import DesignError
+
+    return (ConfigError, DesignError, CommandError, InputError)
+
+
+def __getattr__(name):
+    """``USER_ERRORS`` (:func:`_user_errors`) and ``CommandError``, imported when first
+    asked for: the ``lsbg`` command that a job server serves imports nothing but the
+    server's client (:func:`main`), about 0.08 s less at each of a study's jobs."""
+    if name == "USER_ERRORS":
+        return _user_errors()
+    if name == "CommandError":
+        from lsbg.cli.options import CommandError
+
+        return CommandError
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 #: The modules' places in ``lsbg --help`` (the data flow); a module not named comes after.
 RANKS = {"config": 0, "geometry": 1, "simulate": 2, "analysis": 3, "tooth": 4, "rating": 5,
@@ -163,6 +179,8 @@ def run_handler(args):
     int
         The exit code (0; the handler may return another).
     """
+    from lsbg.cli.options import check_outputs, settings_of
+
     if hasattr(args, "overrides"):
         settings_of(args)
     check_outputs(args)
@@ -196,13 +214,15 @@ def main(argv=None):
         served = run_on_server(sys.argv[1:])
         if served is not None:
             return served
+    from lsbg.cli import options
+
     options._ARGUMENTS = list(sys.argv[1:] if argv is None else argv)  # the provenance's
     args = build_parser().parse_args(argv)
     if args.verbose:
         logging.basicConfig(level=logging.INFO, format="%(name)s: %(message)s")
     try:
         return run_handler(args)
-    except USER_ERRORS as error:
+    except _user_errors() as error:
         print(f"lsbg {args.command}: error: {error}", file=sys.stderr)
         return 2
     except Exception as error:
