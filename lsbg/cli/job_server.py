@@ -183,7 +183,6 @@ def _preload():
     """Import what the jobs import and load numba's registries (what a job's first
     kernel call would do)."""
     import importlib
-
     import pkgutil
 
     for name in PRELOAD:
