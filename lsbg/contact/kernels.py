@@ -202,7 +202,7 @@ def _point_side(side, eps, eps_rate, sign, phase, phase_rate, w1, w2, params, si
     # at most PREFETCH_ROWS either way; none at a NaN speed
     ahead = int(min(max(ahead, -PREFETCH_ROWS), PREFETCH_ROWS)) if ahead == ahead else 0
     gear = pinion = tangential = normal = 0.0
-    pairs = 0
+    pairs = np.int64(0)  # not a literal 0 (see _mesh)
     deepest = -math.inf
     while phase <= last:
         pos = (phase - first) * inv_step
@@ -296,7 +296,7 @@ def _line_side(side, eps, eps_rate, sign, phase, phase_rate, w1, w2, params, sid
     across = math.copysign(1.0, slope)
     phase += math.ceil((first - phase) / pitch) * pitch
     gear = pinion = tangential = normal = 0.0
-    pairs = 0
+    pairs = np.int64(0)  # not a literal 0 (see _mesh)
     deepest = -math.inf
     while phase <= last:
         here = phase
@@ -424,7 +424,10 @@ def _mesh(phi1, phi2, w1, w2, params, sides, table, details, slices):
     rate = w1 * e1 - w2 * params[P_E2]
     gear = pinion = tangential = normal = 0.0
     pairs = 0
-    count = 0
+    # np.int64(0), not 0: numba types a counter that starts as a literal first as the
+    # literal, and compiles every kernel it is passed to once more for that type (the
+    # line and point sides took a third of the kernels' compile time twice)
+    count = np.int64(0)
     # The mismatch is the same for every line of a side, so a side whose
     # flanks are apart (eps <= 0) costs nothing more.
     # Where the contact lines sit: the point model (the paper's reproduction)

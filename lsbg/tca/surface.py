@@ -272,7 +272,8 @@ def contact_search(pinion_angles, teeth, points, normals, line_turn, order, grid
         while True:
             # first pass: every point of the window, kept for the second
             best = -math.inf
-            best_tooth, best_point = -1, -1
+            # not literals: _refined_maximum would be compiled for them too (see _mesh)
+            best_tooth, best_point = np.int64(-1), np.int64(-1)
             at_edge = False
             seen = 0
             for tooth in teeth:

@@ -35,6 +35,18 @@ stats = {name.rsplit(".", 1)[1]: [sum(k.stats.cache_hits.values()),
 print(json.dumps(stats))
 """
 
+#: The kernels' job (``lsbg kernels`` with this process's arguments); then prints every
+#: signature of a kernel it compiled that has a literal argument type.
+KERNELS_JOB = """
+import json, sys
+from lsbg.cli import main
+code = main()
+from lsbg.study.kernels import called_kernels
+print(json.dumps([f"{name}{signature}" for name, kernel in called_kernels().items()
+                  for signature in kernel.signatures if "Literal" in str(signature)]))
+sys.exit(code)
+"""
+
 
 @pytest.mark.slow
 def test_after_the_kernels_job_a_design_point_compiles_nothing(tmp_path):
@@ -42,11 +54,13 @@ def test_after_the_kernels_job_a_design_point_compiles_nothing(tmp_path):
         "flank_modification: {lengthwise_crowning_um: 25, profile_crowning_um: 5}\n",
         encoding="utf-8")
     env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache"))
-    first = subprocess.run([sys.executable, "-c", "import sys; from lsbg.cli import main; "
-                            "sys.exit(main())", "kernels", "--config", "config.yaml",
-                            "--out", "kernels.json"], cwd=tmp_path, env=env,
+    first = subprocess.run([sys.executable, "-c", KERNELS_JOB, "kernels", "--config",
+                            "config.yaml", "--out", "kernels.json"], cwd=tmp_path, env=env,
                            capture_output=True, text=True)
     assert first.returncode == 0, first.stderr
+    # no kernel compiled a second time for a literal argument (numba types a counter that
+    # starts as 0 as the literal 0 first): each costs seconds of compile from empty caches
+    assert json.loads(first.stdout.splitlines()[-1]) == [], first.stdout
     record = json.loads((tmp_path / "kernels.json").read_text(encoding="utf-8"))
     assert record["history"] == "lsbg kernels --config config.yaml --out kernels.json"
     assert record["numba_cache"].startswith("numba-") and record["seconds"] > 0
