@@ -426,7 +426,7 @@ def _mesh(phi1, phi2, w1, w2, params, sides, table, details, slices):
     pairs = 0
     # np.int64(0), not 0: numba types a counter that starts as a literal first as the
     # literal, and compiles every kernel it is passed to once more for that type (the
-    # line and point sides took a third of the kernels' compile time twice)
+    # side kernels three times, not twice; 2.9 s of the 18.9 s from an empty cache)
     count = np.int64(0)
     # The mismatch is the same for every line of a side, so a side whose
     # flanks are apart (eps <= 0) costs nothing more.
