@@ -158,10 +158,19 @@ def test_a_command_gone_before_its_request_is_whole_leaves_no_process(server):
     connection = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
     connection.connect(path)
     connection.sendall(b"ab")
+    # the connection's supervisor, waiting for the rest of the header; closed only once it
+    # runs (on a busy machine the server accepts late: closed at once, the supervisor could
+    # start after the wait below had found none and seen the test pass too early)
+    deadline = time.monotonic() + PROCESS_END_S
+    while not set(_children(path)) - before and time.monotonic() < deadline:
+        time.sleep(0.01)
+    supervisor = set(_children(path)) - before
+    assert len(supervisor) == 1, supervisor
     connection.close()
     deadline = time.monotonic() + PROCESS_END_S
-    while set(_children(path)) - before and time.monotonic() < deadline:
+    while any(_exists(pid) for pid in supervisor) and time.monotonic() < deadline:
         time.sleep(0.1)
+    assert not any(_exists(pid) for pid in supervisor)
     assert not set(_children(path)) - before
 
 
