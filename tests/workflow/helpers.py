@@ -86,6 +86,17 @@ def repository_with_env(target):
     return root, env
 
 
+def copy_of_study(study, target):
+    """A copy of a finished study (its repository, results, reports and Snakemake's records,
+    time stamps kept) in ``target`` and an environment whose lsbg is the copy's: a test that
+    adds to the study runs there and leaves the session's study as it is. Its inputs are
+    named relative to the study's root, so Snakemake finds nothing to do in the copy."""
+    root, env = study
+    shutil.copytree(root, target, symlinks=True)
+    return target, dict(env, PYTHONPATH=os.pathsep.join(
+        [str(target), *[p for p in env["PYTHONPATH"].split(os.pathsep) if p != str(root)]]))
+
+
 def dry_run(study, *configfiles):
     root, env = study
     proc = snakemake("-n", "--configfile", TEST_CONFIG, *configfiles, cwd=root, env=env,

@@ -2,9 +2,9 @@
 
 The session's study (tests/workflow/conftest.py, the test configuration: one spiral
 angle, the paper's pair) and a pair with another face width in a study folder of its
-own (run by a copy of the repository of its own); a load sweep on top of the session's
-study is named in the paper report (tests/workflow/test_workflow.py, the load sweep's
-test, which runs it).
+own (run by a copy of the repository of its own); a load sweep on top of a copy of the
+session's study is named in the paper report (tests/workflow/test_workflow.py, the load
+sweep's test).
 """
 
 import pytest

@@ -14,6 +14,7 @@ directory, so that nothing is written into the repository:
 import os
 import re
 import shutil
+from types import SimpleNamespace
 
 import numpy as np
 import pandas as pd
@@ -22,9 +23,9 @@ import xarray as xr
 import yaml
 
 from lsbg.study import job_order
-from tests.workflow.helpers import (REPO, SNAKEFILE, TEST_CONFIG, _JOB, dry_run,
-                                    job_inputs, planned_jobs, report_text, rules_of, snakemake,
-                                    write_yaml)
+from tests.workflow.helpers import (REPO, SNAKEFILE, TEST_CONFIG, _JOB, copy_of_study,
+                                    dry_run, job_inputs, planned_jobs, report_text, rules_of,
+                                    snakemake, write_yaml)
 
 
 # ------------------------------------------------------------ configuration
@@ -177,14 +178,33 @@ def test_slurm_profile_schedules_with_resources(tmp_path):
 # ---------------------------------------------------------------- end to end
 
 
+@pytest.fixture(scope="module")
+def swept_study(study, tmp_path_factory):
+    """Both ways of extending the study, run once together in a copy of the session's study
+    (:func:`copy_of_study`, so that the session's study stays as it was, with nothing to
+    undo): the sweeps of workflow/config-sweep-example.yaml, a load sweep written in config
+    and a new stage written as a rule file (workflow/extensions/mesh_mode.smk). What each
+    would run on top of the finished study alone is planned first (``plans``)."""
+    folder = tmp_path_factory.mktemp("swept")
+    copy = copy_of_study(study, folder / "study")
+    example = copy[0] / "workflow" / "config-sweep-example.yaml"
+    load = write_yaml(folder / "load.yaml", {"sweeps": {"load": {
+        "simulation.load_torque_N_m": [1000, 1500], "contact_model": "point"}},
+        "extensions": ["mesh_mode"]})
+    plans = {"example": dry_run(copy, example), "load": dry_run(copy, load)}
+    snakemake("-j2", "--configfile", TEST_CONFIG, example, load, cwd=copy[0], env=copy[1],
+              check=True)
+    return SimpleNamespace(root=copy[0], env=copy[1], copy=copy, configs=(example, load),
+                           plans=plans, folder=folder)
+
+
 @pytest.mark.slow
-def test_sweeps_written_in_config_only_give_one_dataset_each(study):
+def test_sweeps_written_in_config_only_give_one_dataset_each(swept_study):
     """workflow/config-sweep-example.yaml on top of the test study: a friction sweep (one
     key, 5 values) and a two-key product sweep, one dataset each with its coordinates,
     only the sweeps' jobs run (the study is done), a batch job per batch_size points."""
-    root, env = study
-    example = root / "workflow" / "config-sweep-example.yaml"
-    jobs, _ = dry_run(study, example)
+    root = swept_study.root
+    jobs, _ = swept_study.plans["example"]
     batches = [rule for rule in rules_of(jobs) if rule.startswith("sweep_")]
     assert batches == sorted(["sweep_damping_and_stiffness_batch0"] * 2
                              + ["sweep_damping_and_stiffness_batch1"] * 2
@@ -194,7 +214,6 @@ def test_sweeps_written_in_config_only_give_one_dataset_each(study):
     # (and the sweep report, which plots each sweep)
     # (and the paper report, which states the loads the sweeps ran)
     assert set(rules_of(jobs)) - set(batches) == {"report_sweep", "report_paper", "all"}
-    snakemake("-j2", "--configfile", TEST_CONFIG, example, cwd=root, env=env, check=True)
     html = (root / "reports" / "sweep.html").read_text(encoding="utf-8")
     assert "8. Parameter sweeps" in html and "Sweep 'friction' at 35°" in html
     assert "one line per contact.mesh_damping_ratio" in html
@@ -213,9 +232,6 @@ def test_sweeps_written_in_config_only_give_one_dataset_each(study):
         assert (speed.diff("contact.line_stiffness_N_per_mm_um") < 0).all()
     table = pd.read_csv(root / "results" / "sweeps" / "friction.csv")
     assert {"contact.dynamic_friction", "quantity", "full_rate_std"} <= set(table.columns)
-    # back to the study without sweeps (the sweep report again), for the other tests
-    snakemake("-j2", "--configfile", TEST_CONFIG, cwd=root, env=env, check=True)
-    assert not dry_run(study)[0]
 
 
 @pytest.mark.slow
@@ -506,19 +522,15 @@ def test_report_of_the_provenance(study):
 
 # -------------------------------------------------------------- extension
 @pytest.mark.slow
-def test_the_load_sweep_is_a_sweep_and_mesh_mode_a_new_stage(study, tmp_path):
+def test_the_load_sweep_is_a_sweep_and_mesh_mode_a_new_stage(swept_study, study):
     """Both ways of extending the study, each run: the former load-sweep extension as a
     sweep written in config only (Eq. 13 at each swept torque), and a new stage written
     as a rule file (workflow/extensions/mesh_mode.smk), each adding only its own jobs."""
-    root, env = study
-    extra = write_yaml(tmp_path / "load.yaml", {"sweeps": {"load": {
-        "simulation.load_torque_N_m": [1000, 1500], "contact_model": "point"}},
-        "extensions": ["mesh_mode"]})
-    jobs, output = dry_run(study, extra)
+    root, copy = swept_study.root, swept_study.copy
+    jobs, output = swept_study.plans["load"]
     assert rules_of(jobs) == sorted(["sweep_load_batch0"] * 2 + ["sweep_load_combine",
                                                                  "mesh_mode", "report_sweep",
                                                                  "report_paper", "all"]), output
-    snakemake("-j2", "--configfile", TEST_CONFIG, extra, cwd=root, env=env, check=True)
     table = pd.read_csv(root / "results" / "sweeps" / "load.csv")
     force = table[table.quantity == "tangential_force_outer"]
     # Eq. 13 with the swept torque: F = 2 T / d2, d2 = 37 * 4.5 mm.
@@ -530,24 +542,24 @@ def test_the_load_sweep_is_a_sweep_and_mesh_mode_a_new_stage(study, tmp_path):
                          / "circular_beta35_load_torque_N_m~1500.nc") as ds:
         assert float(ds.attrs["solver_load_torque_N_m"]) == pytest.approx(1500)
         assert ds.attrs["contact_model"] == "point"
-    # the paper report names the loads that ran
+    # the paper report names the loads that ran; the session's study ran one load
     paper = report_text(root / "reports" / "paper.html")
     assert "No other load was run" not in paper
     assert "Other loads ran in the parameter sweep 'load' (1000, 1500 N·m" in paper
+    assert "No other load was run" in report_text(study[0] / "reports" / "paper.html")
     modes = pd.read_csv(root / "results" / "extensions" / "mesh_mode.csv")
     assert sorted(modes.trace) == ["circular", "logarithmic"]
     # the mesh frequency z1 n meets f_n at the first resonance speed
     assert (modes["resonance_speed_order_1_deg_s"] / 360 * 9).tolist() == pytest.approx(
         modes["natural_frequency_hz"].tolist(), rel=1e-12)
-    assert not dry_run(study, extra)[0]
+    assert not dry_run(copy, *swept_study.configs)[0]
     # Without them only the reports that read the sweeps change back; the former section
     # names its replacement.
-    jobs, output = dry_run(study)
+    jobs, output = dry_run(copy)
     assert rules_of(jobs) == ["all", "report_paper", "report_sweep"], output
-    snakemake("-j2", "--configfile", TEST_CONFIG, cwd=root, env=env, check=True)
-    assert "No other load was run" in report_text(root / "reports" / "paper.html")
-    old = write_yaml(tmp_path / "old.yaml", {"load_sweep": {"torques_N_m": [1000, 1500]}})
-    proc = snakemake("-n", "--configfile", TEST_CONFIG, old, cwd=root, env=env)
+    old = write_yaml(swept_study.folder / "old.yaml",
+                     {"load_sweep": {"torques_N_m": [1000, 1500]}})
+    proc = snakemake("-n", "--configfile", TEST_CONFIG, old, cwd=root, env=swept_study.env)
     assert proc.returncode != 0
     assert "load_sweep: replaced by the sweeps section" in proc.output
     assert "sweeps: {load: {simulation.load_torque_N_m: [1000, 1500], contact_model: point}}" \
