@@ -24,9 +24,9 @@ import sys
 from functools import lru_cache
 from pathlib import Path
 
-import yaml
 from snakemake.logging import logger
 
+from lsbg.config import load_schema
 from lsbg.files import duplicate_key_problems
 from lsbg.study import checks as config_check
 from lsbg.study import plan
@@ -57,7 +57,7 @@ def check_config(config):
     configuration: only the defaults are filled in there, which spares every
     job about a CPU-second per Snakemake (the physics of every design point).
     """
-    schema = yaml.safe_load(SCHEMA.read_text(encoding="utf-8"))
+    schema = load_schema(SCHEMA)   # libyaml's loader: read by every Snakemake of a job too
     if workflow.remote_exec or workflow.subprocess_exec:
         config_check.fill_defaults(config, schema)
         return
