@@ -48,10 +48,12 @@ configuration that returns its problem lines):
    :func:`~lsbg.tca.checks.contact_state_problems` at each point): the relief
    within the backlash, the misalignment and the V-H map's corners neither
    losing contact nor closing the backlash; kept here
-   (:func:`contact_state_cache_dir`): its quick TCAs and numba's start cost
+   (:func:`check_cache_dir`): its quick TCAs and numba's start cost
    about 1.2 s once per configuration;
 9. the tooth section, the compliance case and each FE compliance's estimated
-   cost (:func:`lsbg.tooth.config.tooth_problems`);
+   cost (:func:`lsbg.tooth.config.tooth_problems`); its fillet check (the FE
+   segment's sections with scipy's splines, whose import alone takes 0.7 s) kept
+   as the contact state's;
 10. the rating section and the paper point's ISO 10300 rating
     (:func:`lsbg.rating.config.rating_problems`), and the ease-off optimisation's
     section and its budget (:func:`lsbg.optimise.checks.optimise_problems`);
@@ -96,7 +98,7 @@ from lsbg.study.resources import (engines_run, geometry_problem, load_problems,
 
 __all__ = [
     "key_path", "check_config", "nonfinite_problems", "schema_problems", "fill_defaults",
-    "contact_state_cache_dir", "AD_MIN_SAMPLES"
+    "check_cache_dir", "AD_MIN_SAMPLES"
 ]
 
 
@@ -139,7 +141,8 @@ def check_config(config, schema):
 
     problems += load_problems(config, pairs)
     problems += _contact_state_problems(config, pairs) + tooth_problems(
-        config, pairs, *memory_limit_gb(config)) + rating_problems(config, pairs)
+        config, pairs, *memory_limit_gb(config), answer=_kept_answer) + rating_problems(
+        config, pairs)
     problems += optimise_problems(config)
     if not problems and config.get("sweeps"):
         problems += _sweeps_problems(config, schema, pairs)
@@ -252,15 +255,24 @@ def _contact_state_problems(config, pairs):
     return [f"{line} (at {points_named(where, points)})" for line, where in failing.values()]
 
 
-def contact_state_cache_dir():
-    """Where the contact-state check keeps its answers: ``config-checks`` in lsbg's
-    machine-wide cache (:func:`lsbg.numba_cache.numba_cache_root`, beside numba's
-    compiled kernels); None (kept by the process only) if ``LSBG_CHECK_CACHE=off``."""
+def check_cache_dir():
+    """Where the check keeps the answers of its costly parts (each design point's contact
+    state and FE fillets): ``config-checks`` in lsbg's machine-wide cache
+    (:func:`lsbg.numba_cache.numba_cache_root`, beside numba's compiled kernels); None
+    (kept by the process only) if ``LSBG_CHECK_CACHE=off``."""
     if os.environ.get("LSBG_CHECK_CACHE", "").lower() in ("0", "off", "no", "false"):
         return None
     from lsbg.numba_cache import numba_cache_root
 
     return numba_cache_root() / "config-checks"
+
+
+def _kept_answer(modules, inputs, compute):
+    """``compute()`` or its answer kept in :func:`check_cache_dir`
+    (:func:`lsbg.study.stages.cached_answer`)."""
+    from lsbg.study.stages import cached_answer
+
+    return cached_answer(check_cache_dir(), modules, inputs, compute)
 
 
 def _point_contact_state(pair, config, trace, spiral, map_config):
@@ -269,8 +281,6 @@ def _point_contact_state(pair, config, trace, spiral, map_config):
     (:func:`lsbg.study.stages.cached_answer`: asked again when an input, the topography
     file's content or a source that lsbg.tca.checks runs changes)."""
     from importlib import metadata
-
-    from lsbg.study.stages import cached_answer
 
     modification, misalignment = config["flank_modification"], config["misalignment"]
     name = modification.get("topography_file")
@@ -288,4 +298,4 @@ def _point_contact_state(pair, config, trace, spiral, map_config):
 
         return point_problems(pair, config, map_config)
 
-    return cached_answer(contact_state_cache_dir(), "tca.checks", inputs, compute)
+    return _kept_answer("tca.checks", inputs, compute)

@@ -12,14 +12,17 @@ the stage's sources) matches.
 
 from __future__ import annotations
 
+import dataclasses
+import functools
 import logging
 import math
+from importlib import metadata
 from pathlib import Path
 
 from lsbg.config import config_key, section_objects
 
 __all__ = ["TOOTH_CONFIG_KEYS", "TOOTH_DEFAULTS", "tooth_from_config",
-           "compliance_for_design", "fe_design_points", "tooth_problems"]
+           "compliance_for_design", "fe_design_points", "tooth_problems", "fillet_problem"]
 
 log = logging.getLogger(__name__)
 
@@ -155,7 +158,7 @@ def fe_design_points(config, pairs):
     return {key: pair for key, pair in pairs.items() if key[1] == paper}
 
 
-def tooth_problems(config, pairs, memory_limit, memory_source):
+def tooth_problems(config, pairs, memory_limit, memory_source, answer=None):
     """The ``tooth`` section, the compliance case and the FE cost, checked before any job.
 
     Parameters
@@ -169,6 +172,11 @@ def tooth_problems(config, pairs, memory_limit, memory_source):
         Memory one job may use [GB].
     memory_source : str
         Where that limit comes from, for the message (``limits.memory_gb``).
+    answer : callable, optional
+        ``answer(modules, inputs, compute)``: ``compute()``, or its answer kept from an
+        earlier call with the same ``inputs`` and sources of ``modules``
+        (:func:`lsbg.study.stages.cached_answer` with a folder, as the study's check
+        passes it). Asked for each fillet check; default: computed here.
 
     Returns
     -------
@@ -176,7 +184,9 @@ def tooth_problems(config, pairs, memory_limit, memory_source):
         One line per problem, starting with the key and its value.
     """
     from lsbg.tooth.resources import fe_resource_estimate
-    from lsbg.tooth.outline import segment_sections
+
+    if answer is None:
+        answer = _computed
 
     try:
         _, settings, _ = tooth_from_config(config.get("tooth", {}))
@@ -191,12 +201,15 @@ def tooth_problems(config, pairs, memory_limit, memory_source):
     minutes = config["limits"].get("tooth_minutes", 10)
     size = config.get("tooth", {}).get("element_size_module", settings.tooth_size)
     for (trace, spiral), pair in fe_design_points(config, pairs).items():
-        # the root fillets must fit in the gaps (a numpy check of the loft's sections)
+        # the root fillets must fit in the gaps (the loft's sections, without gmsh)
         rho = settings.fillet_radius * pair.design.mean_module * math.cos(pair.design.spiral_angle)
         for member in (1, 2):
-            try:
-                segment_sections(pair, member, settings.segment_teeth, rho)
-            except ValueError as error:
+            inputs = {"design": dataclasses.asdict(pair.design), "member": member,
+                      "teeth": settings.segment_teeth, "fillet_radius": rho,
+                      "versions": [metadata.version("numpy"), metadata.version("scipy")]}
+            error = answer("tooth.outline", inputs, functools.partial(
+                fillet_problem, pair, member, settings.segment_teeth, rho))
+            if error:
                 problems.append(f"tooth.fillet_radius_module = {settings.fillet_radius!r}: "
                                 f"{trace} {spiral} deg: {error}")
         cost = fe_resource_estimate(pair, settings)
@@ -212,3 +225,35 @@ def tooth_problems(config, pairs, memory_limit, memory_source):
                             f"{trace} {spiral} deg ({cost.dofs:.3g} degrees of freedom) "
                             f"would need about {' and '.join(beyond)}")
     return problems
+
+
+def fillet_problem(pair, member, teeth, fillet_radius):
+    """Why the root fillets of a member's FE segment do not fit, or None if they do.
+
+    Parameters
+    ----------
+    pair : lsbg.gear.geometry.GearPair
+    member : {1, 2}
+        Pinion or gear.
+    teeth : int
+        Teeth of the FE segment.
+    fillet_radius : float
+        The fillets' radius rho [m].
+
+    Returns
+    -------
+    str or None
+        The error of :func:`lsbg.tooth.outline.segment_sections` (the loft's sections,
+        made with numpy and scipy's splines, without gmsh).
+    """
+    from lsbg.tooth.outline import segment_sections  # scipy.interpolate: 0.7 s to import
+
+    try:
+        segment_sections(pair, member, teeth, fillet_radius)
+    except ValueError as error:
+        return str(error)
+    return None
+
+
+def _computed(modules, inputs, compute):
+    return compute()

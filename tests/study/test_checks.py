@@ -327,7 +327,7 @@ def test_contact_state_is_checked_at_each_point_with_its_steps(monkeypatch):
         return []
 
     monkeypatch.setattr(lsbg.tca.checks, "contact_state_problems", fake)
-    monkeypatch.setattr(config_check, "contact_state_cache_dir", lambda: None)
+    monkeypatch.setattr(config_check, "check_cache_dir", lambda: None)
     monkeypatch.setattr(stages, "_ANSWERS", {})
     config = base()
     config["sweep"]["spiral_angles_deg"] = [30, 35]
@@ -356,13 +356,14 @@ def test_contact_state_answers_are_kept_on_disk(monkeypatch, tmp_path):
     a second at every snakemake start otherwise) and asked again when an input changes."""
     import lsbg.tca.checks
 
-    monkeypatch.setattr(config_check, "contact_state_cache_dir", lambda: tmp_path)
+    monkeypatch.setattr(config_check, "check_cache_dir", lambda: tmp_path)
     monkeypatch.setattr(stages, "_ANSWERS", {})
     config = base()
     config["misalignment"] = {"gear_axial_G_mm": -0.5}
     first = config_check.check_config(copy.deepcopy(config), SCHEMA)
     assert_rejected(first, "misalignment.gear_axial_G_mm = -0.5")
-    assert len(list(tmp_path.glob("*.json"))) == 2                  # one per design point
+    # one per design point, and the FE fillets of its two members (test_fillet_answers...)
+    assert len(list(tmp_path.glob("*.json"))) == 2 + 2 * 2
 
     def never(*args):
         raise AssertionError("asked again")
@@ -375,14 +376,55 @@ def test_contact_state_answers_are_kept_on_disk(monkeypatch, tmp_path):
         config_check.check_config(copy.deepcopy(config), SCHEMA)
     # a cache that cannot be written is no cache
     (tmp_path / "file").write_text("")
-    monkeypatch.setattr(config_check, "contact_state_cache_dir", lambda: tmp_path / "file")
+    monkeypatch.setattr(config_check, "check_cache_dir", lambda: tmp_path / "file")
     monkeypatch.setattr(lsbg.tca.checks, "contact_state_problems", lambda *args: [])
     assert config_check.check_config(copy.deepcopy(config), SCHEMA) == []
     monkeypatch.undo()
     monkeypatch.delenv("LSBG_CHECK_CACHE", raising=False)
-    assert config_check.contact_state_cache_dir().name == "config-checks"
+    assert config_check.check_cache_dir().name == "config-checks"
     monkeypatch.setenv("LSBG_CHECK_CACHE", "off")
-    assert config_check.contact_state_cache_dir() is None
+    assert config_check.check_cache_dir() is None
+
+
+def test_fillet_answers_are_kept_on_disk(monkeypatch, tmp_path):
+    """The FE segment's fillet check of each member (scipy's splines: 0.7 s to import at
+    every snakemake start otherwise) is kept, with its problem, and asked again when an
+    input changes."""
+    import lsbg.tooth.config
+
+    computed = []
+    fillet_problem = lsbg.tooth.config.fillet_problem
+
+    def counted(pair, member, teeth, radius):
+        computed.append((pair.design.trace, round(math.degrees(pair.design.spiral_angle), 6),
+                         member, radius))
+        return fillet_problem(pair, member, teeth, radius)
+
+    monkeypatch.setattr(lsbg.tooth.config, "fillet_problem", counted)
+    monkeypatch.setattr(config_check, "check_cache_dir", lambda: tmp_path)
+    monkeypatch.setattr(stages, "_ANSWERS", {})
+    config = with_value(with_value(base(), ("contact", "compliance"), "fe"),
+                        ("sweep", "spiral_angles_deg"), [35, 45])
+    config["sensitivity"]["compliance"] = ["uniform"]
+    config = with_value(config, ("tooth", "fillet_radius_module"), 0.34)
+    first = config_check.check_config(copy.deepcopy(config), SCHEMA)
+    # two traces at two angles, two members each: the gear's fillets do not fit at 45 deg
+    # (and the contact state's answer at each of the 4 design points)
+    assert len(computed) == 8 and len(list(tmp_path.glob("*.json"))) == 8 + 4
+    radii = sorted(radius for *_, radius in computed)
+    wide = [line for line in first if line.startswith("tooth.fillet_radius_module = 0.34")]
+    assert sorted(line.split(": ")[1] for line in wide) == ["circular 45 deg",
+                                                            "logarithmic 45 deg"]
+    assert all("the gear's root fillets do not fit" in line for line in wide)
+    computed.clear()
+    monkeypatch.setattr(stages, "_ANSWERS", {})                # a new snakemake
+    assert config_check.check_config(copy.deepcopy(config), SCHEMA) == first
+    assert computed == []
+    # another radius: asked again, at every point
+    config = with_value(config, ("tooth", "fillet_radius_module"), 0.3)
+    config_check.check_config(copy.deepcopy(config), SCHEMA)
+    assert sorted(radius for *_, radius in computed) == pytest.approx(
+        [radius * 0.3 / 0.34 for radius in radii], rel=1e-12)
 
 
 @pytest.mark.parametrize("names", [(), ("config-test.yaml",), ("config-speed.yaml",),
