@@ -175,3 +175,27 @@ def test_import_statements_are_kept_by_content_between_processes(tmp_path, monke
     assert stages.import_statements(source) == [["lsbg.e"], ["lsbg.e"]]
     stages._keep_statements()
     assert len(json.loads(kept.read_text())) == 1
+
+
+def test_the_package_digest_follows_content_names_and_new_files(tmp_path):
+    """The key under which the commands' closures are kept (workflow/rules/common.smk):
+    it moves with a file's content, its name or a new file, not with a time stamp alone."""
+    import os
+
+    package = write_package(tmp_path, {"__init__.py": "", "a.py": "import lsbg.b\n",
+                                       "b.py": "X = 1\n"})
+    first = stages.package_digest(package)
+    assert stages.package_digest(package) == first
+    os.utime(package / "a.py", ns=(1, 1))                  # touched, the same content
+    assert stages.package_digest(package) == first
+    (package / "b.py").write_text("X = 2\n")
+    second = stages.package_digest(package)
+    assert second != first
+    (package / "b.py").write_text("X = 1\n")
+    assert stages.package_digest(package) == first
+    (package / "c").mkdir()
+    (package / "c" / "__init__.py").write_text("")
+    assert stages.package_digest(package) not in (first, second)
+    (package / "c" / "__init__.py").unlink()
+    (package / "b.py").rename(package / "d.py")
+    assert stages.package_digest(package) not in (first, second)
