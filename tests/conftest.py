@@ -21,7 +21,8 @@ def pytest_collection_modifyitems(config, items):
     """The tests of the session's study (tests/workflow/conftest.py) in one group (``-n 2
     --dist loadgroup``, the README's command): they share that study and run in order on
     one worker, the largest group and so the first, while the other takes every other
-    test, including the workflow tests that run in a folder of their own."""
+    test, including the workflow tests that run in a folder of their own. (A module whose
+    module fixture is costly marks itself a group, so that it is built once: tests/test_reports.py.)"""
     for item in items:
         if STUDY_FIXTURES & set(getattr(item, "fixturenames", ())):
             item.add_marker(pytest.mark.xdist_group("workflow"))

@@ -23,6 +23,10 @@ from lsbg.tca.loaded import ltca_for_geometry
 from lsbg.files import write_dataset
 from lsbg.experiments.verification import convergence_study
 
+#: One worker takes the module (``-n 2 --dist loadgroup``): split over both, each built
+#: :func:`study_files` (about 14 s).
+pytestmark = pytest.mark.xdist_group("reports")
+
 SHORT = SimulationSettings(duration=0.05, samples=25, ramp_time=0.01)
 # windows that fit 0.05 s: 20 samples after 0.01 s, 4 subgroups of 5
 STATISTICS = dict(steady_state_after_s=0.01, chart_window_start_s=0.01,
