@@ -14,6 +14,9 @@ from lsbg.files import write_dataset
 #: The fixtures that hold the session's study (directly or, for the SLURM run, by
 #: comparison): a test that asks for one runs on that study's worker.
 STUDY_FIXTURES = {"study", "slurm_study"}
+#: The session's FE compliance (:func:`coarse_compliance`): its tests in one group too, so
+#: that it is computed once (about 8 s), not on both workers.
+COMPLIANCE_FIXTURE = "coarse_compliance"
 
 
 @pytest.hookimpl(tryfirst=True)  # before pytest-xdist reads the groups from the marks
@@ -21,11 +24,15 @@ def pytest_collection_modifyitems(config, items):
     """The tests of the session's study (tests/workflow/conftest.py) in one group (``-n 2
     --dist loadgroup``, the README's command): they share that study and run in order on
     one worker, the largest group and so the first, while the other takes every other
-    test, including the workflow tests that run in a folder of their own. (A module whose
-    module fixture is costly marks itself a group, so that it is built once: tests/test_reports.py.)"""
+    test, including the workflow tests that run in a folder of their own. The tests of
+    the session's FE compliance are a group of their own, and so is a module whose
+    module fixture is costly (tests/test_reports.py): each is built once."""
     for item in items:
-        if STUDY_FIXTURES & set(getattr(item, "fixturenames", ())):
+        fixtures = set(getattr(item, "fixturenames", ()))
+        if STUDY_FIXTURES & fixtures:
             item.add_marker(pytest.mark.xdist_group("workflow"))
+        elif COMPLIANCE_FIXTURE in fixtures:
+            item.add_marker(pytest.mark.xdist_group(COMPLIANCE_FIXTURE))
     # The SLURM run first: it waits on the cluster while the session's study is made.
     items.sort(key=lambda item: not item.nodeid.startswith("tests/workflow/test_slurm.py"))
 
