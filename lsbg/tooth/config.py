@@ -200,13 +200,14 @@ def tooth_problems(config, pairs, memory_limit, memory_source, answer=None):
                             f"contact.compliance = {base!r} (a case switches it)")
     minutes = config["limits"].get("tooth_minutes", 10)
     size = config.get("tooth", {}).get("element_size_module", settings.tooth_size)
+    versions = [metadata.version("numpy"), metadata.version("scipy")]  # of the fillet check
     for (trace, spiral), pair in fe_design_points(config, pairs).items():
         # the root fillets must fit in the gaps (the loft's sections, without gmsh)
         rho = settings.fillet_radius * pair.design.mean_module * math.cos(pair.design.spiral_angle)
         for member in (1, 2):
             inputs = {"design": dataclasses.asdict(pair.design), "member": member,
                       "teeth": settings.segment_teeth, "fillet_radius": rho,
-                      "versions": [metadata.version("numpy"), metadata.version("scipy")]}
+                      "versions": versions}
             error = answer("tooth.outline", inputs, functools.partial(
                 fillet_problem, pair, member, settings.segment_teeth, rho))
             if error:

@@ -194,8 +194,7 @@ def swept_study(study, tmp_path_factory):
     plans = {"example": dry_run(copy, example), "load": dry_run(copy, load)}
     snakemake("-j2", "--configfile", TEST_CONFIG, example, load, cwd=copy[0], env=copy[1],
               check=True)
-    return SimpleNamespace(root=copy[0], env=copy[1], copy=copy, configs=(example, load),
-                           plans=plans, folder=folder)
+    return SimpleNamespace(copy=copy, configs=(example, load), plans=plans, folder=folder)
 
 
 @pytest.mark.slow
@@ -203,7 +202,7 @@ def test_sweeps_written_in_config_only_give_one_dataset_each(swept_study):
     """workflow/config-sweep-example.yaml on top of the test study: a friction sweep (one
     key, 5 values) and a two-key product sweep, one dataset each with its coordinates,
     only the sweeps' jobs run (the study is done), a batch job per batch_size points."""
-    root = swept_study.root
+    root = swept_study.copy[0]
     jobs, _ = swept_study.plans["example"]
     batches = [rule for rule in rules_of(jobs) if rule.startswith("sweep_")]
     assert batches == sorted(["sweep_damping_and_stiffness_batch0"] * 2
@@ -526,7 +525,8 @@ def test_the_load_sweep_is_a_sweep_and_mesh_mode_a_new_stage(swept_study, study)
     """Both ways of extending the study, each run: the former load-sweep extension as a
     sweep written in config only (Eq. 13 at each swept torque), and a new stage written
     as a rule file (workflow/extensions/mesh_mode.smk), each adding only its own jobs."""
-    root, copy = swept_study.root, swept_study.copy
+    copy = swept_study.copy
+    root, env = copy
     jobs, output = swept_study.plans["load"]
     assert rules_of(jobs) == sorted(["sweep_load_batch0"] * 2 + ["sweep_load_combine",
                                                                  "mesh_mode", "report_sweep",
@@ -559,7 +559,7 @@ def test_the_load_sweep_is_a_sweep_and_mesh_mode_a_new_stage(swept_study, study)
     assert rules_of(jobs) == ["all", "report_paper", "report_sweep"], output
     old = write_yaml(swept_study.folder / "old.yaml",
                      {"load_sweep": {"torques_N_m": [1000, 1500]}})
-    proc = snakemake("-n", "--configfile", TEST_CONFIG, old, cwd=root, env=swept_study.env)
+    proc = snakemake("-n", "--configfile", TEST_CONFIG, old, cwd=root, env=env)
     assert proc.returncode != 0
     assert "load_sweep: replaced by the sweeps section" in proc.output
     assert "sweeps: {load: {simulation.load_torque_N_m: [1000, 1500], contact_model: point}}" \
