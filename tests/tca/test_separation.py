@@ -137,3 +137,34 @@ def test_crowning_localizes_the_loaded_pattern(crowned, conjugate):
     assert light.attrs["loaded_pattern_length_per_face_width"] < 1.0
     assert reference.attrs["loaded_pattern_length_per_face_width"] == pytest.approx(1.0)
     assert light.attrs["edge_load_share"] < reference.attrs["edge_load_share"]
+
+
+def test_a_grids_separations_are_each_points_own(pair):
+    """The kernel builds a row's pinion rotation once for the row's points: each point's
+    separation is the one it gets alone, bit for bit, whatever its neighbours' angles."""
+    from lsbg.tca import surface
+
+    captured = []
+    kernel = surface.point_separations
+
+    def keep(*args):
+        captured.append(args)
+        return kernel(*args)
+
+    field = separation_field(pair, CROWNED, Misalignment(offset=20e-6))
+    surface.point_separations = keep
+    try:
+        field(np.linspace(-0.2, 0.2, 5)[:, None], np.linspace(0.064, 0.082, 4)[None, :])
+    finally:
+        surface.point_separations = kernel
+    angles, points, normals, g = captured[0]
+    assert angles.size == 20 and np.unique(angles).size == 5     # rows of equal angles
+    together = kernel(angles, points, normals, g)
+    alone = [kernel(angles[i:i + 1], points[i:i + 1], normals[i:i + 1], g)[0]
+             for i in range(angles.size)]
+    assert np.isfinite(together).all()
+    np.testing.assert_array_equal(together, alone)
+    # and column by column, where every angle differs from the one before
+    order = np.arange(20).reshape(5, 4).T.ravel()
+    np.testing.assert_array_equal(
+        kernel(angles[order], points[order], normals[order], g), together[order])
