@@ -9,14 +9,15 @@ does), the README's command
 
     snakemake --profile workflow/profiles/slurm --configfile workflow/config-test.yaml
 
-twice: the first time one running job is cancelled (``scancel``) while it
+without the practice stage and two of the three reports (:data:`NO_PRACTICE`,
+:data:`WITHOUT`), twice: the first time one running job is cancelled (``scancel``) while it
 computes, and Snakemake must report it and fail; the second time, the same
 command must complete the DAG. Snakemake runs with its status checks at most 4 s apart
 (tests/workflow/slurm_polling.py: the plugin's interval grows without a cap on a quiet
 cluster); everything else is the README's command. Its outputs are compared with the session's study
 (tests/workflow/conftest.py: the same config run locally with -j2, made meanwhile):
-the same files but the practice stage's, and results/summary.csv byte for byte (the
-summary does not read the practice stage).
+the same files but those it leaves out, and results/summary.csv byte for byte (the
+summary reads neither the practice stage nor the reports).
 """
 
 import json
@@ -45,7 +46,13 @@ PROFILE = "workflow/profiles/slurm"
 #: again (tests/workflow/test_workflow.py runs them), and 19 more SLURM jobs would double
 #: this module's time. Written into each copy by :func:`copy_with_env`.
 NO_PRACTICE = "no-practice.yaml"
-COMMAND = ("--profile", PROFILE, "--configfile", TEST_CONFIG, NO_PRACTICE)
+#: Two of the three reports left out too: the three are one command (``lsbg report``,
+#: a notebook in a kernel of its own) with the same resources, and the verification
+#: report, which stays, is the job this module cancels. The paper and sweep reports
+#: were the run's two longest jobs (23-34 s and 14-19 s of a one-node cluster's CPU).
+WITHOUT = ("report_paper", "report_sweep")
+COMMAND = ("--profile", PROFILE, "--configfile", TEST_CONFIG, NO_PRACTICE,
+           "--omit-from", *WITHOUT)
 #: Snakemake's command line with the status checks at most 4 s apart (the plugin's own
 #: interval grows by 10 s per check that sees no job end: tests/workflow/slurm_polling.py).
 SNAKEMAKE = "tests.workflow.slurm_polling"
@@ -55,10 +62,11 @@ SNAKEMAKE = "tests.workflow.slurm_polling"
 #: that one job. (The sensitivity job, cancelled before, made the rerun redo the
 #: summary, the rating and two reports: 57 s of the module's time.)
 CANCEL_RULE = "report_verification"
-#: The session study's outputs that this run does not make: the practice stage's (left
-#: out here) and what other tests add to that study (extensions, sweeps).
+#: The session study's outputs that this run does not make: the practice stage's and two
+#: reports (left out here) and what other tests add to that study (extensions, sweeps).
 NOT_RUN_HERE = ("results/practice", "results/best", "results/optimise", "results/load_curves",
-                "results/extensions", "results/sweeps")
+                "results/extensions", "results/sweeps", "reports/paper.html",
+                "reports/sweep.html")
 #: Suffixes of lsbg's temporaries (lsbg.files.TEMPORARY_SUFFIXES).
 PARTIAL = (".part", ".tmp", ".old")
 
