@@ -34,9 +34,9 @@ def test_one_spiral_angle_and_the_papers_pair(study):
 @pytest.mark.slow
 def test_another_face_width_is_stated_as_a_change(tmp_path):
     """A study of its own (-d): the face width 30 mm, stated as a change from Table 1 in
-    the paper and sweep reports; the design values the reports name are the ones that ran. It runs the
-    Snakefile of a fresh copy of the repository, not the session's study, so that it can
-    run on the other worker; the copy must stay without results. Without the practice
+    the paper and sweep reports; the design values the reports name are the ones that ran.
+    It runs the Snakefile of a fresh copy of the repository, not the session's study, so
+    that it can run on the other worker; the copy must stay without results. Without the practice
     design and without any sensitivity cell, which the schema allows: the reports must
     render without them (the paper report's service-life section once failed there)."""
     root, env = repository_with_env(tmp_path / "repository")
@@ -49,7 +49,7 @@ def test_another_face_width_is_stated_as_a_change(tmp_path):
                                                "practice": {"enabled": False},
                                                "sensitivity": no_cells})
     # The two reports that state the design (the verification report names none): what
-    # they read, not the whole study (about 6 s less on two cores).
+    # they read, not the whole study (the verification report's CPU, about 6 s, less).
     snakemake("-j2", "reports/paper.html", "reports/sweep.html", "-s", root / "Snakefile",
               "-d", mine, "--configfile", root / TEST_CONFIG, config, cwd=tmp_path, env=env,
               check=True)
