@@ -12,6 +12,7 @@ the file and how to regenerate it, for a missing, wrong or corrupt input
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import os
 import re
@@ -19,7 +20,7 @@ import shutil
 import tempfile
 from pathlib import Path
 
-__all__ = ["InputError", "InputFileNotFoundError", "file_digest", "number_label",
+__all__ = ["InputError", "InputFileNotFoundError", "file_digest", "kept_file_digest", "number_label",
            "label_clashes", "fill_template", "temporary_beside", "remove_stale_temporaries",
            "write_atomically", "write_dataset", "as_path_list", "open_dataset", "short_labels", "load_yaml",
            "DuplicateKeyError", "duplicate_key_problems", "read_yaml_file"]
@@ -41,6 +42,18 @@ def file_digest(path) -> str:
     """SHA-256 of a file's bytes, as 64 hex digits."""
     with open(path, "rb") as handle:
         return hashlib.file_digest(handle, "sha256").hexdigest()
+
+
+def kept_file_digest(path) -> str:
+    """:func:`file_digest`, read once per process while the file's size and modification
+    time stay the same (sources hashed at every Snakemake start and numba cache lookup)."""
+    stat = os.stat(path)
+    return _kept_file_digest(os.fspath(path), stat.st_mtime_ns, stat.st_size)
+
+
+@functools.lru_cache(maxsize=None)
+def _kept_file_digest(path, mtime_ns, size):
+    return file_digest(path)
 
 # ------------------------------------------------------------- temporaries
 #: Suffixes of temporaries: a file being written (``part``), a directory

@@ -194,13 +194,6 @@ def _cache_directory(given, xdg_cache_home, home, numba_version):
     return numba_cache_dir(None, given, numba_version)
 
 
-@functools.lru_cache(maxsize=None)
-def _file_digest(path, mtime_ns, size):
-    import hashlib
-
-    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
-
-
 @contextlib.contextmanager
 def numba_save_lock(cache_path):
     """Hold the exclusive save lock of one cache sub-directory.
@@ -287,9 +280,9 @@ def numba_cache_locator():
             self._py_file = py_file                        # numba's warnings use it
             self._lineno = py_func.__code__.co_firstlineno
             self._cache_path = os.path.join(directory, module)
-            st = os.stat(py_file)
-            self._source_stamp = (Path(directory).name,
-                                  _file_digest(py_file, st.st_mtime_ns, st.st_size))
+            from lsbg.files import kept_file_digest  # (numba is imported by now)
+
+            self._source_stamp = (Path(directory).name, kept_file_digest(py_file))
 
         def get_cache_path(self):
             """``<numba_cache_dir()>/<dotted module name>``: the index and data files."""

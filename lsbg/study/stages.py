@@ -42,6 +42,8 @@ import json
 import os
 from pathlib import Path
 
+from lsbg.files import kept_file_digest
+
 __all__ = ["PACKAGE", "module_files", "import_statements", "module_imports", "module_closure",
            "function_closure", "notebook_closure", "closure_files", "sources_listing",
            "write_if_changed", "sources_digest", "package_digest", "cached_answer"]
@@ -398,11 +400,6 @@ def closure_files(modules, root=None, package=PACKAGE):
                   for f in files)
 
 
-@functools.lru_cache(maxsize=None)
-def _file_digest(path, mtime_ns, size):
-    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
-
-
 def package_digest(package=PACKAGE):
     """SHA-256 of the names and content of every source file of the package, hexadecimal.
 
@@ -420,9 +417,8 @@ def package_digest(package=PACKAGE):
     """
     digest = hashlib.sha256()
     for path in sorted(Path(package).rglob("*.py")):
-        stat = path.stat()
         digest.update(path.relative_to(package).as_posix().encode() + b"\0"
-                      + _file_digest(str(path), stat.st_mtime_ns, stat.st_size).encode())
+                      + kept_file_digest(str(path)).encode())
     return digest.hexdigest()
 
 
@@ -443,8 +439,7 @@ def sources_listing(modules, package=PACKAGE):
     lines = []
     for name in closure_files(modules, package=package):
         path = Path(name)
-        stat = path.stat()
-        digest = _file_digest(str(path), stat.st_mtime_ns, stat.st_size)
+        digest = kept_file_digest(str(path))
         lines.append(f"{digest}  {path.relative_to(package.parent).as_posix()}")
     return "\n".join(lines) + "\n"
 

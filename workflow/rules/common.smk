@@ -274,15 +274,14 @@ def sources(name, notebook=None):
         # the submitting Snakemake wrote it: a job's two Snakemakes (a SLURM job's and
         # its job step's) spare following the imports, 1-2 CPU-s each
         return path.as_posix()
-    import hashlib
-
+    from lsbg.files import file_digest
     from lsbg.study.stages import cached_answer, sources_listing, write_if_changed
 
     notebook_file = REPO / "workflow" / "notebooks" / f"{notebook}.ipynb" if notebook else None
     # the closure depends on the package's sources and the notebook only: kept between
     # Snakemake starts under their digests (it took about 0.45 s of each)
     inputs = {"command": name, "package": lsbg_digest(), "notebook": notebook_file and
-              hashlib.sha256(notebook_file.read_bytes()).hexdigest()}
+              file_digest(notebook_file)}
     modules = cached_answer(config_check.check_cache_dir(), (), inputs,
                             lambda: command_closure(name, notebook_file))
     return write_if_changed(path, sources_listing(modules)).as_posix()
