@@ -6,7 +6,8 @@ definite with 3 x 3 blocks per node; scipy has only SuperLU, a general L U.
 groups the columns into relaxed supernodes and factors the dense fronts with
 LAPACK/BLAS, one OpenBLAS thread (:func:`single_threaded_blas`) so that a
 study's parallel jobs do not wait on each other's threads. The work by entry
-around them (the fronts' assembly, the extend-add) is compiled with numba.
+around them (the factor's structure, the fronts' assembly, the extend-add) is
+compiled with numba.
 """
 
 from __future__ import annotations
@@ -72,9 +73,8 @@ class NodalCholesky:
 
     The ordering is SuperLU's minimum degree on A^T + A of the *node* graph
     (three DOFs a node: a third the size, and 3 x 3 blocks in the factor),
-    and the structure of the factor the node graph's own factor from
-    SuperLU: an M-matrix with the same graph, whose elimination has no
-    cancellation. Columns with nested structure form supernodes; each is a
+    and the structure of the factor the node graph's, found symbolically
+    from its elimination tree. Columns with nested structure form supernodes; each is a
     dense front: the matrix's columns and its children's update matrices,
     added in (extend-add), then ``dpotrf``, ``dtrsm`` and ``dsyrk``, in
     place on the front's three blocks.
@@ -100,7 +100,7 @@ class NodalCholesky:
 
     def __init__(self, matrix, free, node, elements=None):
         from scipy.linalg import blas, lapack
-        from scipy.sparse.linalg import splu
+        from scipy.sparse.linalg import spilu
 
         nodes, node = np.unique(node, return_inverse=True)
         count = np.bincount(node)
@@ -124,13 +124,19 @@ class NodalCholesky:
         # the node graph as an M-matrix: -1 off the diagonal, diagonally dominant
         graph.data[:] = -1.0
         graph = (graph + sp.diags(1.0 - np.asarray(graph.sum(axis=1)).ravel())).tocsc()
-        symbolic = splu(graph, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
-                        options={"SymmetricMode": True})
-        pattern = symbolic.L.tocsc()
-        pattern.sort_indices()
-        blocks, renumber = _supernodes(pattern)
-        rank = renumber[symbolic.perm_c]  # new position of each node
-        del symbolic
+        # SuperLU's ordering (minimum degree, then its elimination tree's postorder) from
+        # an incomplete factor that keeps the diagonal alone: SuperLU's own complete
+        # factor of the graph gave the same order and, at eight times the cost, the
+        # structure _factor_structure finds from it (tests/tooth/test_cholesky.py)
+        ordering = spilu(graph, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+                         drop_tol=np.inf, fill_factor=1.0,
+                         options={"SymmetricMode": True}).perm_c
+        inverse = np.empty_like(ordering)
+        inverse[ordering] = np.arange(ordering.size)
+        ordered = graph[inverse][:, inverse].tocsc()
+        blocks, renumber = _supernodes(_factor_structure(
+            ordered.indptr.astype(np.int64), ordered.indices.astype(np.int64)))
+        rank = renumber[ordering]  # new position of each node
         # DOFs in the new node order: the k-th node's at first[k] ... first[k + 1] - 1;
         # order[i]: the kept DOF (its index in ``free``) at new position i
         width = count[np.argsort(rank)]
@@ -212,6 +218,76 @@ class NodalCholesky:
         return x
 
 
+@njit(cache=True)
+def _factor_structure(indptr, indices):
+    """The structure of the Cholesky factor L of a symmetric structure, symbolically.
+
+    The elimination tree first (Liu's algorithm, with path compression); then
+    each column's rows are its own below the diagonal and its children's
+    below themselves, merged in order of the columns: the structure
+    elimination fills without cancellation.
+
+    Parameters
+    ----------
+    indptr, indices : numpy.ndarray
+        The matrix's structure, both triangles, CSC (int64) [-].
+
+    Returns
+    -------
+    ptr, rows : numpy.ndarray
+        L's structure, CSC: each column's rows increasing, its diagonal first [-].
+    """
+    n = indptr.size - 1
+    parent = np.full(n, -1, dtype=np.int64)
+    ancestor = np.full(n, -1, dtype=np.int64)
+    for j in range(n):
+        for p in range(indptr[j], indptr[j + 1]):
+            i = indices[p]
+            while i != -1 and i < j:
+                after = ancestor[i]
+                ancestor[i] = j
+                if after == -1:
+                    parent[i] = j
+                i = after
+    # each column's children, as linked lists in increasing order
+    child = np.full(n, -1, dtype=np.int64)
+    sibling = np.full(n, -1, dtype=np.int64)
+    for j in range(n - 1, -1, -1):
+        if parent[j] >= 0:
+            sibling[j] = child[parent[j]]
+            child[parent[j]] = j
+    mark = np.full(n, -1, dtype=np.int64)
+    ptr = np.zeros(n + 1, dtype=np.int64)
+    rows = np.empty(2 * indices.size + n, dtype=np.int64)
+    at = 0
+    for j in range(n):
+        if rows.size < at + n - j:  # room for a full column
+            grown = np.empty(2 * rows.size + n - j, dtype=np.int64)
+            grown[:at] = rows[:at]
+            rows = grown
+        rows[at] = j
+        mark[j] = j
+        at += 1
+        for p in range(indptr[j], indptr[j + 1]):
+            i = indices[p]
+            if i > j and mark[i] != j:
+                mark[i] = j
+                rows[at] = i
+                at += 1
+        c = child[j]
+        while c != -1:
+            for q in range(ptr[c] + 1, ptr[c + 1]):
+                i = rows[q]
+                if i > j and mark[i] != j:
+                    mark[i] = j
+                    rows[at] = i
+                    at += 1
+            c = sibling[c]
+        rows[ptr[j] + 1:at].sort()
+        ptr[j + 1] = at
+    return ptr, rows[:at].copy()
+
+
 def _supernodes(pattern, small=4, most=32, zeros=0.3):
     """Relaxed supernodes of a node-level Cholesky structure, and their column order.
 
@@ -226,8 +302,9 @@ def _supernodes(pattern, small=4, most=32, zeros=0.3):
 
     Parameters
     ----------
-    pattern : scipy.sparse.csc_matrix
-        The structure of the factor L, sorted indices [-].
+    pattern : tuple of numpy.ndarray
+        ``(ptr, rows)``: the structure of the factor L, CSC, each column's rows
+        increasing (:func:`_factor_structure`) [-].
     small, most : int
         Nodes [-].
     zeros : float
@@ -241,7 +318,7 @@ def _supernodes(pattern, small=4, most=32, zeros=0.3):
     renumber : numpy.ndarray
         New position of each old column [-].
     """
-    ptr, rows = pattern.indptr, pattern.indices
+    ptr, rows = pattern
     n = ptr.size - 1
     size = np.diff(ptr)
     below = np.where(size > 1, rows[np.minimum(ptr[:-1] + 1, ptr[1:] - 1)], -1)

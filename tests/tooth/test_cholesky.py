@@ -1,10 +1,17 @@
 """The numba kernels of :class:`lsbg.tooth.cholesky.NodalCholesky` against the numpy they
-replace (bit for bit), and the factor assembled from elements against a dense solve."""
+replace (bit for bit), the factor's structure against a dense factor's and SuperLU's, and
+the factor assembled from elements against a dense solve."""
 
 import numpy as np
 import pytest
 
-from lsbg.tooth.cholesky import NodalCholesky, _extend_add, _lower_entries, _union
+from lsbg.tooth.cholesky import (
+    NodalCholesky,
+    _extend_add,
+    _factor_structure,
+    _lower_entries,
+    _union,
+)
 
 
 def test_extend_add_adds_the_lower_triangle_as_numpy_does():
@@ -47,6 +54,37 @@ def test_union_is_numpys(sizes):
     a, b = (np.sort(rng.choice(40, size, replace=False)).astype(np.int32) for size in sizes)
     got = _union(a, b)
     assert got.dtype == np.int32 and np.array_equal(got, np.union1d(a, b))
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_factor_structure_is_the_filled_structure_of_a_dense_factor(seed):
+    # a random symmetric structure (a path, so that the graph is connected, and
+    # random edges), as an M-matrix: no entry of its factor cancels by chance
+    import scipy.sparse as sp
+
+    rng = np.random.default_rng(seed)
+    n = 60
+    i = np.concatenate([np.arange(1, n), rng.integers(0, n, 90)])
+    j = np.concatenate([np.arange(n - 1), rng.integers(0, n, 90)])
+    i, j = rng.permutation(n)[i], rng.permutation(n)[j]  # (two orders: not a path)
+    graph = sp.csc_matrix((-np.ones(i.size), (i, j)), shape=(n, n))
+    graph = (graph + graph.T).tocsc()
+    graph.data[:] = -1.0
+    graph = (graph + sp.diags(1.0 - np.asarray(graph.sum(axis=1)).ravel())).tocsc()
+    graph.sort_indices()
+    ptr, rows = _factor_structure(graph.indptr.astype(np.int64), graph.indices.astype(np.int64))
+    factor = np.linalg.cholesky(graph.toarray())
+    for column in range(n):
+        expected = np.flatnonzero(np.abs(factor[:, column]) > 1e-14 * factor[column, column])
+        assert np.array_equal(rows[ptr[column]:ptr[column + 1]], expected)
+    # SuperLU's complete factor of the same M-matrix in the same order, the way the
+    # structure was found before
+    from scipy.sparse.linalg import splu
+
+    lower = splu(graph, permc_spec="NATURAL", diag_pivot_thresh=0.0,
+                 options={"SymmetricMode": True}).L.tocsc()
+    lower.sort_indices()
+    assert np.array_equal(ptr, lower.indptr) and np.array_equal(rows, lower.indices)
 
 
 def test_the_factor_by_elements_solves_as_a_dense_solve():
