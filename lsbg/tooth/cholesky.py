@@ -267,25 +267,47 @@ def _factor_structure(indptr, indices):
             rows = grown
         rows[at] = j
         mark[j] = j
-        at += 1
-        for p in range(indptr[j], indptr[j + 1]):
-            i = indices[p]
-            if i > j and mark[i] != j:
-                mark[i] = j
-                rows[at] = i
-                at += 1
+        at = _rows_below(indices, indptr[j], indptr[j + 1], j, mark, rows, at + 1)
         c = child[j]
-        while c != -1:
-            for q in range(ptr[c] + 1, ptr[c + 1]):
-                i = rows[q]
-                if i > j and mark[i] != j:
-                    mark[i] = j
-                    rows[at] = i
-                    at += 1
+        while c != -1:  # a child's rows after its diagonal
+            at = _rows_below(rows, ptr[c] + 1, ptr[c + 1], j, mark, rows, at)
             c = sibling[c]
         rows[ptr[j] + 1:at].sort()
         ptr[j + 1] = at
     return ptr, rows[:at].copy()
+
+
+@njit(cache=True)
+def _rows_below(source, start, stop, j, mark, rows, at):
+    """Append to column j's rows those of ``source[start:stop]`` below j not yet there.
+
+    Parameters
+    ----------
+    source : numpy.ndarray
+        Row numbers [-].
+    start, stop : int
+        The part of ``source`` read [-].
+    j : int
+        The column [-].
+    mark : numpy.ndarray
+        ``mark[i] == j`` where row i is already in column j; updated [-].
+    rows : numpy.ndarray
+        Written from ``at`` on [-].
+    at : int
+        The next free place in ``rows`` [-].
+
+    Returns
+    -------
+    int
+        The next free place after those appended [-].
+    """
+    for p in range(start, stop):
+        i = source[p]
+        if i > j and mark[i] != j:
+            mark[i] = j
+            rows[at] = i
+            at += 1
+    return at
 
 
 def _supernodes(pattern, small=4, most=32, zeros=0.3):
