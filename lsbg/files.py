@@ -20,8 +20,8 @@ import shutil
 import tempfile
 from pathlib import Path
 
-__all__ = ["InputError", "InputFileNotFoundError", "file_digest", "kept_file_digest", "number_label",
-           "label_clashes", "fill_template", "temporary_beside", "remove_stale_temporaries",
+__all__ = ["InputError", "InputFileNotFoundError", "file_digest", "kept_file_digest",
+           "number_label", "label_clashes", "fill_template", "temporary_beside", "remove_stale_temporaries",
            "write_atomically", "write_dataset", "as_path_list", "open_dataset", "short_labels", "load_yaml",
            "DuplicateKeyError", "duplicate_key_problems", "read_yaml_file"]
 
@@ -46,7 +46,18 @@ def file_digest(path) -> str:
 
 def kept_file_digest(path) -> str:
     """:func:`file_digest`, read once per process while the file's size and modification
-    time stay the same (sources hashed at every Snakemake start and numba cache lookup)."""
+    time stay the same (sources hashed at every Snakemake start and numba cache lookup).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file.
+
+    Returns
+    -------
+    str
+        SHA-256 of its bytes, 64 hex digits.
+    """
     stat = os.stat(path)
     return _kept_file_digest(os.fspath(path), stat.st_mtime_ns, stat.st_size)
 
