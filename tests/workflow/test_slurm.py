@@ -67,6 +67,10 @@ CANCEL_RULE = "report_verification"
 NOT_RUN_HERE = ("results/practice", "results/best", "results/optimise", "results/load_curves",
                 "results/extensions", "results/sweeps", "reports/paper.html",
                 "reports/sweep.html")
+#: The rules of seconds that the workflow declares local (``localrule: True``): the
+#: submitting Snakemake runs their jobs itself, not as SLURM jobs of two Snakemake starts
+#: each (docs/scaling.md).
+LOCAL_RULES = {"checks", "combine", "rating", "rating_sweep", "summary"}
 #: Suffixes of lsbg's temporaries (lsbg.files.TEMPORARY_SUFFIXES).
 PARTIAL = (".part", ".tmp", ".old")
 
@@ -113,6 +117,11 @@ def jobs_of_dag(output):
     counts = {rule: int(n) for rule, n in re.findall(r"^(\w+)\s+(\d+)$", table, re.MULTILINE)}
     counts.pop("all", None)              # a local rule: it only collects the targets
     return counts
+
+
+def local_jobs(output):
+    """rule -> number of jobs that the submitting Snakemake ran itself ("localrule" blocks)."""
+    return Counter(re.findall(r"^localrule (\w+):$", output, re.MULTILINE))
 
 
 def submitted_jobs(output):
@@ -274,8 +283,12 @@ def test_a_cancelled_job_is_reported_and_the_same_command_completes_the_dag(slur
 
 
 def test_every_job_of_the_dag_was_submitted_with_sbatch_and_completed(slurm_study):
+    """... but those of the local rules, which the submitting Snakemake ran, once each."""
     fault, rerun = slurm_study.fault, slurm_study.rerun
     dag = jobs_of_dag(fault.output)
+    local = local_jobs(fault.output) + local_jobs(rerun.output)
+    assert set(local) == LOCAL_RULES and local == {r: dag[r] for r in LOCAL_RULES}, (local, dag)
+    dag = {rule: n for rule, n in dag.items() if rule not in LOCAL_RULES}
     assert sum(dag.values()) >= 15, dag
     first, second = submitted_jobs(fault.output), submitted_jobs(rerun.output)
     jobs = sacct_jobs(first + second)

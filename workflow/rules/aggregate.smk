@@ -5,6 +5,8 @@
 
 
 rule combine:
+    # seconds of work: run by the submitting Snakemake, not as a cluster job (docs/scaling.md)
+    localrule: True
     input:
         runs=STUDY.sweep_runs,
         meshes=STUDY.meshes,
@@ -22,6 +24,8 @@ rule combine:
 
 
 rule summary:
+    # seconds of work: run by the submitting Snakemake, not as a cluster job (docs/scaling.md)
+    localrule: True
     input:
         runs=STUDY.all_runs + STUDY.sensitivity_runs(),
         meshes=STUDY.meshes,

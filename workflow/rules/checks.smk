@@ -18,6 +18,8 @@ PAPER_CHECKS = [CHECKS.format(trace=t, spiral=PAPER_SPIRAL) for t in plan.PAPER_
 
 
 rule checks:
+    # seconds of work: run by the submitting Snakemake, not as a cluster job (docs/scaling.md)
+    localrule: True
     input:
         geometry=FILES["geometry"],
         mesh=FILES["mesh"],
@@ -37,6 +39,8 @@ rule checks:
 
 
 rule rating_sweep:
+    # seconds of work: run by the submitting Snakemake, not as a cluster job (docs/scaling.md)
+    localrule: True
     input:
         summary=FILES["summary"],
         config=ancient(FILES["study_config"]),

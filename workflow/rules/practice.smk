@@ -19,6 +19,8 @@ PRACTICE_SPIRAL = dict(spiral=re.escape(PAPER_SPIRAL))
 
 
 rule practice_design:
+    # seconds of work: run by the submitting Snakemake, not as a cluster job (docs/scaling.md)
+    localrule: True
     input:
         config=ancient(FILES["study_config"]),
         sources=sources("practice"),
@@ -156,6 +158,8 @@ for flanks, flank_config in FLANK_SETS.items():
     rule:
         name:
             f"{flanks}_rating"
+        # seconds of work: run by the submitting Snakemake, not as a cluster job (docs/scaling.md)
+        localrule: True
         input:
             geometry=FILES["practice_geometry"],
             config=flank_config,

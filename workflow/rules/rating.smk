@@ -10,6 +10,8 @@
 
 
 rule rating:
+    # seconds of work: run by the submitting Snakemake, not as a cluster job (docs/scaling.md)
+    localrule: True
     input:
         geometry=FILES["geometry"],
         config=ancient(FILES["study_config"]),
