@@ -228,14 +228,33 @@ def test_paper_report(study_files, tmp_path):
         assert np.isclose(match.full_rate_std.iloc[0], row.full_rate_std, rtol=1e-12), row.run
 
 
-def test_sweep_report(study_files, tmp_path):
-    out = tmp_path / "sweep.html"
-    reports.render_report("sweep", out, {"sweep_file": study_files["sweep"],
-                                         "summary_file": study_files["summary"],
-                                         "speed_curve_file": study_files["speed_curve"],
-                                         "vh_files": study_files["vh"],
-                                         "rating_sweep_file": study_files["rating_sweep"],
-                                         "steady_state_after_s": 0.01})
+@pytest.fixture(scope="module")
+def sweep_pages(study_files, tmp_path_factory):
+    """The sweep report of the same inputs rendered in two directories, ``one`` and ``two``
+    (each a copy of the inputs, named relative to it but for the summary, named by its
+    absolute path inside it): ``{name: (directory, report)}``. One pair of renders serves
+    the report's content and its independence of the directory."""
+    pages = {}
+    for name in ("one", "two"):
+        root = tmp_path_factory.mktemp(f"sweep_{name}")
+        parameters = {"steady_state_after_s": 0.01}
+        for key in ("sweep", "summary", "speed_curve", "rating_sweep", "vh"):
+            files = study_files[key] if key == "vh" else [study_files[key]]
+            relative = [f"results/{key}/{Path(f).name}" for f in files]
+            for source, target in zip(files, relative):
+                (root / target).parent.mkdir(parents=True, exist_ok=True)
+                shutil.copy2(source, root / target)
+            parameters[f"{key}_files" if key == "vh" else f"{key}_file"] = \
+                relative if key == "vh" else relative[0]
+        parameters["summary_file"] = root / parameters["summary_file"]
+        out = root / "reports" / "sweep.html"
+        reports.render_report("sweep", out, parameters, cwd=root)
+        pages[name] = (root, out)
+    return pages
+
+
+def test_sweep_report(sweep_pages):
+    _, out = sweep_pages["one"]
     html = check_html(out, ["Spiral-angle sweep", "1. Loaded tooth contact",
                             "2. Fluctuations against", "3. Which type",
                             "4. The dynamic-factor curve", "5. The design points",
@@ -378,22 +397,12 @@ def test_parse_and_resolve_parameters(tmp_path):
                         "subgroup_size": 4, "title": "keep/me"}
 
 
-def test_report_is_the_same_in_another_directory(study_files, tmp_path):
+def test_report_is_the_same_in_another_directory(sweep_pages):
     """The same inputs in two directories give the same HTML, apart from the time stamp."""
     pages = []
-    for name in ("one", "two"):
-        root = tmp_path / name
-        (root / "results").mkdir(parents=True)
-        for key in ("sweep", "summary", "speed_curve"):
-            shutil.copy2(study_files[key], root / "results" / Path(study_files[key]).name)
-        out = root / "reports" / "sweep.html"
-        reports.render_report("sweep", out, {
-            "sweep_file": f"results/{Path(study_files['sweep']).name}",
-            "summary_file": root / "results" / Path(study_files["summary"]).name,
-            "speed_curve_file": f"results/{Path(study_files['speed_curve']).name}",
-            "steady_state_after_s": 0.01}, cwd=root)
+    for root, out in sweep_pages.values():
         html = out.read_text(encoding="utf-8")
-        assert str(root) not in html and str(tmp_path) not in html
+        assert str(root) not in html and str(root.parent) not in html
         assert "results/" in html          # the inputs are named, relative
         pages.append(re.sub(r"computed with lsbg \S+ on [0-9-]+ [0-9:]+ UTC", "", html))
     assert pages[0] == pages[1]
