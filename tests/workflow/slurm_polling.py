@@ -12,7 +12,7 @@ reads the answer: the profile, sbatch, squeue and the jobs are the README's.
 import sys
 
 #: The longest interval [s] between two status checks here.
-MAX_SECONDS = 4
+MAX_SECONDS = 2
 
 
 def cap_status_interval(max_seconds=MAX_SECONDS):

@@ -12,7 +12,7 @@ does), the README's command
 without the practice stage and two of the three reports (:data:`NO_PRACTICE`,
 :data:`WITHOUT`), twice: the first time one running job is cancelled (``scancel``) while it
 computes, and Snakemake must report it and fail; the second time, the same
-command must complete the DAG. Snakemake runs with its status checks at most 4 s apart
+command must complete the DAG. Snakemake runs with its status checks at most 2 s apart
 (tests/workflow/slurm_polling.py: the plugin's interval grows without a cap on a quiet
 cluster); everything else is the README's command. Its outputs are compared with the session's study
 (tests/workflow/conftest.py: the same config run locally with -j2, made meanwhile):
@@ -53,7 +53,7 @@ NO_PRACTICE = "no-practice.yaml"
 WITHOUT = ("report_paper", "report_sweep")
 COMMAND = ("--profile", PROFILE, "--configfile", TEST_CONFIG, NO_PRACTICE,
            "--omit-from", *WITHOUT)
-#: Snakemake's command line with the status checks at most 4 s apart (the plugin's own
+#: Snakemake's command line with the status checks at most 2 s apart (the plugin's own
 #: interval grows by 10 s per check that sees no job end: tests/workflow/slurm_polling.py).
 SNAKEMAKE = "tests.workflow.slurm_polling"
 #: The rule of the job that the fault test cancels while it computes: a job of
