@@ -21,9 +21,10 @@ import tempfile
 from pathlib import Path
 
 __all__ = ["InputError", "InputFileNotFoundError", "file_digest", "kept_file_digest",
-           "number_label", "label_clashes", "fill_template", "temporary_beside", "remove_stale_temporaries",
-           "write_atomically", "write_dataset", "as_path_list", "open_dataset", "short_labels", "load_yaml",
-           "DuplicateKeyError", "duplicate_key_problems", "read_yaml_file"]
+           "number_label", "label_clashes", "fill_template", "temporary_beside",
+           "remove_stale_temporaries", "write_atomically", "write_dataset", "as_path_list",
+           "open_dataset", "short_labels", "load_yaml", "DuplicateKeyError",
+           "duplicate_key_problems", "read_yaml_file"]
 
 
 class InputError(ValueError):

@@ -418,7 +418,7 @@ def package_digest(package=PACKAGE):
     digest = hashlib.sha256()
     for path in sorted(Path(package).rglob("*.py")):
         digest.update(path.relative_to(package).as_posix().encode() + b"\0"
-                      + kept_file_digest(str(path)).encode())
+                      + kept_file_digest(path).encode())
     return digest.hexdigest()
 
 
@@ -439,7 +439,7 @@ def sources_listing(modules, package=PACKAGE):
     lines = []
     for name in closure_files(modules, package=package):
         path = Path(name)
-        digest = kept_file_digest(str(path))
+        digest = kept_file_digest(path)
         lines.append(f"{digest}  {path.relative_to(package.parent).as_posix()}")
     return "\n".join(lines) + "\n"
 
