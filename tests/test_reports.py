@@ -237,16 +237,17 @@ def sweep_pages(study_files, tmp_path_factory):
     pages = {}
     for name in ("one", "two"):
         root = tmp_path_factory.mktemp(f"sweep_{name}")
-        parameters = {"steady_state_after_s": 0.01}
+        copies = {}  # each input's copy, named relative to root
         for key in ("sweep", "summary", "speed_curve", "rating_sweep", "vh"):
             files = study_files[key] if key == "vh" else [study_files[key]]
-            relative = [f"results/{key}/{Path(f).name}" for f in files]
-            for source, target in zip(files, relative):
+            copies[key] = [f"results/{key}/{Path(f).name}" for f in files]
+            for source, target in zip(files, copies[key]):
                 (root / target).parent.mkdir(parents=True, exist_ok=True)
                 shutil.copy2(source, root / target)
-            parameters[f"{key}_files" if key == "vh" else f"{key}_file"] = \
-                relative if key == "vh" else relative[0]
-        parameters["summary_file"] = root / parameters["summary_file"]
+        parameters = {f"{key}_file": copies[key][0]
+                      for key in ("sweep", "speed_curve", "rating_sweep")}
+        parameters.update(summary_file=root / copies["summary"][0], vh_files=copies["vh"],
+                          steady_state_after_s=0.01)
         out = root / "reports" / "sweep.html"
         reports.render_report("sweep", out, parameters, cwd=root)
         pages[name] = (root, out)
