@@ -30,6 +30,8 @@ rule paper_geometry:
 
 
 rule paper_ltca:
+    # seconds of work: run by the submitting Snakemake, not as a cluster job (docs/scaling.md)
+    localrule: True
     input:
         geometry=FILES["geometry"],
         config=ancient(FILES["study_config"]),

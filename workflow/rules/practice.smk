@@ -39,6 +39,8 @@ rule practice_design:
 
 
 rule practice_geometry:
+    # seconds of work: run by the submitting Snakemake, not as a cluster job (docs/scaling.md)
+    localrule: True
     input:
         config=PRACTICE_CONFIG,
         sources=sources("geometry"),
@@ -91,6 +93,9 @@ for flanks, flank_config in FLANK_SETS.items():
         rule:
             name:
                 f"{flanks}_{step}"
+            # seconds of work: run by the submitting Snakemake, not as a cluster job
+            # (docs/scaling.md)
+            localrule: True
             input:
                 geometry=FILES["practice_geometry"],
                 config=flank_config,
@@ -183,6 +188,8 @@ for flanks, flank_config in FLANK_SETS.items():
 
 
 rule load_curve:
+    # seconds of work: run by the submitting Snakemake, not as a cluster job (docs/scaling.md)
+    localrule: True
     input:
         geometry=design_set_input(lambda w: STUDY.geometry(w.trace, w.spiral),
                                   practice_input("geometry")),

@@ -45,6 +45,8 @@ rule tooth_compliance:
 if not STUDY.own_compliance:
 
     rule fe_ltca:
+        # seconds of work: run by the submitting Snakemake, not as a cluster job (docs/scaling.md)
+        localrule: True
         input:
             geometry=FILES["geometry"],
             config=ancient(FILES["study_config"]),
@@ -71,6 +73,8 @@ if not STUDY.own_compliance:
 # reaches it (crowning; results/tooth/*_{case}_ltca.nc), for the service-life
 # claim's sensitivity table. In both modes: the paper's compliance is computed here.
 rule fe_sensitivity:
+    # seconds of work: run by the submitting Snakemake, not as a cluster job (docs/scaling.md)
+    localrule: True
     input:
         geometry=FILES["geometry"],
         config=ancient(FILES["study_config"]),
