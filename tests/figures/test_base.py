@@ -381,6 +381,32 @@ def test_picture_crop_drops_the_caption_and_the_blank_border():
     assert 100 <= shown.shape[0] <= 110 and 100 <= shown.shape[1] <= 110
 
 
+@pytest.mark.parametrize("layout", [None, "constrained"])
+def test_a_report_png_has_the_figures_pixels_in_a_palette(layout):
+    """figure_png's palette image is the full-colour rendering, pixel for pixel, in at
+    most 256 colours: the same bytes as quantizing matplotlib's own (compressed) PNG,
+    so the uncompressed intermediate changes nothing but the time."""
+    from PIL import Image
+
+    fig = Figure(figsize=(8.0, 3.0), layout=layout)
+    ax = fig.add_subplot()
+    t = np.linspace(0.0, 1.0, 400)
+    ax.plot(t, np.sin(40.0 * t), t, np.cos(9.0 * t))
+    ax.fill_between(t, -1.0, np.sin(3.0 * t), alpha=0.3)
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("gear speed [deg/s]")
+    full = figure_png(fig, palette=False)  # (also settles a constrained layout)
+    shown = Image.open(io.BytesIO(figure_png(fig)))
+    assert shown.mode == "P" and len(shown.getcolors(256)) <= 256
+    rgb = np.asarray(Image.open(io.BytesIO(full)).convert("RGB"))
+    reference = Image.fromarray(rgb).quantize(colors=256, method=Image.Quantize.FASTOCTREE,
+                                              dither=Image.Dither.NONE)
+    assert np.array_equal(np.asarray(shown.convert("RGB")), np.asarray(reference.convert("RGB")))
+    out = io.BytesIO()
+    reference.save(out, format="PNG")
+    assert figure_png(fig) == out.getvalue()
+
+
 def test_geometry_checks_read_well(geometry_dirs):
     assert_readable(geometry_figures.plot_spiral_angle_along_face(list(geometry_dirs.values())))
     errors = {label: point_checks.conjugacy_errors(read_design(path), phases=5, n=5)
