@@ -348,13 +348,12 @@ def figure_png(fig, dpi=100, palette=True) -> bytes:
     buffer = io.BytesIO()
     # a constrained layout already fits the figure; "tight" would draw it twice
     tight = None if isinstance(fig.get_layout_engine(), ConstrainedLayoutEngine) else "tight"
+    # for the palette the full-colour PNG is only decoded again: stored uncompressed, the
+    # same pixels without the zlib pass (the palette image below is compressed as before)
+    stored = {"pil_kwargs": {"compress_level": 0}} if palette else {}
+    fig.savefig(buffer, format="png", dpi=dpi, bbox_inches=tight, **stored)
     if not palette:
-        fig.savefig(buffer, format="png", dpi=dpi, bbox_inches=tight)
         return buffer.getvalue()
-    # the full-colour PNG is only decoded again here: stored uncompressed, the same pixels
-    # without the zlib pass (the palette image below is compressed as before)
-    fig.savefig(buffer, format="png", dpi=dpi, bbox_inches=tight,
-                pil_kwargs={"compress_level": 0})
     from PIL import Image
 
     buffer.seek(0)
