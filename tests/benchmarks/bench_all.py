@@ -42,8 +42,6 @@ def main(argv=None):
              for when, values in (("before", before), ("after", after))
              for name, value in values.items()]
     print("\n== lsbg benchmark: every figure against its target ==")
-    print(f"  (machine baseline, figures lsbg's code does not change: before, "
-          f"{baseline.describe(before)}; after, {baseline.describe(after)})")
     for row in rows:
         print(f"  {row['figure']:62s} {row['value']:9.3g} {row['unit']:3s} "
               f"{row['target_text']:>9s}  {row['verdict']}")
