@@ -22,9 +22,9 @@ import importlib
 
 __version__ = "0.1.0"
 
-from lsbg import numba_cache as _numba_cache  # noqa: E402  (before any kernel compiles)
+from lsbg import numba_cache as _numba_cache  # noqa: E402
 
-_numba_cache.install()
+_numba_cache.install()  # NUMBA_CACHE_DIR, before any kernel is decorated
 
 #: The public API: submodule -> the names ``import lsbg`` gives from it.
 PUBLIC = {
