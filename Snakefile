@@ -6,7 +6,7 @@
 #     snakemake --executor slurm --profile workflow/profiles/slurm
 #
 # The configuration (workflow/config.yaml, validated against
-# workflow/schemas/config.schema.yaml before any job runs) holds the design, the
+# lsbg/schemas/config.schema.yaml before any job runs) holds the design, the
 # sweep, the engines, the simulation, contact, contact-state and statistics
 # settings. Rules live in workflow/rules/*.smk and call the lsbg command line
 # only; the plan (config checks, design points, file names) is lsbg.study.plan,

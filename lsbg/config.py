@@ -2,7 +2,7 @@
 
 One configuration serves the workflow and every ``lsbg`` command: sections of
 keys in the paper's units, described, typed and defaulted by one schema,
-``workflow/schemas/config.schema.yaml`` (:func:`load_schema`). A command
+``lsbg/schemas/config.schema.yaml``, package data (:func:`load_schema`). A command
 reads it as the workflow does (:func:`resolve_config`): the schema's defaults,
 then each ``--config FILE`` merged over them (:func:`merge_config`, as
 ``snakemake --configfile`` merges), then each ``--set section.key=value``
@@ -29,8 +29,8 @@ __all__ = ["SCHEMA_PATH", "ConfigError", "load_schema", "key_path", "section_val
            "parse_override", "apply_override", "resolve_config", "config_key",
            "section_objects"]
 
-#: The schema of the study configuration (beside the workflow that reads it).
-SCHEMA_PATH = Path(__file__).resolve().parents[1] / "workflow" / "schemas" / "config.schema.yaml"
+#: The schema of the study configuration (package data; the workflow validates against it too).
+SCHEMA_PATH = Path(__file__).resolve().parent / "schemas" / "config.schema.yaml"
 
 
 class ConfigError(ValueError):
@@ -59,8 +59,8 @@ def load_schema(path=SCHEMA_PATH):
     dict
     """
     if not Path(path).is_file():
-        raise ConfigError(f"{path}: no configuration schema there (lsbg reads it from its "
-                          f"repository's workflow/schemas; install lsbg editable from a clone)")
+        raise ConfigError(f"{path}: no configuration schema there (lsbg's own is "
+                          f"{SCHEMA_PATH})")
     return copy.deepcopy(_schema(str(path)))
 
 

@@ -1,7 +1,7 @@
 """Reports: parameterised notebooks executed by papermill, rendered to one HTML file.
 
-The reports live in ``workflow/notebooks/{name}.ipynb`` of the repository (the
-package is installed in editable mode, so they are found next to it). Each has
+The reports are ``lsbg/notebooks/{name}.ipynb``, package data (:data:`NOTEBOOK_DIR`;
+another folder can be given). Each has
 a cell tagged ``parameters``; :func:`render_report` injects the caller's
 values, runs the notebook with the current Python's kernel in the caller's
 directory, and converts the executed notebook into a self-contained HTML file:
@@ -33,8 +33,8 @@ __all__ = ["NOTEBOOK_DIR", "PATH_PARAMETER_SUFFIXES", "ReportError", "notebook_p
 
 log = logging.getLogger(__name__)
 
-#: Default folder of the report notebooks: ``workflow/notebooks`` of the repository.
-NOTEBOOK_DIR = Path(lsbg.__file__).resolve().parents[1] / "workflow" / "notebooks"
+#: Default folder of the report notebooks: ``notebooks`` of the package (package data).
+NOTEBOOK_DIR = Path(__file__).resolve().parent / "notebooks"
 
 #: A parameter whose name is one of these or ends in ``_<suffix>`` holds a path
 #: or a list of paths; relative ones are made absolute before injection.

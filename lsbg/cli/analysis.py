@@ -220,7 +220,7 @@ def add_report_parser(subparsers):
     """``lsbg report``: execute a report notebook and render it as HTML."""
     parser = subparsers.add_parser(
         "report", help="render a report notebook to a self-contained HTML file",
-        description="Execute workflow/notebooks/NAME.ipynb with papermill (parameters from "
+        description="Execute lsbg/notebooks/NAME.ipynb with papermill (parameters from "
                     "--param, relative paths resolved against the current directory) and "
                     "convert it with nbconvert to one HTML file without code, figures "
                     "embedded. Exit code 1 if the notebook fails (nothing written), 2 on bad "
@@ -231,8 +231,8 @@ def add_report_parser(subparsers):
                         help="notebook parameter; VALUE is read as YAML ([a.nc, b.nc] is a "
                              "list, an empty VALUE is the empty string)")
     parser.add_argument("--notebook-dir", metavar="DIR",
-                        help="folder of the notebooks (default: workflow/notebooks of the "
-                             "lsbg repository)")
+                        help="folder of the notebooks (default: the notebooks of the "
+                             "lsbg package)")
     parser.add_argument("--timeout", type=float, metavar="S", help="time limit per cell [s]")
     parser.set_defaults(handler=run_report)
 

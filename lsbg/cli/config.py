@@ -15,13 +15,15 @@ import sys
 from pathlib import Path
 
 from lsbg.cli.options import CommandError
-from lsbg.config import merge_config
+from lsbg.config import SCHEMA_PATH, merge_config
 from lsbg.files import read_yaml_file as _read_yaml
 
 __all__ = ["add_check_config_parser", "merge_config"]
 
-#: The repository of an editable install: the workflow's files are beside lsbg/.
+#: The repository of a clone (an editable install): its workflow is beside lsbg/.
 REPO = Path(__file__).resolve().parents[2]
+#: The workflow folder: the clone's, else the current directory's (a pip-installed lsbg).
+WORKFLOW_DIR = REPO / "workflow" if (REPO / "workflow").is_dir() else Path("workflow")
 
 
 def add_check_config_parser(subparsers):
@@ -31,9 +33,8 @@ def add_check_config_parser(subparsers):
     parser.add_argument("configfiles", nargs="*", metavar="CONFIGFILE",
                         help="files given to snakemake --configfile (merged in order over "
                              "workflow/config.yaml)")
-    parser.add_argument("--workflow-dir", type=Path, default=REPO / "workflow",
-                        help="the workflow folder holding config.yaml and "
-                             "schemas/config.schema.yaml (default: %(default)s)")
+    parser.add_argument("--workflow-dir", type=Path, default=WORKFLOW_DIR,
+                        help="the workflow folder holding config.yaml (default: %(default)s)")
     parser.set_defaults(handler=run_check_config)
 
 
@@ -43,14 +44,12 @@ def run_check_config(args):
     from lsbg.study.plan import design_points
 
     base = args.workflow_dir / "config.yaml"
-    schema = args.workflow_dir / "schemas" / "config.schema.yaml"
-    if not base.is_file() or not schema.is_file():
-        raise CommandError(f"--workflow-dir {args.workflow_dir}: no config.yaml and "
-                           f"schemas/config.schema.yaml there")
+    if not base.is_file():
+        raise CommandError(f"--workflow-dir {args.workflow_dir}: no config.yaml there")
     config = _read_yaml(base, "workflow config")
     for path in args.configfiles:
         config = merge_config(config, _read_yaml(path, "configfile"))
-    problems = check_config(config, _read_yaml(schema, "schema"))
+    problems = check_config(config, _read_yaml(SCHEMA_PATH, "schema"))
     if problems:
         for line in problems:
             print(f"invalid configuration: {line}", file=sys.stderr)

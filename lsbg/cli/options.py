@@ -178,7 +178,7 @@ def add_config_options(parser, sections):
                         metavar="SECTION.KEY=VALUE",
                         help="set one key over --config in the configuration's units, e.g. "
                              "contact.model=line or design.spiral_angle_deg=30; repeatable. "
-                             "Keys, units and defaults: workflow/schemas/config.schema.yaml")
+                             "Keys, units and defaults: lsbg/schemas/config.schema.yaml")
     parser.set_defaults(sections=tuple(sections))
     parser.formatter_class = argparse.RawDescriptionHelpFormatter
     parser.epilog = settings_help(sections)

@@ -192,7 +192,7 @@ def test_every_design_key_can_be_set(capsys):
     for option in ("--config FILE.yaml", "--set SECTION.KEY=VALUE", "--relieved", "--no-step"):
         assert option in help_text, option
     assert "reads its sections design, flank_modification" in help_text
-    assert "workflow/schemas/config.schema.yaml" in help_text
+    assert "lsbg/schemas/config.schema.yaml" in help_text
     for old in ("--spiral-angle", "--module-mm", "--trace", "--design"):
         assert old not in help_text, old
 

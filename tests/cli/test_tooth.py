@@ -161,7 +161,7 @@ def deep_update(base, over):
 def test_the_configuration_check_names_the_tooth_keys():
     from lsbg.study.checks import check_config
 
-    schema = yaml.safe_load((REPO / "workflow/schemas/config.schema.yaml").read_text())
+    schema = yaml.safe_load((REPO / "lsbg/schemas/config.schema.yaml").read_text())
     base = yaml.safe_load((REPO / "workflow/config.yaml").read_text())
     test = yaml.safe_load((REPO / "workflow/config-test.yaml").read_text())
     merged = deep_update(base, test)

@@ -11,7 +11,7 @@ from lsbg.study.sweep_checks import MAX_SWEEP_RUNS
 from lsbg.experiments.sweeps import sweeps_from_config
 
 REPO = Path(__file__).resolve().parents[2]
-SCHEMA = yaml.safe_load((REPO / "workflow" / "schemas" / "config.schema.yaml").read_text())
+SCHEMA = yaml.safe_load((REPO / "lsbg" / "schemas" / "config.schema.yaml").read_text())
 
 
 def merged(*names):

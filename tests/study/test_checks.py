@@ -25,7 +25,7 @@ from lsbg.gear.design import GearPairDesign
 from lsbg.gear.geometry import GearPair
 
 REPO = Path(__file__).resolve().parents[2]
-SCHEMA = yaml.safe_load((REPO / "workflow" / "schemas" / "config.schema.yaml")
+SCHEMA = yaml.safe_load((REPO / "lsbg" / "schemas" / "config.schema.yaml")
                         .read_text(encoding="utf-8"))
 
 #: The optional sections, small, so that the fuzz suite reaches their keys too.
@@ -445,7 +445,7 @@ def test_defaults_are_those_snakemake_fills_in():
     ours, theirs = base(), base()
     del ours["limits"], theirs["limits"], ours["simulation"], theirs["simulation"]
     config_check.fill_defaults(ours, SCHEMA)
-    validate(theirs, str(REPO / "workflow" / "schemas" / "config.schema.yaml"))
+    validate(theirs, str(REPO / "lsbg" / "schemas" / "config.schema.yaml"))
     assert ours == theirs
 
 

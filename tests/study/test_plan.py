@@ -14,7 +14,7 @@ from lsbg.study import job_order
 from lsbg.study import plan
 
 REPO = Path(__file__).resolve().parents[2]
-SCHEMA = REPO / "workflow" / "schemas" / "config.schema.yaml"
+SCHEMA = REPO / "lsbg" / "schemas" / "config.schema.yaml"
 
 
 def load(*names, **overrides):

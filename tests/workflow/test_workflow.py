@@ -146,7 +146,7 @@ def test_rules_list_the_lsbg_files_they_run(tmp_path):
     assert "lsbg/tca/vh_map.py" in listed["contact_state"]
     assert "lsbg/tca/vh_map.py" not in listed["convergence_line"]
     for name in ("paper", "sweep", "verification"):
-        assert any(f.endswith(f"workflow/notebooks/{name}.ipynb")
+        assert any(f.endswith(f"lsbg/notebooks/{name}.ipynb")
                    for f in inputs[f"report_{name}"])
 
 
@@ -482,7 +482,7 @@ CODE_CHANGES = {
     # every engine's run there; the FE segment is lofted through the STEP solid's
     # sections (lsbg.solid.step, lsbg.solid.solids)
     "lsbg/solid/solids.py": _EVERYTHING,
-    "workflow/notebooks/sweep.ipynb": ["report_sweep", "all"],
+    "lsbg/notebooks/sweep.ipynb": ["report_sweep", "all"],
 }
 
 

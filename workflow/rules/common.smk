@@ -1,7 +1,7 @@
 """Glue between Snakemake and lsbg (no rules here).
 
 The configuration is checked completely by lsbg.study.checks.check_config
-(finite numbers, workflow/schemas/config.schema.yaml, file names, lsbg's own
+(finite numbers, lsbg/schemas/config.schema.yaml, file names, lsbg's own
 checks of the settings and the statistics, the physics and the resource
 guard of every design point), which also fills in the schema's defaults,
 before any job runs; each problem is one line naming the user's key.
@@ -26,14 +26,16 @@ from pathlib import Path
 
 from snakemake.logging import logger
 
-from lsbg.config import load_schema
+from lsbg.config import SCHEMA_PATH, load_schema
 from lsbg.files import duplicate_key_problems
 from lsbg.study import checks as config_check
 from lsbg.study import plan
 
 #: The repository: the directory of the top-level Snakefile.
 REPO = Path(workflow.basedir).resolve()
-SCHEMA = REPO / "workflow" / "schemas" / "config.schema.yaml"
+SCHEMA = SCHEMA_PATH  # package data, as the report notebooks (NOTEBOOKS)
+#: The report notebooks: lsbg.reports.NOTEBOOK_DIR (lsbg.reports imports pandas; not here).
+NOTEBOOKS = SCHEMA_PATH.parents[1] / "notebooks"
 #: Software of every rule (with --software-deployment-method conda).
 CONDA_ENV = (REPO / "workflow" / "envs" / "lsbg.yaml").as_posix()
 #: Extensions: the repository's, then the study folder's own (docs/usage.md, "A study of your own").
@@ -72,7 +74,7 @@ def check_config(config):
                  for k, name in enumerate(config.get("extensions", []))
                  if extension_file(name) is None]
     if problems:
-        logger.error("invalid configuration (keys as in workflow/schemas/config.schema.yaml):\n"
+        logger.error("invalid configuration (keys as in lsbg/schemas/config.schema.yaml):\n"
                      + "\n".join(f"  config key {p}" for p in problems))
         sys.exit(1)
 
@@ -277,7 +279,7 @@ def sources(name, notebook=None):
     from lsbg.files import file_digest
     from lsbg.study.stages import cached_answer, sources_listing, write_if_changed
 
-    notebook_file = REPO / "workflow" / "notebooks" / f"{notebook}.ipynb" if notebook else None
+    notebook_file = NOTEBOOKS / f"{notebook}.ipynb" if notebook else None
     # the closure depends on the package's sources and the notebook only: kept between
     # Snakemake starts under their digests (it took about 0.45 s of each)
     inputs = {"command": name, "package": lsbg_digest(), "notebook": notebook_file and
