@@ -153,3 +153,36 @@ def test_architecture_page_names_every_module_and_only_real_paths():
     unnamed = sorted(m for m in modules | packages
                      if m not in page and not any(m.startswith(p) for p in packages & named))
     assert not unnamed, f"add {unnamed} to docs/architecture.md"
+
+
+def test_the_package_carries_its_data_files(tmp_path):
+    """What an installed lsbg reads besides its modules (the configuration's schema, the
+    report notebooks) is package data: setuptools copies it into the build, as into a wheel."""
+    import shutil
+
+    from lsbg.config import SCHEMA_PATH
+    from lsbg.reports import NOTEBOOK_DIR, available_reports
+
+    repo = PACKAGE.parent
+    source = tmp_path / "source"
+    source.mkdir()
+    for name in ("pyproject.toml", "README.md"):
+        shutil.copy(repo / name, source / name)
+    shutil.copytree(PACKAGE, source / "lsbg", ignore=shutil.ignore_patterns("__pycache__"))
+    build = tmp_path / "build"
+    code = ("import sys, setuptools; sys.argv = ['setup.py', '-q', 'build_py', '--build-lib', "
+            f"{str(build)!r}]; setuptools.setup()")
+    proc = subprocess.run([sys.executable, "-W", "ignore", "-c", code], cwd=source,
+                          capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+
+    def data_files(package):
+        return {p.relative_to(package).as_posix() for p in package.rglob("*")
+                if p.is_file() and p.suffix not in (".py", ".pyc")}
+
+    shipped = data_files(build / "lsbg")
+    assert shipped == data_files(source / "lsbg")
+    assert SCHEMA_PATH.relative_to(PACKAGE).as_posix() in shipped
+    assert sorted(available_reports()) == ["paper", "sweep", "verification"]
+    for name in available_reports():
+        assert (NOTEBOOK_DIR / f"{name}.ipynb").relative_to(PACKAGE).as_posix() in shipped
