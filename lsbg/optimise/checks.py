@@ -17,7 +17,7 @@ raises the first problem as a ValueError before anything is evaluated:
   estimated time (:func:`evaluation_seconds`) exceeds ``limits.optimise_minutes``.
 
 The section's keys and defaults are the schema's
-(``workflow/schemas/config.schema.yaml``, section ``optimise``).
+(``lsbg/schemas/config.schema.yaml``, section ``optimise``).
 """
 
 from __future__ import annotations

@@ -9,7 +9,7 @@ assumes the ones before it passed):
 
 1. every number is finite: JSON Schema's range keywords let NaN through
    (every comparison with NaN is false) and inf through any lower bound;
-2. the schema (workflow/schemas/config.schema.yaml): types, ranges, enums,
+2. the schema (lsbg/schemas/config.schema.yaml): types, ranges, enums,
    list lengths, duplicates, required and unknown keys;
 
 then, with the schema's defaults filled in (:func:`fill_defaults`, as
@@ -111,7 +111,7 @@ def check_config(config, schema):
         The merged configuration, as Snakemake loaded it; changed in place:
         the schema's defaults are filled in once it passes the schema.
     schema : dict
-        workflow/schemas/config.schema.yaml, loaded.
+        lsbg/schemas/config.schema.yaml, loaded.
 
     Returns
     -------

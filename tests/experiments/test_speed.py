@@ -99,7 +99,7 @@ def test_the_response_is_quasi_static_below_resonant_at_fn_and_isolated_above(ge
 
 
 #: The speed sweep of these runs: its speeds (a section that sets any of its keys needs
-#: them, workflow/schemas/config.schema.yaml) and a short steady window.
+#: them, lsbg/schemas/config.schema.yaml) and a short steady window.
 SWEEP = ["--set", "speed_sweep.pinion_speeds_deg_s={start: 40000, stop: 80000, count: 2}",
          "--set", "speed_sweep.mesh_cycles=20", "--set", "speed_sweep.min_window_s=0.01",
          "--set", "speed_sweep.settle_time_s=0.02", "--set", "speed_sweep.ramp_time_s=0.02"]

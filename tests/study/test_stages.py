@@ -106,7 +106,7 @@ def test_command_functions_are_followed_by_call(tmp_path):
 
 @pytest.mark.parametrize("name", ["paper", "sweep", "verification"])
 def test_a_report_depends_on_its_notebooks_imports(name):
-    path = REPO / "workflow" / "notebooks" / f"{name}.ipynb"
+    path = REPO / "lsbg" / "notebooks" / f"{name}.ipynb"
     modules = stages.notebook_closure(path)
     cells = json.loads(path.read_text())["cells"]
     assert any("lsbg" in "".join(c["source"]) for c in cells if c["cell_type"] == "code")

@@ -136,7 +136,7 @@ def test_rules_list_the_lsbg_files_they_run(tmp_path):
         handler = handler_of(name)
         modules = function_closure(handler.__module__.removeprefix("lsbg."), handler.__name__)
         if notebook:
-            modules |= notebook_closure(REPO / "workflow" / "notebooks" / f"{notebook}.ipynb")
+            modules |= notebook_closure(REPO / "lsbg" / "notebooks" / f"{notebook}.ipynb")
         text = (tmp_path / listing[0]).read_text(encoding="utf-8")
         assert text == sources_listing(modules), rule
         listed[rule] = {line.split("  ", 1)[1] for line in text.splitlines()}
