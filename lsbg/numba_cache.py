@@ -16,7 +16,11 @@ else ``$XDG_CACHE_HOME/lsbg``, else ``~/.cache/lsbg``. ``import lsbg`` sets
 the variable (:func:`install`) before any kernel is decorated, without
 importing numba; processes started from there (the workflow's jobs) inherit
 it. Every numba function with ``cache=True`` in the process is then cached
-there, lsbg's or not.
+there, lsbg's or not. Inside the directory numba keeps each source folder's
+functions apart by the folder's path, so each copy of lsbg (a clone, an
+installation) compiles its kernels once. numba's update of a function's
+index is not locked between processes; the workflow's first job (rule
+``kernels``) compiles the study's kernels before the jobs that share them.
 """
 
 import hashlib
