@@ -137,3 +137,41 @@ def test_every_dataset_label_is_short():
     assert ds["transmission_error"].attrs == {"units": "urad", "long_name": "transmission error",
                                               "description": "x" * 90}
     assert ds["speed"].attrs["long_name"] == "gear speed" and "description" not in ds["speed"].attrs
+
+
+def recipes(text):
+    """(code, shown output) of each ```python block of ``text`` followed by a ```text block."""
+    return re.findall(r"```python\n((?:(?!```).)*)```\s*```text\n((?:(?!```).)*)```", text, re.S)
+
+
+NUMBER = re.compile(r"[-+]?\d+(?:\.\d+)?(?:e[-+]?\d+)?")
+
+
+def test_the_api_recipes_print_what_they_show(tmp_path, monkeypatch, capsys):
+    """docs/api.md's everyday questions (loaded TE on the uniform bed and with the FE
+    compliance, a V-H map, a rating, a run) run from a copy of the study's configuration
+    and print the figures shown under them: each shown line that carries a number is a
+    line of the output with the same words and numbers within 0.5 %."""
+    import shutil
+
+    text = (REPO / "docs" / "api.md").read_text(encoding="utf-8")
+    blocks = recipes(text)
+    assert len(blocks) >= 4, "docs/api.md: the everyday questions' recipes are missing"
+    (tmp_path / "workflow").mkdir()
+    shutil.copy(REPO / "workflow" / "config.yaml", tmp_path / "workflow" / "config.yaml")
+    monkeypatch.chdir(tmp_path)
+    wrong = []
+    for code, shown in blocks:
+        exec(compile(code, "docs/api.md", "exec"), {})
+        printed = capsys.readouterr().out.splitlines()
+        for line in shown.splitlines():
+            if not NUMBER.search(line) or line.strip() == "...":
+                continue
+            words = NUMBER.sub("#", line).split()
+            numbers = [float(x) for x in NUMBER.findall(line)]
+            match = [out for out in printed if NUMBER.sub("#", out).split() == words]
+            if not any(all(abs(a - b) <= 5e-3 * max(abs(b), 1e-9) + 0.011
+                           for a, b in zip(map(float, NUMBER.findall(out)), numbers))
+                       for out in match):
+                wrong.append((line, match))
+    assert not wrong, wrong

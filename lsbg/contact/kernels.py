@@ -128,8 +128,7 @@ def _prefetch_rows(table, side, row, ahead, rows):
 
     The point model's table holds 20000 rows per base pitch (megabytes), and
     at speed every time step reads rows no earlier step read: without this
-    each tooth pair's lookup waits on main memory (measured: about 0.3 µs of
-    the PyBullet step's 1 µs over its floor), as Bullet's step between two
+    each tooth pair's lookup waits on main memory, as Bullet's step between two
     lookups leaves the hardware prefetcher nothing to follow. Values are
     unchanged; only when they arrive in the cache.
     """
@@ -426,7 +425,7 @@ def _mesh(phi1, phi2, w1, w2, params, sides, table, details, slices):
     pairs = 0
     # np.int64(0), not 0: numba types a counter that starts as a literal first as the
     # literal, and compiles every kernel it is passed to once more for that type (the
-    # side kernels three times, not twice; 2.9 s of the 18.9 s from an empty cache)
+    # side kernels three times, not twice)
     count = np.int64(0)
     # The mismatch is the same for every line of a side, so a side whose
     # flanks are apart (eps <= 0) costs nothing more.

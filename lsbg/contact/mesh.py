@@ -133,8 +133,8 @@ def _deepest_points(plane, lo, hi, inside, samples=33, rows=1024):
         Points per segment [-].
     rows : int
         Segments per block [-]: a block's (rows, samples) work arrays (0.3 MB)
-        stay in cache, those of all segments at once (14 MB) took twice as
-        long. Each point's arithmetic is the same, so the result is too.
+        stay in cache, those of all segments at once (14 MB) do not. Each
+        point's arithmetic is the same, so the result is too.
 
     Returns
     -------

@@ -117,7 +117,7 @@ def run_dataset(record, model, settings, command=""):
         units, long_name = VARIABLES[source]
         variables[name] = ("time_full", full[source], {"units": units,
                                                        "long_name": f"{long_name}, full rate"})
-    # one merge for all of them (a merge per variable took 3 ms each); the
+    # one merge for all of them (a merge per variable costs milliseconds each); the
     # variables still follow the coordinates, in this order
     ds.update(variables)
     attrs = {

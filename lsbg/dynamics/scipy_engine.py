@@ -10,9 +10,8 @@ driven from Python.
 LSODA runs through :func:`scipy.integrate.odeint`, ODEPACK's own driver: the
 steps and the interpolation to the record instants stay in Fortran and only
 the right-hand side calls Python. :func:`scipy.integrate.solve_ivp` wraps the
-same LSODA with a Python call per step, which made it 3.5 times slower
-(measured: 10.7 s against 3.1 s for the paper's point-model run, the same
-858 651 right-hand side evaluations). The other methods run through solve_ivp.
+same LSODA with a Python call per step, several times slower for the same
+right-hand side evaluations. The other methods run through solve_ivp.
 """
 
 from __future__ import annotations

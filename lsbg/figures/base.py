@@ -357,7 +357,7 @@ def figure_png(fig, dpi=100, palette=True) -> bytes:
     from PIL import Image
 
     buffer.seek(0)
-    # the octree quantizer: 10x faster than median cut, alike on line plots
+    # the octree quantizer: much faster than median cut, alike on line plots
     image = Image.open(buffer).convert("RGB").quantize(
         colors=256, method=Image.Quantize.FASTOCTREE, dither=Image.Dither.NONE)
     out = io.BytesIO()

@@ -18,8 +18,8 @@ the temporaries of a writer that was killed. The files:
     on a (cone distance, polar angle) grid (CF-1.11).
 ``pinion.stl``, ``gear.stl``
     Watertight solid meshes in metres, mesh frame at rotation 0 (binary
-    STL: the URDF's visual meshes too; an OBJ copy cost 0.3 s per design
-    point and 3 MB).
+    STL: the URDF's visual meshes too; no OBJ copy, which would cost time and
+    3 MB per design point).
 ``pair.urdf``
     The assembled pair for PyBullet (:func:`lsbg.solid.urdf.write_urdf`).
 ``pair.png``

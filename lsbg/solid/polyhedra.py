@@ -3,8 +3,8 @@
 The solids of :mod:`lsbg.solid.solids` need a handful of operations on a triangle
 mesh: its normals and triangles, whether it is watertight and consistently
 wound, its mass properties by the divergence theorem and a binary STL file.
-They live here on plain numpy arrays (a general mesh library cost 0.65 s of
-import per geometry job and was used for nothing else).
+They live here on plain numpy arrays (a general mesh library's import would
+cost each geometry job more than these few functions).
 
 Mass properties: the solid is the signed sum of the tetrahedra from the
 origin to each triangle (a, b, c). For one tetrahedron with a vertex at the

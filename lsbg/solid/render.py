@@ -1,9 +1,9 @@
 """Picture of the assembled pair: a compiled z-buffer rasterizer of its solids.
 
 The geometry stage writes one picture per design point. Drawing the ~46 000
-triangles of the two solids as matplotlib polygons took 0.65 s of the stage's
-1.4 s; rasterizing them here with a depth buffer (numba, compiled once per
-machine into the on-disk cache) takes a few milliseconds and hides faces
+triangles of the two solids as matplotlib polygons would take about half the
+stage's time; rasterizing them here with a depth buffer (numba, compiled once per
+machine into the on-disk cache) takes milliseconds and hides faces
 correctly where the painter's order of whole triangles cannot. The image is
 rendered at twice its size and averaged down (anti-aliasing), then written
 with its caption by Pillow.
@@ -88,8 +88,8 @@ def _downsample(image, factor):
 
     Bit for bit ``image.reshape(h, factor, w, factor, 3).sum(axis=(1, 3))``
     (the picture's bytes stay the same): numpy adds a block's pixels one by
-    one in memory order, as here, but its strided reduction is five times
-    slower (0.1 s at 1800 x 1400). tests/solid/test_render.py checks the order.
+    one in memory order, as here, but its strided reduction is several times
+    slower. tests/solid/test_render.py checks the order.
 
     Parameters
     ----------

@@ -85,7 +85,7 @@ def _chain_zip(vertex, polar, left_start, left_count, right_start, right_count):
     up either chain are taken in order of the polar angle they reach (left
     first on ties), each step one triangle; the result is counter-clockwise
     in the (azimuth, polar angle) chart, like :func:`_zip`. All pairs are
-    zipped at once: a call per pair (~1500 per gear) cost 0.1-0.2 s per gear.
+    zipped at once: a call per pair (~1500 per gear) is much slower.
 
     Parameters
     ----------

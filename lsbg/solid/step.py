@@ -182,8 +182,8 @@ def build_solid(pair, member, sections=STEP_SECTIONS, relief=None):
         tags = [occ.addPoint(*p) for p in points[k]]
         wires.append(occ.addWire([occ.addSpline([tags[i] for i in run]) for run in runs]))
     body = occ.addThruSections(wires, makeSolid=True, makeRuled=False)
-    # The sections' points and curves stay in the model (removing them cost OCC
-    # 1.6 s for the gear's ~10 000 points): write_step writes the solid alone.
+    # The sections' points and curves stay in the model (removing them costs OCC
+    # seconds for the gear's ~10 000 points): write_step writes the solid alone.
     # The blank, the bored spherical shell R_i <= |r| <= R_e, from the simple
     # solids first: one boolean with the lofted body, the costly kind.
     outer, inner = occ.addSphere(0, 0, 0, r_out), occ.addSphere(0, 0, 0, r_in)

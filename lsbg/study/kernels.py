@@ -1,9 +1,8 @@
 """The study's compiled kernels, compiled once before the jobs that call them.
 
-From an empty numba cache every job compiles the kernels it calls (about 12 s
-for those of a design point on the 2-core reference machine), and the study's
-first two jobs, the sweeps of both traces, compiled the same kernels at the
-same time. The workflow's first job (rule ``kernels``, ``lsbg kernels``) runs
+From an empty numba cache every job compiles the kernels it calls (seconds for
+those of a design point), and the study's first two jobs, the sweeps of both
+traces, would compile the same kernels at the same time. The workflow's first job (rule ``kernels``, ``lsbg kernels``) runs
 every kernel of a design point once, on a small case of the study's own design
 and flanks, so that numba's cache holds them when the sweeps start; meanwhile
 the other core builds the paper point's geometry. With a warm cache it only

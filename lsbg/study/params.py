@@ -120,8 +120,8 @@ def contact_state_params(config, spiral, engine):
     })
 
 
-#: Budgeted wall time per simulated second and run [s] (measured: PyBullet
-#: about 8, scipy 3-14, compiled about 1; tests/benchmarks/bench_dynamics.py).
+#: Budgeted wall time per simulated second and run [s]: a bound well above every
+#: engine's (tests/benchmarks/bench_dynamics.py measures them).
 BUDGET_PER_SECOND = 100.0
 
 

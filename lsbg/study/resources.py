@@ -46,7 +46,7 @@ RUN_BYTES_PER_INSTANT = 500
 LINE_SECONDS_PER_SLICE = 0.039
 
 
-#: Wall time of one PyBullet step [s] (docs/performance.md: 7.67 us, tests/benchmarks/bench_dynamics.py).
+#: Wall time of one PyBullet step [s], as tests/benchmarks/bench_dynamics.py measures it.
 PYBULLET_SECONDS_PER_STEP = 7.67e-6
 
 

@@ -26,9 +26,9 @@ def single_threaded_blas():
     """numpy's and scipy's OpenBLAS on one thread inside the block.
 
     On a machine whose other cores are busy (a study runs a job per core)
-    OpenBLAS's threads wait for each other at every call: measured, the
-    factorisation of :class:`NodalCholesky` took 48 s instead of 7 s with
-    another process on the second core. Its thread count is set through the
+    OpenBLAS's threads wait for each other at every call, which makes the
+    factorisation of :class:`NodalCholesky` several times slower than on one
+    thread. Its thread count is set through the
     libraries' own ``*_set_num_threads`` (the ones loaded in this process,
     found in ``/proc/self/maps``) and restored on leaving; where they cannot be
     found the block runs unchanged.
@@ -67,9 +67,9 @@ class NodalCholesky:
     stiffness as L U with its own kernels at about 8 GFlop/s; the matrix is
     symmetric positive definite, so a Cholesky factor does half the work,
     and LAPACK/BLAS (scipy's OpenBLAS) run the dense fronts at 20-30 GFlop/s.
-    Measured on the paper's segments (35-50 k DOFs): the factor and 63 solves
-    1.6-1.8 times faster than SuperLU's (symmetric mode, diagonal pivots), to
-    the same residual (1e-13).
+    On the paper's segments (35-50 k DOFs) the factor and its solves are faster
+    than SuperLU's (symmetric mode, diagonal pivots), to the same residual
+    (1e-13).
 
     The ordering is SuperLU's minimum degree on A^T + A of the *node* graph
     (three DOFs a node: a third the size, and 3 x 3 blocks in the factor),
@@ -404,8 +404,8 @@ def _lower_entries(element_matrices, at):
 
     In the order of numpy's boolean indexing of the ``(30, 30, m)`` arrays
     (local row, local column, element), so that scipy sums the duplicates
-    in the same order; counted, then filled, without the ``(30, 30, m)``
-    masks (measured: 0.10 s instead of 0.18-0.34 s on a 56 k DOF segment).
+    in the same order; counted, then filled, without building the
+    ``(30, 30, m)`` masks.
 
     Parameters
     ----------

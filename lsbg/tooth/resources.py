@@ -85,7 +85,7 @@ def fe_resource_estimate(pair, settings=None):
     -------
     FEResources
         E.g. the paper's pair at 35 deg with the default settings: about
-        85 000 DOFs, 0.7 GB, 8 s (measured: 84 705 DOFs, 0.66 GB, 7.6-8.4 s).
+        85 000 DOFs and 0.7 GB.
     """
     from lsbg.solid.mass import quadrature_mass_properties
 

@@ -365,8 +365,8 @@ def segment_mesh(pair, member, tooth_size, body_size=None, teeth=3, fillet_radiu
         gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
         gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
         gmsh.option.setNumber("Mesh.Algorithm3D", 10)  # HXT: fast, deterministic
-        # optimise only tetrahedra of quality below 0.15, not 0.3: the optimiser took two
-        # thirds of a 7-tooth segment's meshing time; the worst elements come out the same
+        # optimise only tetrahedra of quality below 0.15, not 0.3: the optimiser is most
+        # of a 7-tooth segment's meshing time; the worst elements come out the same
         gmsh.option.setNumber("Mesh.OptimizeThreshold", 0.15)
         gmsh.option.setNumber("General.NumThreads", 1)
         # the curves' element sizes by integrating the size field to 1e-5, not

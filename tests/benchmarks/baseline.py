@@ -4,16 +4,16 @@ Run as a script (pytest does not collect it: no ``test_`` prefix)::
 
     python tests/benchmarks/baseline.py [--repeat N]
 
-This 2-core machine runs the same code at different speeds from hour to hour
-and day to day (the compiled engine's run of the same commit took 0.38 s on
-2026-11-24 and 0.64-0.84 s on 2026-11-29, docs/performance.md). A benchmark
+A shared machine runs the same code at different speeds from hour to hour and
+day to day (by up to a factor of two on the 2-core reference machine,
+docs/performance.md). A benchmark
 figure over its target means a regression only if the machine ran at its usual
 speed, so bench_all.py measures two workloads that no change to lsbg touches,
 before and after its figures:
 
 * **the interpreter**: a pure-Python loop of 10^7 integer additions at a
-  module's top level [s], the figure docs/performance.md quotes as "the loop"
-  (what the jobs' Python glue, Snakemake and the notebooks run on);
+  module's top level [s] (what the jobs' Python glue, Snakemake and the
+  notebooks run on);
 * **compiled scalar arithmetic**: a numba loop, frozen in this file, that
   integrates a damped oscillator with a Hertz-like stiffening spring by 2·10^6
   classical Runge-Kutta steps [s] (the kind of code the compiled engine and the
@@ -36,8 +36,8 @@ PYTHON_ADDITIONS = 10_000_000
 COMPILED_STEPS = 2_000_000
 
 
-#: The interpreter's loop at a module's top level, as docs/performance.md has timed it
-#: (``python -c``) since 2026-11-28: its names are globals (a dictionary's lookups).
+#: The interpreter's loop at a module's top level, as ``python -c`` runs it: its names
+#: are globals (a dictionary's lookups).
 _LOOP = compile("total = 0\nfor i in range(additions):\n    total += i\n", "<baseline>", "exec")
 
 

@@ -42,8 +42,8 @@ def test_pinion_motion_is_the_integral_of_the_step_ramp():
 
 
 #: The point model's standard deviation of the gear speed at 35 deg with PyBullet before
-#: the compiled kernels and the line model (lsbg 0.1.0 of 2026-11-21, the issue that
-#: asked for the line model) [deg/s]: the point model must reproduce it within 2 %.
+#: the compiled kernels and the line model (lsbg 0.1.0) [deg/s]: the point model must
+#: reproduce it within 2 %.
 PREVIOUS_POINT_STD = {"logarithmic": 34.8, "circular": 24.9}
 
 

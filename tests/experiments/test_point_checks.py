@@ -2,7 +2,7 @@
 
 The expected numbers are those the report notebooks computed at render time
 before these commands existed (the default study, the paper's point at 35°:
-reports/verification.html, paper.html, sweep.html of 2026-11-27). The
+reports/verification.html, paper.html, sweep.html). The
 commands compute them bit for bit as the notebooks did; the tolerances here
 only leave room for another machine's last bits.
 """

@@ -3,8 +3,8 @@ SLURM executor's status checks at most :data:`MAX_SECONDS` apart, for the test c
 
 The executor plugin (snakemake-executor-plugin-slurm 2.8) adds 10 s to its interval at
 every status check that sees no job end, up to 180 s, and no setting caps that growth
-(docs/performance.md). On the one-node test cluster, whose jobs take seconds, a job
-that ended was noticed up to 22 s late (162 s over the 22 jobs of one run). Capping
+(docs/scaling.md). On the one-node test cluster, whose jobs take seconds, a job that
+ended was noticed up to about 20 s late. Capping
 the interval changes only when Snakemake asks SLURM, not what it submits or how it
 reads the answer: the profile, sbatch, squeue and the jobs are the README's.
 """

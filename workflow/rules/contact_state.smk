@@ -10,7 +10,7 @@
 # paper's point of each trace is a job of its own, which also maps the
 # sensitivity cases that reach the contact state (crowning, line stiffness;
 # lsbg.experiments.sensitivity) at sweep_steps; the other angles of a trace are one
-# job (one start-up, about 2 s, instead of one per angle), as in points.smk.
+# job (one start-up instead of one per angle), as in points.smk.
 
 #: A topography file's content is part of the flanks: it reruns the contact state.
 TOPOGRAPHY = [config["flank_modification"]["topography_file"]] if config["flank_modification"][

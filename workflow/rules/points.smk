@@ -6,8 +6,8 @@
 # when a contact or simulation setting changes), then its loaded TCA; its
 # sweep-engine runs come from the convergence tables (rules/simulate.smk).
 # The other spiral angles of a trace are one `lsbg points` job (geometry,
-# loaded TCA and runs in one process: the start-up, about 1.8 s, is paid once
-# per job instead of once per file); adding an angle reruns that job only.
+# loaded TCA and runs in one process: the start-up is paid once per job instead
+# of once per file); adding an angle reruns that job only.
 
 import re
 
