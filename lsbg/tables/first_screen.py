@@ -10,9 +10,9 @@ with a banner naming what ran coarser, from the settings its own input files
 record (:func:`recorded_settings`).
 
 * :func:`verdict_matrix`, :func:`matrix_html`, :func:`legend_html`,
-  :func:`verdict_sentence`: the matrix and its words;
+  :func:`screen_html`, :func:`verdict_sentence`: the matrix and its words;
 * :func:`study_defaults`, :func:`recorded_settings`, :func:`coarse_settings`,
-  :func:`coarse_banner`: the banner.
+  :func:`coarse_banner` and :func:`banner_of_files`: the banner.
 """
 
 from __future__ import annotations
@@ -25,8 +25,9 @@ import pandas as pd
 from lsbg.tables import claims as claim_tables
 
 __all__ = ["LEVELS", "VERDICT_COLOURS", "verdict_matrix", "matrix_html", "legend_html",
+           "screen_html",
            "verdict_sentence", "STUDY_CONFIG_PATH", "study_defaults", "recorded_settings",
-           "coarse_settings", "coarse_banner"]
+           "coarse_settings", "coarse_banner", "banner_of_files"]
 
 #: The levels of the study, in the matrix's order: (key, column heading).
 LEVELS = {"published": "as published", "practice": "as a designer would make it",
@@ -124,6 +125,26 @@ def legend_html():
         "resolution.</p>")
 
 
+#: The reports' empty code cells (no input shown, no output) take no room on the first screen.
+EMPTY_CELLS_CSS = ("<style>.jp-Cell.jp-mod-noOutputs.jp-mod-noInput{display:none}</style>")
+
+
+def screen_html(matrix, heading, banner=""):
+    """The first screen's block: the banner, a heading line, the matrix and its legend (HTML).
+
+    Parameters
+    ----------
+    matrix : pandas.DataFrame
+        :func:`verdict_matrix`.
+    heading : str
+        The line above the matrix (HTML).
+    banner : str
+        :func:`coarse_banner` ("" for none).
+    """
+    return (f'{EMPTY_CELLS_CSS}<div class="lsbg-first-screen">{banner}<p>{heading}</p>'
+            f"{matrix_html(matrix)}{legend_html()}</div>")
+
+
 def verdict_sentence(matrix):
     """The matrix in one sentence: each level's verdicts, claim by claim (plain text).
 
@@ -153,6 +174,7 @@ RECORDED = {
     "runs": {"solver_duration_s": "simulation.duration_s", "solver_samples": "simulation.samples"},
     "tcas": {"positions": "tca.positions"},
     "vh_maps": {"positions": "misalignment_map.positions"},
+    "sweep_vh_maps": {"positions": "misalignment_map.positions"},
     "fe_ltcas": {"fe_tooth_size": "tooth.element_size_module",
                  "fe_body_size": "tooth.rim_element_factor",
                  "fe_face_points": "tooth.face_points",
@@ -186,9 +208,11 @@ def recorded_settings(**datasets):
     Parameters
     ----------
     **datasets : iterable of xarray.Dataset
-        By kind (a key of :data:`RECORDED`: ``runs``, ``tcas``, ``vh_maps`` at
-        the design point, ``fe_ltcas``, ``fronts``); a V-H map also records its
-        ``misalignment_map.steps`` (its axes' lengths).
+        By kind (a key of :data:`RECORDED`: ``runs`` (a sweep dataset too),
+        ``tcas``, ``vh_maps`` at the paper's design point, ``sweep_vh_maps`` at
+        every point of the sweep, ``fe_ltcas``, ``fronts``); a V-H map also
+        records its axes' length, ``misalignment_map.steps`` at the paper's
+        point, ``misalignment_map.sweep_steps`` in the sweep (its least).
 
     Returns
     -------
@@ -210,9 +234,9 @@ def recorded_settings(**datasets):
             for attribute, key in RECORDED[kind].items():
                 if attribute in ds.attrs:
                     keep(key, float(ds.attrs[attribute]))
-            if kind == "vh_maps" and "axes" in ds.attrs:
-                keep("misalignment_map.steps", float(min(ds.sizes[a]
-                                                         for a in ds.attrs["axes"].split())))
+            if kind in ("vh_maps", "sweep_vh_maps") and "axes" in ds.attrs:
+                keep("misalignment_map." + ("steps" if kind == "vh_maps" else "sweep_steps"),
+                     float(min(ds.sizes[a] for a in ds.attrs["axes"].split())))
     return out
 
 
@@ -261,3 +285,32 @@ def coarse_banner(coarse, report="report"):
             f"the numbers of {html.escape(report)} are not the study's.</b> Coarser than the "
             f"study's defaults (workflow/config.yaml): {html.escape(named)}. Run the study "
             "(<code>snakemake -j2</code>) for its numbers.</div>")
+
+
+def banner_of_files(report="this report", **paths):
+    """:func:`coarse_banner` of the settings a report's input files record.
+
+    Parameters
+    ----------
+    report : str
+        What the banner stands on.
+    **paths : str, pathlib.Path or sequence of them
+        The files by kind, as :func:`recorded_settings` takes their datasets
+        ("" or [] for none).
+
+    Returns
+    -------
+    str
+        HTML, or "" where no setting is coarser than the study's defaults.
+    """
+    import contextlib
+
+    import xarray as xr
+
+    from lsbg.files import as_path_list
+
+    with contextlib.ExitStack() as stack:
+        datasets = {kind: [stack.enter_context(xr.open_dataset(p)) for p in as_path_list(items)]
+                    for kind, items in paths.items()}
+        recorded = recorded_settings(**datasets)
+    return coarse_banner(coarse_settings(recorded, study_defaults()), report)

@@ -93,3 +93,12 @@ def test_the_test_configuration_is_coarse():
                 "tca.positions": test["tca"]["positions"],
                 "optimise.population": test["optimise"]["population"]}
     assert len(first_screen.coarse_settings(recorded, first_screen.study_defaults())) == 3
+
+
+def test_the_screen_puts_the_banner_above_the_matrix_and_the_legend_below():
+    matrix = first_screen.verdict_matrix({"published": ({"stability": verdict(["LSBG"])},
+                                                        {"stability": 1})})
+    screen = first_screen.screen_html(matrix, "<b>claims</b>", "<div>BANNER</div>")
+    assert screen.index("BANNER") < screen.index("lsbg-verdicts") < screen.index("lsbg-legend")
+    assert "<b>yes</b><br><small>1 cell</small>" in screen
+    assert screen.count("not tested") == 1 + 2   # the legend's word; two claims not tested
