@@ -437,10 +437,8 @@ def claim_answer(verdict, claimed="LSBG"):
 
     Parameters
     ----------
-    verdict : dict
-        :func:`claim_verdict`.
-    claimed : str
-        The type the paper's claim favours.
+    verdict, claimed
+        As :func:`claim_word` takes them.
 
     Returns
     -------
