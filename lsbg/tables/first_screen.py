@@ -141,8 +141,9 @@ def screen_html(matrix, heading, banner=""):
     banner : str
         :func:`coarse_banner` ("" for none).
     """
-    return (f'{EMPTY_CELLS_CSS}<div class="lsbg-first-screen">{banner}<p>{heading}</p>'
-            f"{matrix_html(matrix)}{legend_html()}</div>")
+    # a finding box (lsbg-finding) too: what the reports' check finds on the first screen
+    return (f'{EMPTY_CELLS_CSS}<div class="lsbg-finding lsbg-first-screen">{banner}'
+            f"<p>{heading}</p>{matrix_html(matrix)}{legend_html()}</div>")
 
 
 def verdict_sentence(matrix):
