@@ -121,6 +121,21 @@ def paper_parameters(files):
             "vh_files": files["vh"], "checks_files": files["checks"], **STATISTICS}
 
 
+def report_leaks(html):
+    """What a report must never show: "nan", "None" or a placeholder in its text (figures,
+    styles and attached files left out), or an empty table cell."""
+    import html as markup
+
+    page = re.sub(r"<(script|style)\b.*?</\1>", " ", html, flags=re.S)
+    page = re.sub(r'(?:src|href)="data:[^"]*"', "", page)
+    text = markup.unescape(re.sub(r"<[^>]+>", " ", page))
+    words = [text[max(0, m.start() - 80):m.end() + 40]
+             for m in re.finditer(r"\b(?:nan|NaN|None|TODO|XXX)\b|\{[a-z_]+\}", text)]
+    empty = [c for c in re.findall(r"<td[^>]*>(.*?)</td>", page, re.S)
+             if not re.sub(r"<[^>]+>|\s|&nbsp;", "", c)]
+    return words + [f"{len(empty)} empty table cells"] * bool(empty)
+
+
 def check_html(path, headings, images, code_snippets):
     """Headings present, ``images`` embedded PNGs, no code, nothing loaded from the network."""
     html = path.read_text(encoding="utf-8")
@@ -143,6 +158,7 @@ def check_html(path, headings, images, code_snippets):
     headers = [re.sub("<[^>]+>", "", h) for h in re.findall(r"<th[^>]*>(.*?)</th>", html, re.S)]
     assert headers and not [h for h in headers if re.search(r"[A-Za-z]_[A-Za-z]", h)]
     assert "&lt;NA&gt;" not in html and "urad" not in html
+    assert report_leaks(html) == []
     return html
 
 
@@ -226,6 +242,53 @@ def test_paper_report(study_files, tmp_path):
     for row in table[table.engine != "ltca"].itertuples():
         match = attached[(attached.run == row.run) & (attached.quantity == row.quantity)]
         assert np.isclose(match.full_rate_std.iloc[0], row.full_rate_std, rtol=1e-12), row.run
+
+
+def test_paper_report_of_a_30_degree_pair_names_the_change(tmp_path):
+    """A study of one's own at 30° (the test configuration's pair, everything else as
+    published, short runs): the report calls it a change from Table 1 in the finding and in
+    Table 1's spiral-angle row alone, opens with the coarse banner and the verdict matrix,
+    and shows no "nan", "None" or empty cell."""
+    line = ContactParameters(model="line")
+    runs, geometry, meshes, checks, sensitivity = [], [], [], [], []
+    for trace in ("logarithmic", "circular"):
+        directory = tmp_path / "results" / "geometry" / f"{trace}_beta30"
+        write_geometry(GearPairDesign(trace=trace, spiral_angle=math.radians(30)), directory)
+        geometry.append(directory)
+        for model, params, engine in (("point", ContactParameters(), "pybullet"),
+                                      ("point", ContactParameters(), "compiled"),
+                                      ("line", line, "compiled")):
+            path = tmp_path / "results" / "runs" / f"{trace}_beta30_{model}_{engine}.nc"
+            write_dataset(simulate(directory, SHORT.replace(engine=engine), params), path)
+            runs.append(path)
+        sensitivity.append(tmp_path / "results" / "sensitivity"
+                           / f"{trace}_beta30_mesh_damping_ratio_x2.nc")
+        write_dataset(simulate(directory, SHORT.replace(engine="compiled"),
+                               line.replace(damping_ratio=0.1)), sensitivity[-1])
+        meshes.append(tmp_path / "results" / "mesh" / f"{trace}_beta30.nc")
+        write_dataset(ltca_for_geometry(directory, 1964.99, phases=64), meshes[-1])
+        checks.append(tmp_path / "results" / "verification" / f"{trace}_beta30_checks.nc")
+        assert cli.main(["checks", "--geometry", str(directory), "--mesh", str(meshes[-1]),
+                         "--run", str(runs[-3]), "--out", str(checks[-1])]) == 0
+    out = tmp_path / "reports" / "paper.html"
+    reports.render_report("paper", out, {"runs": runs, "mesh_files": meshes,
+                                         "geometry_dirs": geometry, "paper_engine": "pybullet",
+                                         "line_engine": "compiled", "checks_files": checks,
+                                         "sensitivity_runs": sensitivity,
+                                         **STATISTICS})
+    html = out.read_text(encoding="utf-8")
+    assert report_leaks(html) == []
+    assert ("a pair modified from the paper's Table 1 (9:37 teeth, module 4.5 mm, spiral angle "
+            "30°; face width 25 mm; changed: spiral angle 30°)") in html
+    origins = re.findall(r'<td class="text">([^<]*)</td><td class="text">[^<]*</td>'
+                         r'<td class="text">(paper Table 1|assumed|changed[^<]*)</td>', html)
+    assert [(q, o) for q, o in origins if o.startswith("changed")] == [
+        ("mean spiral angle βm", "changed (paper: 35)")]
+    assert ("outer transverse module m", "paper Table 1") in origins
+    # the first screen: the banner, then the matrix and its legend, before the finding
+    assert (html.index("Coarse configuration") < html.index('class="lsbg-verdicts"')
+            < html.index('class="lsbg-legend"') < html.index('class="lsbg-finding"'))
+    assert "simulation.duration_s 0.05 (study: 1)" in html
 
 
 @pytest.fixture(scope="module")

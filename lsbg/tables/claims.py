@@ -35,7 +35,8 @@ from lsbg.experiments.sensitivity import case_label, parse_case
 __all__ = ["BASELINE", "CONTACT_STATE_RESOLUTION", "better_type", "stability_table",
            "stability_cells",
            "contact_state_table", "contact_state_by_angle", "life_table", "claim_verdict",
-           "claim_scope", "claim_answer", "claims_by_angle"]
+           "claim_scope", "VERDICT_WORDS", "claim_word", "claim_answer",
+           "claims_by_angle"]
 
 #: The label of the study's own settings in every claim's table.
 BASELINE = "baseline (the study's settings)"
@@ -392,8 +393,18 @@ def claim_scope(verdict):
     return None
 
 
-def claim_answer(verdict, claimed="LSBG"):
-    """A claim's answer in a few words, from :func:`claim_verdict`.
+#: The verdict words of a claim (:func:`claim_word`) and what each means, in the
+#: order of the reports' legend.
+VERDICT_WORDS = {
+    "yes": "the LSBG is better in every cell",
+    "no, the opposite": "the SBG is better in every cell",
+    "no": "the SBG is better in some cells, the LSBG in none (ties elsewhere)",
+    "not shown": "no ranking holds in every cell: the cells disagree, or the two types tie",
+}
+
+
+def claim_word(verdict, claimed="LSBG"):
+    """A claim's verdict word (a key of :data:`VERDICT_WORDS`), from :func:`claim_verdict`.
 
     Parameters
     ----------
@@ -406,17 +417,44 @@ def claim_answer(verdict, claimed="LSBG"):
     -------
     str
         "yes" (the claimed type wins every cell of every quantity), "no, the
-        opposite" (the other type does), "no" (the claimed type wins no
-        cell), or "not shown" (Markdown).
+        opposite" (the other type does), "no" (the other type wins some cell,
+        the claimed type none) or "not shown" (the cells disagree, or every
+        cell is a tie: a tie does not say "no").
     """
     scope = claim_scope(verdict)
     if scope == claimed:
-        return "**yes**"
+        return "yes"
     if scope is not None:
-        return f"**no, the opposite** (the {scope} in every cell)"
-    if not verdict["wins"].get(claimed):
+        return "no, the opposite"
+    other = sum(k for t, k in verdict["wins"].items() if t not in (claimed, "tie"))
+    if not verdict["wins"].get(claimed) and other:
+        return "no"
+    return "not shown"
+
+
+def claim_answer(verdict, claimed="LSBG"):
+    """A claim's answer in a few words (Markdown), from :func:`claim_verdict`.
+
+    Parameters
+    ----------
+    verdict, claimed
+        As :func:`claim_word` takes them.
+
+    Returns
+    -------
+    str
+        The verdict word of :func:`claim_word` in bold, with who wins where it
+        says "no" ("**no**: the LSBG is better in no cell"), "no, the opposite"
+        (the type in every cell) or a tie everywhere.
+    """
+    word = claim_word(verdict, claimed)
+    if word == "no, the opposite":
+        return f"**no, the opposite** (the {claim_scope(verdict)} in every cell)"
+    if word == "no":
         return f"**no**: the {claimed} is better in no cell"
-    return "**not shown**"
+    if word == "not shown" and not any(k for t, k in verdict["wins"].items() if t != "tie"):
+        return "**not shown** (a tie in every cell)"
+    return f"**{word}**"
 
 
 def claims_by_angle(ratios, contact, rating):

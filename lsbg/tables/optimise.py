@@ -95,7 +95,8 @@ def chosen_table(fronts):
         One row per ease-off coefficient [µm] and objective (and the loaded
         TE at the rated torque [µrad] and the mesh efficiency [%]); columns
         ``shared`` and, per type, its chosen design and the shared design's
-        value at its own trace.
+        value at its own trace (a type with none chosen keeps the shared
+        ease-off: its chosen values are the shared ones).
     """
     rows = {}
     for kind, ds in study_fronts(fronts).items():
@@ -103,7 +104,9 @@ def chosen_table(fronts):
         for name in COEFFICIENTS:
             row = rows.setdefault((name.replace("_", " "), "µm"), {})
             row["shared"] = float(ds.attrs.get(f"reference_flank_modification_{name}_um", 0.0))
-            row[f"{kind} chosen"] = float(ds[name].values[chosen]) if chosen >= 0 else np.nan
+            # none chosen (chosen < 0): the type keeps the shared ease-off
+            row[f"{kind} chosen"] = (float(ds[name].values[chosen]) if chosen >= 0
+                                     else row["shared"])
         # the loaded TE at the rated torque beside the objectives: what the issue's check reads
         shown = dict.fromkeys((*ds.attrs["objectives"].split(), "rated_transmission_error",
                                "efficiency"))
@@ -111,7 +114,8 @@ def chosen_table(fronts):
             units = ds[name].attrs.get("units", "")
             row = rows.setdefault((ds[name].attrs.get("long_name", name), units), {})
             row[f"{kind} shared"] = float(ds[f"reference_{name}"])
-            row[f"{kind} chosen"] = float(ds[name].values[chosen]) if chosen >= 0 else np.nan
+            row[f"{kind} chosen"] = (float(ds[name].values[chosen]) if chosen >= 0
+                                     else row[f"{kind} shared"])
     table = pd.DataFrame([{"quantity": q, "unit": u, **values}
                           for (q, u), values in rows.items()])
     order = ["quantity", "unit", "shared"] + [f"{t} {w}" for t in TYPE_ORDER
@@ -151,7 +155,10 @@ def efficiency_text(fronts):
             continue
         chosen = int(ds.attrs["chosen"])
         shared = float(ds["reference_efficiency"])
-        best = float(ds["efficiency"].values[chosen]) if chosen >= 0 else np.nan
+        if chosen < 0:  # no feasible design below the shared one: the shared ease-off stands
+            parts.append(f"{kind} {shared:.2f} % (it keeps the shared ease-off)")
+            continue
+        best = float(ds["efficiency"].values[chosen])
         parts.append(f"{kind} {shared:.2f} % with the shared ease-off, {best:.2f} % with its "
                      f"own")
     if not parts:

@@ -29,7 +29,7 @@ from lsbg.aggregate.runs import (QUANTITIES, QUANTITY_LABELS, TYPE_ORDER, gear_t
                                  records_by_type, run_theory, runs_by_type, steady)
 
 __all__ = [
-    "PAPER", "design_table", "theory_table", "paper_comparison_table", "compare_types",
+    "PAPER", "design_words", "design_origin", "design_table", "design_rows", "theory_table", "paper_comparison_table", "compare_types",
     "fluctuation_table", "fluctuation_conclusion", "control_charts", "at_spiral_angle",
     "cases_at_spiral_angle"
 ]
@@ -101,6 +101,21 @@ TABLE1_KEYS = ("pinion_teeth", "gear_teeth", "module_mm", "shaft_angle_deg", "pi
 ASSUMED_KEYS = ("face_width_mm", "cutter_radius_mm", "backlash_mm", "base_cone_rule")
 
 
+def _differs(mine, theirs):
+    """Whether a design value differs from the paper's (numbers to 1e-9: mm from SI and back)."""
+    if isinstance(mine, (int, float)) and isinstance(theirs, (int, float)):
+        return not math.isclose(mine, theirs, rel_tol=1e-9)
+    return mine != theirs
+
+
+def _paper_record():
+    """The paper's pair as ``design.json`` keys: Table 1, lsbg's assumptions, derived values."""
+    from lsbg.gear.design import GearPairDesign
+
+    paper = GearPairDesign()
+    return {**paper.to_config(), **paper.derived()}
+
+
 def design_words(record, spiral_angle=True):
     """A design in words, saying where it departs from the paper's Table 1.
 
@@ -110,7 +125,8 @@ def design_words(record, spiral_angle=True):
         ``design.json`` of a geometry directory (:func:`lsbg.solid.directory.read_record`),
         or a dataset's ``design_*`` attributes without the prefix.
     spiral_angle : bool
-        Name the spiral angle (not for a sweep over it).
+        Name the spiral angle, and count it among the changes where it is not the
+        paper's (not for a sweep over it).
 
     Returns
     -------
@@ -120,9 +136,7 @@ def design_words(record, spiral_angle=True):
         (module 5 mm; ...)", False)`` naming every key that differs from the paper's
         (and from lsbg's assumptions for what the paper leaves open).
     """
-    from lsbg.gear.design import GearPairDesign
-
-    paper = GearPairDesign().to_config()
+    paper = _paper_record()
 
     def value(key):
         text = f"{record[key]:g}" if isinstance(record[key], float) else str(record[key])
@@ -130,14 +144,9 @@ def design_words(record, spiral_angle=True):
                                                       if key.endswith(u)), ""), "")
         return f"{key.removesuffix('_mm').removesuffix('_deg').replace('_', ' ')} {text}{unit}"
 
-    def differs(key):
-        mine, theirs = record[key], paper[key]
-        if isinstance(mine, (int, float)) and isinstance(theirs, (int, float)):
-            return not math.isclose(mine, theirs, rel_tol=1e-9)  # (mm from SI and back)
-        return mine != theirs
-
     changed = [key for key in (*TABLE1_KEYS, *ASSUMED_KEYS)
-               if key in record and key != "spiral_angle_deg" and differs(key)]
+               if key in record and (spiral_angle or key != "spiral_angle_deg")
+               and _differs(record[key], paper[key])]
     angle = f", spiral angle {record['spiral_angle_deg']:g}°" if spiral_angle else ""
     basics = (f"{record['pinion_teeth']}:{record['gear_teeth']} teeth, module "
               f"{record['module_mm']:g} mm{angle}; face width {record['face_width_mm']:g} mm")
@@ -145,6 +154,38 @@ def design_words(record, spiral_angle=True):
         return f"the paper's Table 1 ({basics})", True
     return (f"a pair modified from the paper's Table 1 ({basics}; changed: "
             f"{', '.join(value(k) for k in changed)})", False)
+
+
+def design_origin(key, origin, values, paper=None):
+    """Where a design row's value comes from, by comparing it with the paper's pair.
+
+    Parameters
+    ----------
+    key : str
+        The ``design.json`` key.
+    origin : str
+        The row's kind: "Table 1" (the paper gives it), "assumed" (the paper
+        leaves it open), or any other (returned as it is).
+    values : iterable
+        The row's values of the compared types (NaN where a type has none).
+    paper : dict, optional
+        The paper's pair as ``design.json`` keys (default: lsbg's ``GearPairDesign()``).
+
+    Returns
+    -------
+    str
+        "paper Table 1" or "assumed" where every value is the paper's (lsbg's
+        assumption's), else "changed (paper: 35)" or "changed (assumed: 25)".
+    """
+    if origin not in ("Table 1", "assumed"):
+        return origin
+    paper = _paper_record() if paper is None else paper
+    theirs = paper.get(key)
+    shown = [v for v in values if not (isinstance(v, float) and math.isnan(v))]
+    if theirs is None or not any(_differs(v, theirs) for v in shown):
+        return "paper Table 1" if origin == "Table 1" else "assumed"
+    text = f"{theirs:g}" if isinstance(theirs, float) else str(theirs)
+    return f"changed ({'paper' if origin == 'Table 1' else 'assumed'}: {text})"
 
 
 def design_table(geometry_dirs) -> pd.DataFrame:
@@ -159,21 +200,29 @@ def design_table(geometry_dirs) -> pd.DataFrame:
     Returns
     -------
     pandas.DataFrame
-        Columns ``quantity``, ``unit``, ``origin`` ('Table 1', 'assumed' for
-        what the paper leaves open, 'derived' from the design formulas,
-        'measured' on the exact flanks and solids) and one column per gear
-        type (SBG first), values as in ``design.json`` (the cutter radius
+        Columns ``quantity``, ``unit``, ``origin`` (:func:`design_origin`:
+        'paper Table 1', 'assumed' for what the paper leaves open, 'changed
+        (...)' where a value differs from either; 'derived' from the design
+        formulas, 'measured' on the exact flanks and solids) and one column per
+        gear type (SBG first), values as in ``design.json`` (the cutter radius
         only for circular traces, NaN otherwise).
     """
-    records = records_by_type(geometry_dirs)
+    return design_rows(records_by_type(geometry_dirs))
+
+
+def design_rows(records, paper=None) -> pd.DataFrame:
+    """:func:`design_table` of ``{gear type: design.json record}`` (``paper`` as
+    :func:`design_origin` takes it)."""
+    paper = _paper_record() if paper is None else paper
     rows = []
     for key, description, unit, origin in _DESIGN_ROWS:
-        row = {"quantity": description, "unit": unit, "origin": origin}
+        row = {"quantity": description, "unit": unit}
         for label, record in records.items():
             unused = key == "cutter_radius_mm" and record.get("trace") != "circular"
             row[label] = np.nan if unused else record.get(key, np.nan)
+        row["origin"] = design_origin(key, origin, [row[t] for t in records], paper)
         rows.append(row)
-    return pd.DataFrame(rows)
+    return pd.DataFrame(rows)[["quantity", "unit", "origin", *records]]
 
 
 def theory_table(runs, start=0.2, quantities=QUANTITIES) -> pd.DataFrame:

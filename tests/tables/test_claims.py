@@ -67,6 +67,13 @@ def test_answers_name_yes_no_and_the_opposite():
     assert claims.claim_answer(verdict(["SBG", "tie", "SBG", "SBG"])) == (
         "**no**: the LSBG is better in no cell")
     assert claims.claim_answer(verdict(["SBG", "LSBG", "SBG", "SBG"])) == "**not shown**"
+    # a tie in every cell is not "no": nothing is shown either way
+    assert claims.claim_word(verdict(["tie"] * 4)) == "not shown"
+    assert claims.claim_answer(verdict(["tie"] * 4)) == "**not shown** (a tie in every cell)"
+    assert claims.claim_word(verdict(["SBG", "tie", "tie", "tie"])) == "no"
+    assert [claims.claim_word(verdict(b)) for b in (["LSBG"] * 4, ["SBG"] * 4)] == [
+        "yes", "no, the opposite"]
+    assert set(claims.VERDICT_WORDS) == {"yes", "no, the opposite", "no", "not shown"}
 
 
 def test_life_cells_follow_the_stress_ratio_and_the_stated_exponent():

@@ -38,3 +38,42 @@ def test_fluctuation_conclusion_follows_the_data():
     assert "support the paper's conclusion" in text and "The paper's ratio" in text
     same = {"gear_speed": stats.compare_fluctuation(calm, rng.normal(0, 1, 400))}
     assert "No difference is significant" in fluctuation_conclusion(same)
+
+
+def _record(**changes):
+    """A design.json record of the paper's pair with ``changes`` (configuration keys)."""
+    from lsbg.gear.design import GearPairDesign
+
+    design = GearPairDesign.from_config({"trace": "circular", **changes})
+    return {**design.to_config(), **design.derived()}
+
+
+def test_table1_says_changed_only_where_a_value_differs_from_the_papers():
+    from lsbg.tables.paper import design_rows
+
+    records = {"SBG": _record(face_width_mm=30.0),
+               "LSBG": {**_record(face_width_mm=30.0), "trace": "logarithmic"}}
+    origin = design_rows(records).set_index("quantity")["origin"]
+    assert origin["face width b"] == "changed (assumed: 25)"
+    table1 = [q for q, o in origin.items() if o == "paper Table 1"]
+    assert "number of teeth z1 (pinion)" in table1 and "outer pitch diameter d1" in table1
+    assert "mean spiral angle βm" in table1 and "dedendum hf" in table1
+    assert [q for q, o in origin.items() if o.startswith("changed")] == ["face width b"]
+    assert origin["cutter radius rc (SBG only)"] == "assumed"
+    # the module changes the pitch diameters too: each row says so, with the paper's value
+    origin = design_rows({"SBG": _record(module_mm=5.0)}).set_index("quantity")["origin"]
+    assert origin["outer transverse module m"] == "changed (paper: 4.5)"
+    assert origin["outer pitch diameter d1"].startswith("changed (paper: 40.5")
+    assert origin["face width b"] == "assumed"
+
+
+def test_the_design_in_words_counts_a_changed_spiral_angle():
+    from lsbg.tables.paper import design_words
+
+    words, paper_pair = design_words(_record())
+    assert paper_pair and words.startswith("the paper's Table 1 (")
+    words, paper_pair = design_words(_record(spiral_angle_deg=30.0))
+    assert not paper_pair
+    assert words.endswith("changed: spiral angle 30°)")
+    # a sweep over the angle names no angle and so no change of it
+    assert design_words(_record(spiral_angle_deg=30.0), spiral_angle=False)[1]

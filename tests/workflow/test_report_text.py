@@ -29,6 +29,22 @@ def test_one_spiral_angle_and_the_papers_pair(study):
     assert "at one spiral angle, 35°" in first_screen(sweep)
     assert "depends on the spiral angle" not in sweep and "35–35" not in sweep
     assert "spiral angles" not in first_screen(sweep).split("(compiled engine)")[0]
+    # the test configuration is coarse: every report says so first; no nan, None or empty
+    # cell anywhere (a type that keeps the shared ease-off says so, not "nan %")
+    from tests.test_reports import report_leaks
+
+    for name in ("paper", "sweep", "verification"):
+        html = (root / "reports" / f"{name}.html").read_text(encoding="utf-8")
+        assert report_leaks(html) == [], name
+        assert "Coarse configuration: the numbers of this report are not the study's" in html
+        assert html.index('class="lsbg-coarse"') < html.index("<h2")
+    assert paper.index("the paper's claim as published") < paper.index("Compared")
+    import xarray as xr
+
+    for front in sorted((root / "results" / "optimise").glob("*_seed1_front.nc")):
+        with xr.open_dataset(front) as ds:
+            if int(ds.attrs["chosen"]) < 0:
+                assert "% (it keeps the shared ease-off)" in paper
 
 
 @pytest.mark.slow
@@ -60,6 +76,10 @@ def test_another_face_width_is_stated_as_a_change(tmp_path):
         assert "25-mm" not in text and "face width 25 mm" not in text
     assert "face width 30 mm" in paper[paper.index("Where the study's load stands"):][:400]
     assert "displacement envelope (this study ran none of them)" in paper
+    # Table 1: only the face width's row is changed, each other row of the paper's says so
+    assert "face width b mm changed (assumed: 25) 30" in paper
+    assert "changed (paper:" not in paper
+    assert "number of teeth z1 (pinion) - paper Table 1 9 9" in paper
     # and the repository whose Snakefile ran is untouched
     assert not [name for name in ("results", "logs", "reports", ".snakemake")
                 if (root / name).exists()]
