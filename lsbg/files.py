@@ -238,6 +238,7 @@ VARIABLE_ATTRIBUTES = {
     "generation": ("1", "generation"),
     "individual": ("1", "individual"),
     "member": ("1", "gear member"),
+    "order": ("1", "mesh harmonic order"),
     "mesh_phase": ("1", "mesh phase (fraction of a base pitch)"),
     "side": ("1", "flank side"),
     "tooth_offset": ("1", "tooth offset from the loaded pair"),
