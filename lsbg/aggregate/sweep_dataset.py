@@ -7,8 +7,12 @@ sweep of one key gets that key as a dimension, a product sweep its grid (one
 dimension per key), a list of combinations a ``point`` dimension with a
 coordinate per key. Statistics per run and quantity (:func:`lsbg.aggregate.summary.
 quantity_summary`): the mean, the std of the output samples, the full-rate std
-and, of the contact torque, the dynamic factor. Units in the attributes (the
-runs' own, paper units); the swept keys' units are their configuration units.
+and, of the contact torque, the dynamic factor; per point, its quasi-static contact
+(:data:`lsbg.experiments.sweeps.CONTACT_FIGURES`: the loaded TCA's transmission error
+and the bearing pattern, recorded by ``lsbg sweep-run``). Every variable has ``units``
+(the runs' own, paper units) and a ``long_name`` ("transmission error, full-rate std");
+a swept key's coordinate is labelled in words without its unit suffix ("lengthwise
+crowning", units "um": its configuration units).
 """
 
 from __future__ import annotations
@@ -90,7 +94,9 @@ def sweep_dataset(runs, steady_state_after=0.2, window=(0.8, 1.0), subgroup_size
     xarray.Dataset
         Dimensions ``trace``, ``spiral_angle`` [deg] and the swept keys (a
         product or one key) or ``point`` (combinations); variables
-        ``{quantity}_{statistic}`` and ``dynamic_factor``; attributes
+        ``{quantity}_{statistic}``, ``dynamic_factor`` and, where the runs recorded
+        them, the quasi-static figures of :data:`lsbg.experiments.sweeps.CONTACT_FIGURES`
+        (``loaded_te_peak_to_peak`` [urad], ``pattern_length`` [mm], ...); attributes
         ``sweep_name``, ``sweep_kind``, ``sweep_keys``.
 
     Raises
