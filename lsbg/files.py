@@ -18,11 +18,13 @@ import os
 import re
 import shutil
 import tempfile
+import textwrap
 from pathlib import Path
 
 __all__ = ["InputError", "InputFileNotFoundError", "file_digest", "kept_file_digest",
            "number_label", "label_clashes", "fill_template", "temporary_beside",
-           "remove_stale_temporaries", "write_atomically", "write_dataset", "as_path_list",
+           "remove_stale_temporaries", "write_atomically", "write_dataset", "complete_attributes",
+           "VARIABLE_ATTRIBUTES", "as_path_list",
            "open_dataset", "short_labels", "load_yaml", "DuplicateKeyError",
            "duplicate_key_problems", "read_yaml_file"]
 
@@ -195,12 +197,19 @@ def write_dataset(ds, path):
     Data variables on ``time_full`` (the full-rate record) are compressed
     (zlib level 1, lossless). Every numeric array carries a Fletcher-32
     checksum, so that reading a corrupted file fails (:func:`open_dataset`)
-    instead of returning wrong numbers; it costs about 13 % of the size.
+    instead of returning wrong numbers; it costs about 13 % of the size. Long labels are
+    shortened (:func:`short_labels`) and every variable gets ``units`` and ``long_name``
+    (:func:`complete_attributes`, which refuses one it cannot label).
 
     Parameters
     ----------
     ds : xarray.Dataset
     path : str or pathlib.Path
+
+    Raises
+    ------
+    ValueError
+        A variable without ``units`` or ``long_name`` (:func:`complete_attributes`).
     """
     encoding = {}
     for name, var in ds.variables.items():
@@ -209,8 +218,75 @@ def write_dataset(ds, path):
             encoding[name] = {"fletcher32": True}
             if name in ds.data_vars and "time_full" in var.dims:
                 encoding[name].update(zlib=True, complevel=1, shuffle=True)
-    short_labels(ds)
+    complete_attributes(short_labels(ds))
     write_atomically(path, lambda tmp: ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding))
+
+
+#: ``units`` and ``long_name`` of the variables and coordinates that their writers leave
+#: without them (labels and counters: units "1"; None: the writer gives the units).
+VARIABLE_ATTRIBUTES = {
+    "axis": ("1", "displacement axis (E, P, G or Sigma)"),
+    "case": ("1", "sensitivity case"),
+    "contact_model": ("1", "contact model"),
+    "contact_tooth": ("1", "contact tooth"),
+    "corner": ("1", "corner of the displacement envelope"),
+    "edge": ("1", "edge of the active flank"),
+    "edge_contact": ("1", "edge contact (1: touched)"),
+    "fillet_side_gear": ("1", "gear fillet side (0 drive, 1 coast)"),
+    "fillet_side_pinion": ("1", "pinion fillet side (0 drive, 1 coast)"),
+    "gear_type": ("1", "gear type"),
+    "generation": ("1", "generation"),
+    "individual": ("1", "individual"),
+    "member": ("1", "gear member"),
+    "order": ("1", "mesh harmonic order"),
+    "mesh_phase": ("1", "mesh phase (fraction of a base pitch)"),
+    "side": ("1", "flank side"),
+    "tooth_offset": ("1", "tooth offset from the loaded pair"),
+    "tooth_pair": ("1", "tooth pair"),
+    "trace": ("1", "tooth trace"),
+    "xyz": ("1", "mesh frame axis"),
+    "cone_distance": (None, "cone distance"),
+    "fillet_cone_distance_gear": (None, "cone distance of a gear fillet point"),
+    "fillet_cone_distance_pinion": (None, "cone distance of a pinion fillet point"),
+    "mesh_stiffness": (None, "mesh stiffness"),
+    "pressure_profile_angle": (None, "profile angle of a pressure sample"),
+    "profile_angle": (None, "profile angle"),
+    "transmission_error": (None, "transmission error"),
+}
+
+
+def complete_attributes(ds):
+    """Give every variable and coordinate ``units`` and ``long_name`` (CF-1.11), in place.
+
+    What a writer left out comes from :data:`VARIABLE_ATTRIBUTES`; a variable still
+    without either is refused, so that no file of lsbg has an unlabelled array.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+
+    Returns
+    -------
+    xarray.Dataset
+        ``ds``.
+
+    Raises
+    ------
+    ValueError
+        Naming the variables that lack ``units`` or ``long_name``.
+    """
+    lacking = []
+    for name, variable in ds.variables.items():
+        units, long_name = VARIABLE_ATTRIBUTES.get(str(name), (None, None))
+        for key, value in (("units", units), ("long_name", long_name)):
+            if key not in variable.attrs and value is not None:
+                variable.attrs[key] = value
+        if not {"units", "long_name"} <= set(variable.attrs):
+            lacking.append(str(name))
+    if lacking:
+        raise ValueError(f"variables without units or long_name: {', '.join(lacking)} "
+                         f"(give both, or add them to lsbg.files.VARIABLE_ATTRIBUTES)")
+    return ds
 
 
 #: The longest ``long_name`` of a variable [characters]: xarray's plots take it as the
@@ -241,7 +317,10 @@ def short_labels(ds, width=LABEL_WIDTH):
         text = variable.attrs.get("long_name")
         if isinstance(text, str) and len(text) > width:
             variable.attrs["description"] = text
-            variable.attrs["long_name"] = str(name).replace("_", " ")[:width]
+            # whole words only: a cut word would read as another (a unit's letter lost)
+            words = str(name).replace("_", " ")
+            variable.attrs["long_name"] = (textwrap.shorten(words, width, placeholder="")
+                                           or words[:width])
     return ds
 
 

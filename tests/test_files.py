@@ -19,7 +19,7 @@ from lsbg.solid import directory as geometry_files
 from lsbg.gear.design import GearPairDesign
 from lsbg.solid.export import write_geometry
 from lsbg.files import InputError, InputFileNotFoundError
-from lsbg.files import open_dataset, write_atomically, write_dataset
+from lsbg.files import open_dataset, short_labels, write_atomically, write_dataset
 
 
 @pytest.fixture(scope="module")
@@ -212,8 +212,9 @@ def test_not_a_geometry_directory(tmp_path):
 def netcdf(tmp_path):
     """A small dataset written by lsbg.files.write_dataset, and its values."""
     values = np.linspace(1.0, 2.0, 4000)
-    ds = xr.Dataset({"force": ("time", values, {"units": "N"})},
-                    coords={"time": ("time", np.arange(values.size) * 1e-3, {"units": "s"})},
+    ds = xr.Dataset({"force": ("time", values, {"units": "N", "long_name": "force"})},
+                    coords={"time": ("time", np.arange(values.size) * 1e-3,
+                                     {"units": "s", "long_name": "time"})},
                     attrs={"kind": "test"})
     path = tmp_path / "data.nc"
     write_dataset(ds, path)
@@ -227,6 +228,31 @@ def read(path):
 def test_open_dataset_reads_what_was_written(netcdf):
     path, values = netcdf
     np.testing.assert_array_equal(read(path)["force"].values, values)
+
+
+def test_written_variables_are_labelled_or_refused(tmp_path):
+    """The writer completes a known label's units and long_name from its table and refuses
+    a variable it cannot label, before writing anything."""
+    ds = xr.Dataset({"force": ("member", [1.0, 2.0], {"units": "N", "long_name": "force"})},
+                    coords={"member": ["pinion", "gear"]})
+    write_dataset(ds, tmp_path / "ok.nc")
+    with xr.open_dataset(tmp_path / "ok.nc") as back:
+        assert back["member"].attrs["units"] == "1"
+        assert back["member"].attrs["long_name"] == "gear member"
+    bare = xr.Dataset({"stiffness": ("t", [1.0, 2.0], {"units": "N/m"})})
+    with pytest.raises(ValueError, match=r"without units or long_name: stiffness \(give"):
+        write_dataset(bare, tmp_path / "bare.nc")
+    assert not (tmp_path / "bare.nc").exists()
+
+
+def test_short_labels_cut_whole_words():
+    """A label made from a long name keeps whole words: "...crowning um" never ends in
+    "crowning u" (a unit's letter lost)."""
+    name = "flank_modification.lengthwise_crowning_um"
+    ds = xr.Dataset(coords={name: (name, [10.0], {"units": "um", "long_name": "x" * 50})})
+    label = short_labels(ds)[name].attrs["long_name"]
+    assert len(label) <= 40 and label == "flank modification.lengthwise crowning"
+    assert ds[name].attrs["description"] == "x" * 50
 
 
 @pytest.mark.parametrize("keep", [0, 8, 2000, 0.5, -1])

@@ -7,8 +7,12 @@ sweep of one key gets that key as a dimension, a product sweep its grid (one
 dimension per key), a list of combinations a ``point`` dimension with a
 coordinate per key. Statistics per run and quantity (:func:`lsbg.aggregate.summary.
 quantity_summary`): the mean, the std of the output samples, the full-rate std
-and, of the contact torque, the dynamic factor. Units in the attributes (the
-runs' own, paper units); the swept keys' units are their configuration units.
+and, of the contact torque, the dynamic factor; per point, its quasi-static contact
+(:data:`lsbg.experiments.sweeps.CONTACT_FIGURES`: the loaded TCA's transmission error
+and the bearing pattern, recorded by ``lsbg sweep-run``). Every variable has ``units``
+(the runs' own, paper units) and a ``long_name`` ("transmission error, full-rate std");
+a swept key's coordinate is labelled in words without its unit suffix ("lengthwise
+crowning", units "um": its configuration units).
 """
 
 from __future__ import annotations
@@ -19,6 +23,9 @@ __all__ = ["SWEEP_STATISTICS", "sweep_rows", "sweep_dataset", "sweep_long"]
 
 #: Statistics of each quantity stacked into the dataset: summary column -> name suffix.
 SWEEP_STATISTICS = {"mean": "mean", "std": "std", "full_rate_std": "full_rate_std"}
+
+#: The words of a statistic in a variable's ``long_name``: name suffix -> words.
+_STATISTIC_WORDS = {"mean": "mean", "std": "std", "full_rate_std": "full-rate std"}
 
 
 def _swept(ds):
@@ -55,13 +62,18 @@ def sweep_rows(runs, steady_state_after=0.2, window=(0.8, 1.0), subgroup_size=4)
     names = {name for name, _, _ in swept}
     if len(names) > 1:
         raise ValueError(f"runs of several sweeps: {', '.join(sorted(names))}")
+    from lsbg.experiments.sweeps import CONTACT_FIGURES
+
     rows = []
     for ds, (name, _, values) in zip(runs, swept):
+        # (the quasi-static contact of the point, on each of its rows: lsbg sweep-run)
+        static = {figure: float(ds.attrs[f"static_{figure}"]) for figure in CONTACT_FIGURES
+                  if f"static_{figure}" in ds.attrs}
         for quantity in SUMMARY_QUANTITIES:
             if quantity in ds:
                 rows.append({"sweep": name, **values,
                              **quantity_summary(ds, quantity, steady_state_after, window,
-                                                subgroup_size)})
+                                                subgroup_size), **static})
     return pd.DataFrame(rows)
 
 
@@ -82,7 +94,9 @@ def sweep_dataset(runs, steady_state_after=0.2, window=(0.8, 1.0), subgroup_size
     xarray.Dataset
         Dimensions ``trace``, ``spiral_angle`` [deg] and the swept keys (a
         product or one key) or ``point`` (combinations); variables
-        ``{quantity}_{statistic}`` and ``dynamic_factor``; attributes
+        ``{quantity}_{statistic}``, ``dynamic_factor`` and, where the runs recorded
+        them, the quasi-static figures of :data:`lsbg.experiments.sweeps.CONTACT_FIGURES`
+        (``loaded_te_peak_to_peak`` [urad], ``pattern_length`` [mm], ...); attributes
         ``sweep_name``, ``sweep_kind``, ``sweep_keys``.
 
     Raises
@@ -92,12 +106,13 @@ def sweep_dataset(runs, steady_state_after=0.2, window=(0.8, 1.0), subgroup_size
     """
     import xarray as xr
 
+    from lsbg.experiments.sweeps import CONTACT_FIGURES
+
     if rows is None:
         rows = sweep_rows(runs, steady_state_after, window, subgroup_size)
     first = runs[0]
     name, kind, values = _swept(first)
     keys = list(values)
-    units = {q: first[q].attrs.get("units", "") for q in rows["quantity"].unique()}
     index = ["trace", "spiral_angle_deg", *keys]
     if kind == "combinations":
         points = rows[keys].drop_duplicates().reset_index(drop=True)
@@ -112,19 +127,25 @@ def sweep_dataset(runs, steady_state_after=0.2, window=(0.8, 1.0), subgroup_size
             wide[f"{quantity}_{suffix}"] = part[column]
         if quantity == "contact_torque":
             wide["dynamic_factor"] = part["dynamic_factor"]
+        for figure in CONTACT_FIGURES:
+            if figure in part:
+                wide.setdefault(figure, part[figure])
     ds = xr.Dataset.from_dataframe(pd.DataFrame(wide))
     ds = ds.rename({"spiral_angle_deg": "spiral_angle"})
     for variable in ds.data_vars:
-        quantity = max((q for q in units if variable.startswith(q + "_")), key=len, default="")
-        ds[variable].attrs["units"] = "1" if variable == "dynamic_factor" else units.get(quantity, "")
+        ds[variable].attrs.update(_variable_attributes(str(variable), first))
     if kind == "combinations":
         for key in keys:
             ds[key] = ("point", points[key].to_numpy())
         ds = ds.set_coords(keys)
     for key in keys:
         section, field = key.split(".", 1)
-        ds[key].attrs.update({"long_name": f"swept {key}", "units": _config_unit(field)})
+        ds[key].attrs.update({"long_name": _config_words(field), "units": _config_unit(field),
+                              "description": f"swept {key} (configuration units)"})
     ds["spiral_angle"].attrs.update(units="degree", long_name="mean spiral angle")
+    ds["trace"].attrs.update(units="1", long_name="tooth trace")
+    if kind == "combinations":
+        ds["point"].attrs.update(units="1", long_name="point of the sweep")
     ds.attrs.update({"title": f"parameter sweep {name!r} of lsbg", "sweep_name": name,
                      "sweep_kind": kind, "sweep_keys": " ".join(keys),
                      "steady_state_after_s": float(steady_state_after),
@@ -139,12 +160,39 @@ _SUFFIX_UNITS = {"_mm": "mm", "_deg": "degree", "_deg_s": "degree/s", "_N_m": "N
                  "_N_per_mm1_5": "N/mm^1.5", "_kg_m3": "kg/m^3", "_GPa": "GPa"}
 
 
+def _config_suffix(field):
+    """The unit suffix of a configuration key ("" for a plain number)."""
+    return next((suffix for suffix in sorted(_SUFFIX_UNITS, key=len, reverse=True)
+                 if field.endswith(suffix)), "")
+
+
 def _config_unit(field):
     """A configuration key's unit from its suffix ("1" for a plain number)."""
-    for suffix in sorted(_SUFFIX_UNITS, key=len, reverse=True):
-        if field.endswith(suffix):
-            return _SUFFIX_UNITS[suffix]
-    return "1"
+    return _SUFFIX_UNITS.get(_config_suffix(field), "1")
+
+
+def _config_words(field):
+    """A configuration key in words without its unit suffix: ``lengthwise crowning``."""
+    return field.removesuffix(_config_suffix(field)).replace("_", " ")
+
+
+def _variable_attributes(variable, run):
+    """``units`` and ``long_name`` of a sweep dataset's variable; ``run``: one of its runs
+    (the quantities' own units and names)."""
+    from lsbg.experiments.sweeps import CONTACT_FIGURES
+
+    if variable in CONTACT_FIGURES:
+        _, _, units, long_name = CONTACT_FIGURES[variable]
+        return {"units": units, "long_name": long_name}
+    if variable == "dynamic_factor":
+        return {"units": "1", "long_name": "dynamic factor"}
+    quantity, suffix = next((variable[:-len(s) - 1], s) for s in
+                            sorted(SWEEP_STATISTICS.values(), key=len, reverse=True)
+                            if variable.endswith("_" + s))
+    attrs = run[quantity].attrs
+    return {"units": attrs.get("units", "1"),
+            "long_name": f"{attrs.get('long_name', quantity.replace('_', ' '))}, "
+                         f"{_STATISTIC_WORDS[suffix]}"}
 
 
 def sweep_long(ds, variables):

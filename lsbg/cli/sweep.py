@@ -25,11 +25,15 @@ def add_sweep_run_parser(subparsers):
                     "RUN.nc, its values recorded as attributes sweep_<section>_<key>. A point "
                     "that sets design keys builds its own geometry (in a temporary folder). "
                     "Every point is checked before the first run; a blow-up stops the batch "
-                    "with exit code 3, the points before it written.")
+                    "with exit code 3, the points before it written. Each run also records the "
+                    "point's quasi-static contact as attributes static_<figure>: the loaded "
+                    "TCA's transmission error and pattern (lsbg ltca, uniform bed) and the "
+                    "unloaded TCA's bearing pattern (lsbg tca), at the tca section's "
+                    "positions.")
     parser.add_argument("--geometry", required=True, metavar="DIR",
                         help="geometry directory of the design point (lsbg geometry)")
     add_config_options(parser, ("design", "contact", "simulation", "flank_modification",
-                                "misalignment"))
+                                "misalignment", "tca"))
     add_engine_option(parser, default="compiled")
     parser.add_argument("--sweep", required=True, metavar="NAME",
                         help="the sweep's name, recorded in every run")
@@ -90,7 +94,7 @@ def run_sweep_run(args):
     from lsbg.dynamics import SimulationError, simulate
     from lsbg.solid.directory import read_design
     from lsbg.files import write_dataset
-    from lsbg.experiments.sweeps import point_sections, swept_attribute
+    from lsbg.experiments.sweeps import contact_figures, point_sections, swept_attribute
 
     study = {section: args.settings[section] for section in args.sections}
     read_design(args.geometry)  # the design point exists and is whole
@@ -119,9 +123,12 @@ def run_sweep_run(args):
                 ds = simulate(geometry, settings, params, command=command_line(), flanks=flanks)
             except SimulationError as err:
                 raise SimulationError(f"{out}: {err}") from None
+            static = checked(lambda: contact_figures(geometry, settings.load_torque, params,
+                                                     flanks, args.settings["tca"]))
         ds.attrs.update({"sweep_name": args.sweep, "sweep_kind": args.kind,
                          "sweep_keys": " ".join(values)})
         ds.attrs.update({swept_attribute(k): v for k, v in values.items()})
+        ds.attrs.update({f"static_{name}": value for name, value in static.items()})
         write_dataset(ds, out)
         lines.append(f"{', '.join(f'{k} = {v!r}' for k, v in values.items())} -> {out} "
                      f"({ds.attrs['wall_time_s']:.1f} s wall)")

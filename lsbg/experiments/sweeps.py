@@ -27,6 +27,11 @@ per point, one column per key), whose instance patterns name the points' files
 negative or fractional value is named safely and 0.1 and 0.1000001 are two
 points. :func:`sweep_problems` checks every point as if its values were set in
 their own sections, before any job (:mod:`lsbg.study.sweep_checks`).
+
+Beside the dynamics, every point records its quasi-static contact
+(:func:`contact_figures`): the loaded TCA of the line model on the uniform bed
+(``lsbg ltca``'s, at the point's load and flanks) and the unloaded TCA's bearing
+pattern at the marking-compound thickness (``lsbg tca``'s).
 """
 
 from __future__ import annotations
@@ -35,8 +40,8 @@ import copy
 import itertools
 from dataclasses import dataclass
 
-__all__ = ["SWEEPABLE_SECTIONS", "FIXED_KEYS", "SWEEP_OPTIONS", "Sweep", "sweeps_from_config",
-           "point_sections", "swept_attribute"]
+__all__ = ["SWEEPABLE_SECTIONS", "FIXED_KEYS", "SWEEP_OPTIONS", "CONTACT_FIGURES", "Sweep",
+           "sweeps_from_config", "point_sections", "swept_attribute", "contact_figures"]
 
 #: Sections whose keys a sweep may set: those a run reads.
 SWEEPABLE_SECTIONS = ("design", "contact", "simulation", "flank_modification", "misalignment")
@@ -55,6 +60,70 @@ FIXED_KEYS = {
 #: A sweep's options (keys without a dot) and their defaults (None: the study's).
 SWEEP_OPTIONS = {"traces": ["logarithmic", "circular"], "spiral_angles_deg": None,
                  "contact_model": "line", "engine": None, "batch_size": 10}
+
+
+#: The quasi-static figures a sweep records per point: variable -> (TCA, its attribute,
+#: units, long_name); TCA "loaded" is :func:`lsbg.tca.loaded.loaded_tca`, "unloaded"
+#: :func:`lsbg.tca.analysis.tooth_contact_summary`.
+CONTACT_FIGURES = {
+    "loaded_te_peak_to_peak": ("loaded", "transmission_error_peak_to_peak_urad", "urad",
+                               "quasi-static loaded TE, peak to peak"),
+    "loaded_te_harmonic_1": ("loaded", "transmission_error_harmonic_1_urad", "urad",
+                             "quasi-static loaded TE, mesh harmonic"),
+    "loaded_mesh_stiffness": ("loaded", "mesh_stiffness_per_face_width_N_per_mm_um",
+                              "N/(mm um)", "mean mesh stiffness per face width"),
+    "loaded_pattern_length": ("loaded", "loaded_pattern_length_per_face_width", "1",
+                              "loaded pattern length / face width"),
+    "edge_load_share": ("loaded", "edge_load_share", "1", "share of the load at the edges"),
+    "pattern_centre_cone_distance": ("unloaded", "pattern_centre_cone_distance_mm", "mm",
+                                     "bearing pattern centre, cone distance"),
+    "pattern_centre_height": ("unloaded", "pattern_centre_height_mm", "mm",
+                              "bearing pattern centre, height"),
+    "pattern_length": ("unloaded", "pattern_length_mm", "mm", "bearing pattern length"),
+    "pattern_height": ("unloaded", "pattern_height_mm", "mm", "bearing pattern height"),
+    "unloaded_te_peak_to_peak": ("unloaded", "transmission_error_peak_to_peak_urad", "urad",
+                                 "unloaded TE, peak to peak"),
+}
+
+
+def contact_figures(geometry, load_torque, params, flanks, tca):
+    """The quasi-static contact of one sweep point: :data:`CONTACT_FIGURES`.
+
+    Parameters
+    ----------
+    geometry : str or pathlib.Path
+        The point's geometry directory (``lsbg geometry``).
+    load_torque : float
+        Torque on the gear [N m].
+    params : lsbg.contact.ContactParameters
+        The point's contact (its line-model fields; the bed is the uniform one).
+    flanks : lsbg.tca.separation.RealFlanks
+        The point's flank modification and displacements.
+    tca : dict
+        The configuration's ``tca`` section (``positions``, ``marking_compound_um``,
+        ``loaded_positions``).
+
+    Returns
+    -------
+    dict
+        ``{variable: value}`` in :data:`CONTACT_FIGURES`' units; the unloaded ones NaN
+        where the flanks lose contact or interfere (the loaded TCA still answers).
+    """
+    from lsbg.gear.geometry import GearPair
+    from lsbg.solid.directory import read_design
+    from lsbg.tca.analysis import tooth_contact_summary
+    from lsbg.tca.loaded import ltca_for_geometry
+
+    found = {"loaded": ltca_for_geometry(geometry, load_torque, params,
+                                         phases=tca["loaded_positions"], flanks=flanks).attrs}
+    try:
+        found["unloaded"] = tooth_contact_summary(
+            GearPair(read_design(geometry)), flanks.modification, flanks.misalignment,
+            tca["positions"], float(tca["marking_compound_um"]) * 1e-6)
+    except ValueError:
+        found["unloaded"] = {}
+    return {name: float(found[kind].get(attribute, float("nan")))
+            for name, (kind, attribute, _, _) in CONTACT_FIGURES.items()}
 
 
 def swept_attribute(key):

@@ -239,7 +239,7 @@ def plot_rating_against_angle(table):
     return fig
 
 
-def plot_parameter_sweep(table, along, variables, units, by=None):
+def plot_parameter_sweep(table, along, variables, units, by=None, labels=None):
     """The key figures of a parameter sweep against its first swept key.
 
     Parameters
@@ -254,25 +254,32 @@ def plot_parameter_sweep(table, along, variables, units, by=None):
         ``{column: unit}`` of ``along`` and the variables.
     by : str, optional
         A second swept key: one line per value (a product sweep).
+    labels : dict, optional
+        ``{column: words}`` of the axes (the datasets' ``long_name``); default: the
+        column's name. Labels are wrapped to the panel's width, none is cut.
 
     Returns
     -------
     matplotlib.figure.Figure
         One colour per gear type; the line style tells the values of ``by``.
     """
-    fig, axes = new_figure(1, len(variables), width=5 * len(variables))
+    labels = labels or {}
+    fig, axes = new_figure(1, len(variables), width=4.4)
+    # characters a label's line holds across one panel (about 9 a inch at this size)
+    wrap = int(9 * fig.get_figwidth() / len(variables))
     styles = ("o-", "s--", "^:", "d-.", "v-")
     groups = [(None, table)] if by is None else list(table.groupby(by, sort=True))
     for k, (value, part) in enumerate(groups):
         for gear_type, rows in _by_type(part):
             rows = rows.sort_values(along)
-            label = gear_type if by is None else f"{gear_type}, {by} = {value:g}"
+            label = gear_type if by is None else f"{gear_type}, {labels.get(by, by)} = {value:g}"
             for ax, variable in zip(axes[0], variables):
                 ax.plot(rows[along], rows[variable], styles[k % len(styles)], ms=4,
                         color=type_color(gear_type), label=label)
     for ax, variable in zip(axes[0], variables):
-        ax.set_xlabel(f"{along} [{units.get(along, '-')}]")
-        ax.set_ylabel(f"{variable.replace('_', ' ')} [{units.get(variable, '-')}]")
+        ax.set_xlabel(axis_label(labels.get(along, along), units.get(along, ""), wrap=wrap))
+        ax.set_ylabel(axis_label(labels.get(variable, variable.replace("_", " ")),
+                                 units.get(variable, ""), wrap=wrap))
         ax.grid(True, alpha=0.3)
     figure_legend(fig)
     return fig

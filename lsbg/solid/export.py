@@ -218,9 +218,11 @@ def flank_dataset(pair: GearPair, n_cone=21, n_profile=31):
                               {"units": "1", "long_name": "forward rotation axis"}),
         },
         coords={
-            "member": ("member", [MEMBER_NAMES[m] for m in MEMBERS], {"long_name": "gear member"}),
+            "member": ("member", [MEMBER_NAMES[m] for m in MEMBERS],
+                       {"units": "1", "long_name": "gear member"}),
             "side": ("side", list(SIDES),
-                     {"long_name": "flank side (drive: loaded when the pinion drives)"}),
+                     {"units": "1",
+                      "long_name": "flank side (drive: loaded when the pinion drives)"}),
             "cone_distance": ("cone_distance", 1e3 * cone, {
                 "units": "mm", "long_name": "distance from the apex (sphere radius)"}),
             "profile": ("profile", profile, {
@@ -229,7 +231,7 @@ def flank_dataset(pair: GearPair, n_cone=21, n_profile=31):
             "polar_angle": (("member", "profile"), np.degrees(polar), {
                 "units": "degree", "long_name": "polar angle from the member's axis"}),
             "xyz": ("xyz", ["x", "y", "z"], {
-                "long_name": "mesh frame axis (apex at the origin, x along the pitch line, "
+                "units": "1", "long_name": "mesh frame axis (apex at the origin, x along the pitch line, "
                              "gear axes in the xy plane)"}),
         },
         attrs={

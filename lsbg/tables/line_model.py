@@ -457,8 +457,9 @@ def trend_table(table, columns, along="spiral_angle_deg", by=()) -> pd.DataFrame
     -------
     pandas.DataFrame
         Per (contact model, gear type, ``by``, column): the number of values
-        (``angles``), Spearman's rank correlation with ``along`` and its
-        p-value, and ``reversals``: how often the change from one value to
+        (``angles``), the values themselves (``values``, text), Spearman's rank
+        correlation with ``along`` and its p-value (:func:`spearman`: exact for
+        few values), and ``reversals``: how often the change from one value to
         the next flips sign, out of ``possible`` (n − 2). A monotone trend has
         none; a neighbour-to-neighbour zig-zag has about all of them. Groups
         with fewer than 3 values are left out.
@@ -476,11 +477,52 @@ def trend_table(table, columns, along="spiral_angle_deg", by=()) -> pd.DataFrame
             values = part[column].to_numpy()
             change = np.sign(np.diff(values))
             reversals = int(np.sum(change[1:] * change[:-1] < 0))
-            rho, p = sps.spearmanr(part[along], values)
+            rho, p = spearman(part[along].to_numpy(), values)
             rows.append({**dict(zip(keys, group)), "column": column, "angles": len(values),
-                         "spearman_rho": float(rho), "spearman_p": float(p),
+                         "values": ", ".join(f"{v:g}" for v in part[along]),
+                         "spearman_rho": rho, "spearman_p": p,
                          "reversals": reversals, "possible": max(len(values) - 2, 0)})
     return pd.DataFrame(rows)
+
+
+#: Up to this many values, :func:`spearman`'s p-value is the exact one (every ordering).
+EXACT_SPEARMAN_UP_TO = 8
+
+
+def spearman(x, y):
+    """Spearman's rank correlation of two series and its two-sided p-value.
+
+    Up to :data:`EXACT_SPEARMAN_UP_TO` values the p-value is exact: the share of all
+    n! orderings of ``y`` whose correlation is as far from 0
+    (:func:`scipy.stats.permutation_test`); three monotone points give 1/3, not the
+    t approximation's 0. Beyond, scipy's t approximation.
+
+    Parameters
+    ----------
+    x, y : numpy.ndarray
+        Paired values (any units).
+
+    Returns
+    -------
+    tuple of float
+        (rho, p) [-]; both NaN where either series is constant.
+    """
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    if np.ptp(x) == 0 or np.ptp(y) == 0:
+        return float("nan"), float("nan")
+    if x.size > EXACT_SPEARMAN_UP_TO:
+        rho, p = sps.spearmanr(x, y)
+        return float(rho), float(p)
+    rank_x = sps.rankdata(x) - (x.size + 1) / 2
+    rank_y = sps.rankdata(y) - (y.size + 1) / 2
+
+    def rho(ranks, axis=-1):  # Pearson's r of the ranks, for every ordering at once
+        ranks = np.moveaxis(ranks, axis, -1)
+        return (ranks @ rank_x) / np.sqrt((ranks ** 2).sum(-1) * (rank_x ** 2).sum())
+
+    test = sps.permutation_test((rank_y,), rho, permutation_type="pairings",
+                                n_resamples=np.inf, vectorized=True)
+    return float(test.statistic), float(min(1.0, test.pvalue))
 
 
 # ------------------------------------------------------------ speed sweep

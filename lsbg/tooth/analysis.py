@@ -225,7 +225,7 @@ def fe_envelope(pair, contact_params, compliance, load_torque, phases, modificat
             for m, v in roots.items()},
          "displacement": (("corner", "axis"),
                           np.array([[values[a] for a in axes] for values in corners.values()]),
-                          {"units": "mm (deg for Sigma)",
+                          {"units": "mm" if "Sigma" not in axes else "mm (deg for Sigma)",
                            "long_name": "assembly displacement added at each corner"})},
         coords={"corner": list(corners), "axis": list(axes), "mesh_phase": phase.values},
         attrs={"title": "FE loaded TCA at the corners of the displacement envelope",

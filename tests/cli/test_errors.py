@@ -43,7 +43,8 @@ def world(tmp_path_factory):
     w["text"] = root / "text.nc"
     w["text"].write_text("hello")
     w["not_a_run"] = root / "not_a_run.nc"
-    write_dataset(xr.Dataset({"x": ("t", np.arange(5.0))}), w["not_a_run"])
+    write_dataset(xr.Dataset({"x": ("t", np.arange(5.0), {"units": "1", "long_name": "x"})}),
+                  w["not_a_run"])
     w["garbage_yaml"] = root / "garbage.yaml"
     w["garbage_yaml"].write_text("design: [unclosed\n")
     w["duplicated"] = root / "duplicated.yaml"

@@ -71,6 +71,32 @@ def test_the_combined_dataset_holds_each_runs_statistics(world):
     assert rows["contact.dynamic_friction"].tolist().count(0.05) == rows["quantity"].nunique()
 
 
+def test_a_swept_run_records_the_quasi_static_contact_of_lsbg_ltca_and_tca(world):
+    """A point's quasi-static figures are those lsbg ltca (loaded TE, uniform bed) and lsbg
+    tca (bearing pattern) give for its settings; more lengthwise crowning shortens the
+    pattern."""
+    from lsbg.experiments.sweeps import CONTACT_FIGURES
+
+    root, figures = world["root"], {}
+    for crowning in (10, 40):
+        run, mesh, tca = (root / f"{name}{crowning}.nc" for name in ("crown", "ltca", "tca"))
+        setting = f"flank_modification.lengthwise_crowning_um={crowning}"
+        common = ["--geometry", world["geometry"], "--config", world["config"]]
+        assert cli.main([str(a) for a in ["sweep-run", *common, "--set", "contact.model=line",
+                                          "--sweep", "crowning", "--point", run, setting]]) == 0
+        assert cli.main([str(a) for a in ["ltca", *common, "--set", setting,
+                                          "--out", mesh]]) == 0
+        assert cli.main([str(a) for a in ["tca", *common, "--set", setting, "--out", tca]]) == 0
+        with xr.open_dataset(run) as r, xr.open_dataset(mesh) as m, xr.open_dataset(tca) as t:
+            figures[crowning] = {k: r.attrs[f"static_{k}"] for k in CONTACT_FIGURES}
+            for name, (kind, attribute, _, _) in CONTACT_FIGURES.items():
+                source = m if kind == "loaded" else t
+                assert figures[crowning][name] == pytest.approx(source.attrs[attribute],
+                                                                rel=1e-12), name
+    assert figures[40]["pattern_length"] < figures[10]["pattern_length"]
+    assert figures[40]["loaded_te_peak_to_peak"] != figures[10]["loaded_te_peak_to_peak"]
+
+
 def test_a_design_point_of_its_own_and_bad_points(world, capsys):
     wide = world["root"] / "wide.nc"
     assert cli.main([str(a) for a in ["sweep-run", "--geometry", world["geometry"], "--config",

@@ -91,3 +91,17 @@ def test_trend_table_tells_a_trend_from_a_zigzag():
     assert result.loc["zigzag", "reversals"] == result.loc["zigzag", "possible"] == 9
     # fewer than three angles: no judgement
     assert line_model.trend_table(table.iloc[:2], ["trend"]).empty
+
+
+def test_trend_table_gives_the_values_and_exact_p_for_few_points():
+    """Three monotone points: rho = 1 and the exact two-sided p 2/3! = 1/3 (the t
+    approximation says 0); five points with one swap: rho 0.9, p 10/120 (the orderings
+    with |rho| >= 0.9); the values themselves, not only their number."""
+    table = pd.DataFrame({"gear_type": "SBG", "crowning": [40.0, 10.0, 20.0],
+                          "te": [3.0, 1.0, 2.0]})
+    row = line_model.trend_table(table, ["te"], along="crowning").iloc[0]
+    assert row["values"] == "10, 20, 40" and row["angles"] == 3
+    assert row["spearman_rho"] == pytest.approx(1.0) and row["spearman_p"] == pytest.approx(1 / 3)
+    rho, p = line_model.spearman(np.arange(5.0), [4, 5, 6, 8, 7])
+    assert rho == pytest.approx(0.9) and p == pytest.approx(10 / 120)
+    assert np.isnan(line_model.spearman([1.0, 2.0, 3.0], [5.0, 5.0, 5.0])[1])

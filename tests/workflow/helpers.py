@@ -110,3 +110,47 @@ def report_text(path):
     text = re.sub(r"<style.*?</style>|<script.*?</script>", "", text, flags=re.S)
     text = re.sub(r"data:[\w/+]+;base64,[A-Za-z0-9+/=]+", "", text)
     return " ".join(re.sub(r"<[^>]+>", " ", text).split())
+
+
+#: Unit symbols a dataset of lsbg may write (UDUNITS spellings), before SI prefixes.
+UNIT_SYMBOLS = {"m", "s", "N", "Pa", "rad", "Hz", "g", "W", "J"}
+#: ... and those taken without a prefix.
+PLAIN_UNITS = {"1", "%", "percent", "degree", "deg", "arcsec", "kg"}
+_UNIT_TOKEN = re.compile(r"[A-Za-z%]+|\d+(?:\.\d+)?|[ /()*^.-]")
+
+
+def unit_problem(units):
+    """Why ``units`` is not a unit string as UDUNITS reads it (None if it is): every word
+    a known symbol with at most one SI prefix (``um``, ``N m``, ``deg/s``; ``u`` fails),
+    numbers only as factors or exponents, parentheses balanced."""
+    text = str(units)
+    if not text.strip() or "".join(_UNIT_TOKEN.findall(text)) != text:
+        return f"{units!r}: not made of unit symbols"
+    depth = 0
+    for token in _UNIT_TOKEN.findall(text):
+        depth += (token == "(") - (token == ")")
+        if depth < 0:
+            return f"{units!r}: unbalanced parentheses"
+        if token[0].isalpha() or token == "%":
+            if token not in PLAIN_UNITS and not (
+                    token in UNIT_SYMBOLS or (token[0] in "kMGmun" and token[1:] in UNIT_SYMBOLS)):
+                return f"{units!r}: {token!r} is not a unit symbol"
+    return "unbalanced parentheses" if depth else None
+
+
+def dataset_label_problems(folder):
+    """Every variable and coordinate of every NetCDF file under ``folder`` without
+    ``units`` and ``long_name``, or whose units are not a unit string
+    (:func:`unit_problem`): one line each, ``file: variable: what``."""
+    import xarray as xr
+
+    problems = []
+    for path in sorted(Path(folder).rglob("*.nc")):
+        with xr.open_dataset(path) as ds:
+            for name, variable in ds.variables.items():
+                missing = [k for k in ("units", "long_name") if not variable.attrs.get(k)]
+                why = (f"no {' and no '.join(missing)}" if missing
+                       else unit_problem(variable.attrs["units"]))
+                if why:
+                    problems.append(f"{path.relative_to(folder)}: {name}: {why}")
+    return problems

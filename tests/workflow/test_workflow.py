@@ -25,7 +25,7 @@ import yaml
 from lsbg.study import job_order
 from tests.workflow.helpers import (REPO, SNAKEFILE, TEST_CONFIG, _JOB, copy_of_study,
                                     dry_run, job_inputs, planned_jobs, report_text, rules_of,
-                                    snakemake, write_yaml)
+                                    snakemake, write_yaml, dataset_label_problems)
 
 
 # ------------------------------------------------------------ configuration
@@ -215,12 +215,21 @@ def test_sweeps_written_in_config_only_give_one_dataset_each(swept_study):
     assert set(rules_of(jobs)) - set(batches) == {"report_sweep", "report_paper", "all"}
     html = (root / "reports" / "sweep.html").read_text(encoding="utf-8")
     assert "8. Parameter sweeps" in html and "Sweep 'friction' at 35°" in html
-    assert "one line per contact.mesh_damping_ratio" in html
+    assert "one line per mesh damping ratio" in html
+    # the values themselves under "values of", the quasi-static contact beside the dynamics
+    assert "values of dynamic friction" in html and "0, 0.05, 0.1, 0.15, 0.2" in html
+    assert "bearing pattern length [mm]" in html
+    assert not dataset_label_problems(root / "results" / "sweeps")
     with xr.open_dataset(root / "results" / "sweeps" / "friction.nc") as ds:
         assert ds["contact.dynamic_friction"].values.tolist() == [0, 0.05, 0.1, 0.15, 0.2]
         assert ds["gear_speed_full_rate_std"].dims == ("trace", "spiral_angle",
                                                        "contact.dynamic_friction")
         assert np.isfinite(ds["gear_speed_full_rate_std"]).all()
+        assert ds["contact.dynamic_friction"].attrs["long_name"] == "dynamic friction"
+        # friction leaves the quasi-static contact as it is: the same at every point
+        for figure in ("loaded_te_peak_to_peak", "pattern_length"):
+            assert (ds[figure] > 0).all() and (ds[figure].std("contact.dynamic_friction")
+                                               < 1e-9 * ds[figure].mean()).all()
     with xr.open_dataset(root / "results" / "sweeps" / "damping_and_stiffness.nc") as ds:
         assert ds["gear_speed_full_rate_std"].sizes == {
             "trace": 2, "spiral_angle": 1, "contact.mesh_damping_ratio": 3,
