@@ -47,10 +47,11 @@ def run_check_config(args):
     if not base.is_file() or not schema.is_file():
         raise CommandError(f"--workflow-dir {args.workflow_dir}: no config.yaml and "
                            f"schemas/config.schema.yaml there")
-    config = _read_yaml(base, "workflow config")
+    given = {}  # what the study's files set over the workflow's config.yaml
     for path in args.configfiles:
-        config = merge_config(config, _read_yaml(path, "configfile"))
-    problems = check_config(config, _read_yaml(schema, "schema"))
+        given = merge_config(given, _read_yaml(path, "configfile"))
+    config = merge_config(_read_yaml(base, "workflow config"), given)
+    problems = check_config(config, _read_yaml(schema, "schema"), given=given)
     if problems:
         for line in problems:
             print(f"invalid configuration: {line}", file=sys.stderr)

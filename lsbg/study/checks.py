@@ -81,11 +81,7 @@ Snakemake does, names the file and line of such an error, and runs
 
 from __future__ import annotations
 
-import hashlib
 import os
-from pathlib import Path
-
-import numpy as np
 
 from lsbg.config import fill_defaults, key_path, nonfinite_problems, schema_problems
 from lsbg.files import label_clashes, number_label
@@ -97,12 +93,12 @@ from lsbg.study.resources import (engines_run, geometry_problem, load_problems,
                                   speed_sweep_problems)
 
 __all__ = [
-    "key_path", "check_config", "nonfinite_problems", "schema_problems", "fill_defaults",
+    "key_path", "check_config", "analysis_problems", "nonfinite_problems", "schema_problems", "fill_defaults",
     "check_cache_dir", "AD_MIN_SAMPLES"
 ]
 
 
-def check_config(config, schema):
+def check_config(config, schema, analyses=True, given=None):
     """Every problem of a workflow configuration; fills in the schema's defaults.
 
     Parameters
@@ -112,6 +108,15 @@ def check_config(config, schema):
         the schema's defaults are filled in once it passes the schema.
     schema : dict
         workflow/schemas/config.schema.yaml, loaded.
+    analyses : bool, optional
+        Also run :func:`analysis_problems` (steps 8 to 10: a TCA and an ISO
+        10300 rating at the design points) on the points that pass the others.
+        The workflow checks without them while it is parsed (``snakemake -n``)
+        and runs them in its ``onstart`` handler, before any job.
+    given : dict, optional
+        What the study's own files set over workflow/config.yaml (Snakemake's
+        ``overwrite_config``: the ``--configfile`` files and ``--config``), for
+        :func:`one_spiral_angle`; default: unknown.
 
     Returns
     -------
@@ -130,40 +135,133 @@ def check_config(config, schema):
     problems += _design_point_keys(config)
     if problems:
         return problems
+    problems = one_spiral_angle(config, given)
+    if problems:
+        return problems
     fill_defaults(config, schema)
     pairs = {}  # the design points that pass the physics and the resource guard
     problems = (_name_problems(config) + _settings_problems(config) + run_cost_problems(config)
                 + _statistics_problems(config) + _design_problems(config, pairs))
-    # the later stages' checks import numba's kernels: imported where they run
-    from lsbg.optimise.checks import optimise_problems
-    from lsbg.rating.config import rating_problems
-    from lsbg.tooth.config import tooth_problems
+    from lsbg.optimise.checks import optimise_problems  # (imports numba's kernels)
 
-    problems += load_problems(config, pairs)
-    problems += _contact_state_problems(config, pairs) + tooth_problems(
-        config, pairs, *memory_limit_gb(config), answer=_kept_answer) + rating_problems(
-        config, pairs)
-    problems += optimise_problems(config)
+    problems += load_problems(config, pairs) + _flank_problems(config) + optimise_problems(config)
+    if analyses:
+        problems += analysis_problems(config, pairs)
     if not problems and config.get("sweeps"):
         problems += _sweeps_problems(config, schema, pairs)
-    if not problems and "line" in config["sweep"]["contact_models"]:
-        from lsbg.practice.checks import practice_problems
-
-        problems += practice_problems(config)
+    if analyses and not problems:
+        problems += practice_analysis_problems(config)
     return list(dict.fromkeys(problems))
 
 
-#: The design point's own keys: a command of one point takes them, the study its sweep.
-_POINT_KEYS = {"trace": "sweep.traces", "spiral_angle_deg": "sweep.spiral_angles_deg and "
-                                                            "paper_spiral_angle_deg"}
+def analysis_problems(config, pairs=None):
+    """Steps 8 to 10: the checks that run an analysis at the design points.
+
+    Parameters
+    ----------
+    config : dict
+        A configuration that passed :func:`check_config` with ``analyses=False``
+        (defaults filled in).
+    pairs : dict, optional
+        ``(trace, spiral label) -> lsbg.gear.geometry.GearPair`` of the design
+        points that passed step 6 and 7; default: built here.
+
+    Returns
+    -------
+    list of str
+        One line per problem, as :func:`check_config`'s.
+    """
+    # these import numba's kernels and scipy: imported where they run
+    from lsbg.rating.config import rating_problems
+    from lsbg.tooth.config import tooth_problems
+
+    if pairs is None:
+        pairs = {}
+        _design_problems(config, pairs)
+    problems = _contact_state_problems(config, pairs)
+    problems += tooth_problems(config, pairs, *memory_limit_gb(config))
+    problems += rating_problems(config, pairs)
+    return list(dict.fromkeys(problems))
+
+
+def practice_analysis_problems(config):
+    """Step 12: the practice design (:func:`lsbg.practice.checks.practice_problems`), made
+    by its rules (scipy's root finding) when the study runs the line model; [] otherwise."""
+    if "line" not in config["sweep"]["contact_models"]:
+        return []
+    from lsbg.practice.checks import practice_problems
+
+    return practice_problems(config)
 
 
 def _design_point_keys(config):
-    """A design point's coordinates given in the ``design`` section: the study's come from
-    its sweep (``lsbg geometry`` and the rules set them per point)."""
+    """The trace given in the ``design`` section: the study's come from ``sweep.traces``
+    (``lsbg geometry`` and the rules set it per point)."""
     design = config.get("design") if isinstance(config.get("design"), dict) else {}
-    return [f"design.{key} = {design[key]!r}: the study's design points are set by {where}; "
-            f"remove it here" for key, where in _POINT_KEYS.items() if key in design]
+    return [f"design.trace = {design['trace']!r}: the study's design points are set by "
+            f"sweep.traces; remove it here"] if "trace" in design else []
+
+
+#: The keys that set the study's spiral angles when design.spiral_angle_deg does not.
+_ANGLE_KEYS = ("paper_spiral_angle_deg", "sweep.spiral_angles_deg")
+
+
+def one_spiral_angle(config, given=None):
+    """A study's spiral angles, set in one place (a schema-valid ``config``; in place).
+
+    ``design.spiral_angle_deg: 30`` is a study of that one spiral angle: the paper's
+    point and the sweep's only angle (``paper_spiral_angle_deg`` and
+    ``sweep.spiral_angles_deg`` set to it, the key removed from ``design``); the
+    study's own files must then set neither of those. (Without it, the paper's angle
+    must be one of the sweep's: :func:`check_config`'s file-name step.)
+
+    Parameters
+    ----------
+    config : dict
+        The merged configuration (workflow/config.yaml and the study's files).
+    given : dict, optional
+        What the study's own files set (:func:`check_config`'s ``given``); None
+        (unknown, e.g. a merge done in Python): ``design.spiral_angle_deg`` wins.
+
+    Returns
+    -------
+    list of str
+        One line if the study's files set the angle twice, naming what to remove.
+    """
+    design = config["design"]
+    if "spiral_angle_deg" in design:
+        angle = design["spiral_angle_deg"]
+        also = {key: _value_at(given or {}, key) for key in _ANGLE_KEYS}
+        also = {key: value for key, value in also.items() if value is not None}
+        if also:
+            named = " and ".join(f"{key} = {value!r}" for key, value in also.items())
+            return [f"design.spiral_angle_deg = {angle!r}: sets the study's one spiral angle "
+                    f"(its paper point and its sweep); remove {named}, or remove "
+                    f"design.spiral_angle_deg and list the angles in sweep.spiral_angles_deg "
+                    f"with paper_spiral_angle_deg among them"]
+        config["design"] = {k: v for k, v in design.items() if k != "spiral_angle_deg"}
+        config["paper_spiral_angle_deg"] = angle
+        config["sweep"] = {**config["sweep"], "spiral_angles_deg": [angle]}
+    return []
+
+
+def _paper_angle_problems(config):
+    """The paper's spiral angle outside the sweep: one more design point, unasked."""
+    paper, swept = config["paper_spiral_angle_deg"], config["sweep"]["spiral_angles_deg"]
+    if number_label(paper) in {number_label(a) for a in swept}:
+        return []
+    return [f"paper_spiral_angle_deg = {paper!r}: not one of sweep.spiral_angles_deg = "
+            f"{swept!r}; for a study of that one angle set design.spiral_angle_deg: {paper!r} "
+            f"instead of both keys, or add {paper!r} to sweep.spiral_angles_deg"]
+
+
+def _value_at(config, dotted):
+    """``config``'s value at a dotted key path, or None."""
+    for key in dotted.split("."):
+        if not isinstance(config, dict) or key not in config:
+            return None
+        config = config[key]
+    return config
 
 
 def _sweeps_problems(config, schema, pairs):
@@ -198,7 +296,7 @@ def _name_problems(config):
     from lsbg.experiments.checks import case_name_problems
 
     return (label_clashes(config["sweep"]["spiral_angles_deg"], "sweep.spiral_angles_deg")
-            + case_name_problems(config))
+            + _paper_angle_problems(config) + case_name_problems(config))
 
 
 def _settings_problems(config):
@@ -231,21 +329,35 @@ def _design_problems(config, pairs=None):
 
 
 # ------------------------------------------------------------ contact state
+def _flank_problems(config):
+    """What the contact state's sections say without a TCA: odd map steps
+    (:func:`lsbg.tca.checks.map_steps_problems`) and flanks that lsbg can build
+    (:meth:`lsbg.tca.separation.RealFlanks.from_config`: a topography file that is
+    there, a relief of its own keys)."""
+    from lsbg.tca.checks import map_steps_problems
+    from lsbg.tca.separation import RealFlanks
+
+    try:
+        RealFlanks.from_config(config["flank_modification"], config["misalignment"])
+    except ValueError as error:
+        return map_steps_problems(config["misalignment_map"]) + [str(error)]
+    return map_steps_problems(config["misalignment_map"])
+
+
 def _contact_state_problems(config, pairs):
     """The flank modification, the misalignment and the V-H map's corners at each
     point of ``pairs`` (:mod:`lsbg.tca.checks`): one line per key at fault, naming
-    the design points where it fails."""
-    from lsbg.tca.checks import map_steps_problems, user_lines
+    the design points where it fails. Only for sections :func:`_flank_problems` passes."""
+    from lsbg.tca.checks import user_lines
 
     section = config["misalignment_map"]
-    odd = map_steps_problems(section)
-    if odd or not pairs:
-        return odd
+    if _flank_problems(config) or not pairs:
+        return []
     failing = {}  # key path -> [first line, design points]
     for (trace, spiral), pair in pairs.items():
         map_config = {"axes": list(section["axes"]), "range": section["range"],
                       "steps": map_steps(config, spiral)}
-        lines = user_lines(_point_contact_state(pair, config, trace, spiral, map_config), config)
+        lines = user_lines(_point_contact_state(pair, config, map_config), config)
         for line in lines:
             key = line.split(" = ", 1)[0].split(":", 1)[0]
             where = failing.setdefault(key, [line, []])[1]
@@ -256,10 +368,10 @@ def _contact_state_problems(config, pairs):
 
 
 def check_cache_dir():
-    """Where the check keeps the answers of its costly parts (each design point's contact
-    state and FE fillets): ``config-checks`` in lsbg's machine-wide cache
-    (:func:`lsbg.numba_cache.numba_cache_root`, beside numba's compiled kernels); None
-    (kept by the process only) if ``LSBG_CHECK_CACHE=off``."""
+    """The folder of lsbg's machine-wide cache that ``workflow/rules/common.smk``'s
+    ``sources()`` keeps its import listings in (``config-checks`` beside numba's
+    kernels, :func:`lsbg.numba_cache.numba_cache_root`); None (kept by the process
+    only) if ``LSBG_CHECK_CACHE=off``. The configuration check keeps nothing."""
     if os.environ.get("LSBG_CHECK_CACHE", "").lower() in ("0", "off", "no", "false"):
         return None
     from lsbg.numba_cache import numba_cache_root
@@ -267,35 +379,8 @@ def check_cache_dir():
     return numba_cache_root() / "config-checks"
 
 
-def _kept_answer(modules, inputs, compute):
-    """``compute()`` or its answer kept in :func:`check_cache_dir`
-    (:func:`lsbg.study.stages.cached_answer`)."""
-    from lsbg.study.stages import cached_answer
+def _point_contact_state(pair, config, map_config):
+    """lsbg's contact-state problems at one design point (:func:`lsbg.tca.checks.point_problems`)."""
+    from lsbg.tca.checks import point_problems
 
-    return cached_answer(check_cache_dir(), modules, inputs, compute)
-
-
-def _point_contact_state(pair, config, trace, spiral, map_config):
-    """lsbg's contact-state problems at one design point
-    (:func:`lsbg.tca.checks.point_problems`), kept for the next start
-    (:func:`lsbg.study.stages.cached_answer`: asked again when an input, the topography
-    file's content or a source that lsbg.tca.checks runs changes)."""
-    from importlib import metadata
-
-    modification, misalignment = config["flank_modification"], config["misalignment"]
-    name = modification.get("topography_file")
-    try:
-        topography = hashlib.sha256(Path(name).read_bytes()).hexdigest() if name else None
-    except OSError:
-        topography = "missing"
-    inputs = {"design": {**config["design"], "trace": trace, "spiral_angle_deg": float(spiral)},
-              "flank_modification": modification, "misalignment": misalignment,
-              "misalignment_map": map_config, "topography": topography,
-              "versions": [np.__version__, metadata.version("numba")]}
-
-    def compute():
-        from lsbg.tca.checks import point_problems
-
-        return point_problems(pair, config, map_config)
-
-    return _kept_answer("tca.checks", inputs, compute)
+    return point_problems(pair, config, map_config)
