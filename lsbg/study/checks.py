@@ -207,13 +207,14 @@ _ANGLE_KEYS = ("paper_spiral_angle_deg", "sweep.spiral_angles_deg")
 
 
 def one_spiral_angle(config, given=None):
-    """A study's spiral angles, set in one place (a schema-valid ``config``; in place).
+    """A study's spiral angle, set in one place (a schema-valid ``config``; in place).
 
-    ``design.spiral_angle_deg: 30`` is a study of that one spiral angle: the paper's
-    point and the sweep's only angle (``paper_spiral_angle_deg`` and
-    ``sweep.spiral_angles_deg`` set to it, the key removed from ``design``); the
-    study's own files must then set neither of those. (Without it, the paper's angle
-    must be one of the sweep's: :func:`check_config`'s file-name step.)
+    ``design.spiral_angle_deg: 30`` is the study's design point: the paper's point
+    (``paper_spiral_angle_deg`` set to it) and, unless the study's own files list
+    the sweep's angles in ``sweep.spiral_angles_deg`` (30 among them), the sweep's
+    only angle; the key is then removed from ``design`` (the rules set it per point).
+    (Without it, the paper's angle must be one of the sweep's: :func:`check_config`'s
+    file-name step.)
 
     Parameters
     ----------
@@ -221,27 +222,28 @@ def one_spiral_angle(config, given=None):
         The merged configuration (workflow/config.yaml and the study's files).
     given : dict, optional
         What the study's own files set (:func:`check_config`'s ``given``); None
-        (unknown, e.g. a merge done in Python): ``design.spiral_angle_deg`` wins.
+        (unknown, e.g. a merge done in Python): the sweep is the one angle.
 
     Returns
     -------
     list of str
-        One line if the study's files set the angle twice, naming what to remove.
+        One line if the study's files set the angle twice apart, naming what to change.
     """
     design = config["design"]
-    if "spiral_angle_deg" in design:
-        angle = design["spiral_angle_deg"]
-        also = {key: _value_at(given or {}, key) for key in _ANGLE_KEYS}
-        also = {key: value for key, value in also.items() if value is not None}
-        if also:
-            named = " and ".join(f"{key} = {value!r}" for key, value in also.items())
-            return [f"design.spiral_angle_deg = {angle!r}: sets the study's one spiral angle "
-                    f"(its paper point and its sweep); remove {named}, or remove "
-                    f"design.spiral_angle_deg and list the angles in sweep.spiral_angles_deg "
-                    f"with paper_spiral_angle_deg among them"]
-        config["design"] = {k: v for k, v in design.items() if k != "spiral_angle_deg"}
-        config["paper_spiral_angle_deg"] = angle
-        config["sweep"] = {**config["sweep"], "spiral_angles_deg": [angle]}
+    if "spiral_angle_deg" not in design:
+        return []
+    angle, given = design["spiral_angle_deg"], given or {}
+    paper, swept = (_value_at(given, key) for key in _ANGLE_KEYS)
+    if paper is not None and number_label(paper) != number_label(angle):
+        return [f"design.spiral_angle_deg = {angle!r}: the study's design point, and "
+                f"paper_spiral_angle_deg = {paper!r} another; remove paper_spiral_angle_deg"]
+    if swept is not None and number_label(angle) not in {number_label(a) for a in swept}:
+        return [f"design.spiral_angle_deg = {angle!r}: not one of sweep.spiral_angles_deg = "
+                f"{swept!r}; add {angle!r} there, or remove sweep.spiral_angles_deg for a "
+                f"study of that one angle"]
+    config["design"] = {k: v for k, v in design.items() if k != "spiral_angle_deg"}
+    config["paper_spiral_angle_deg"] = angle
+    config["sweep"] = {**config["sweep"], "spiral_angles_deg": swept or [angle]}
     return []
 
 

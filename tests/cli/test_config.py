@@ -83,4 +83,5 @@ def test_the_study_files_set_the_spiral_angle_once(tmp_path, capsys):
     twice.write_text("paper_spiral_angle_deg: 30\n")
     assert cli.main(["check-config", str(REPO / "workflow" / "config-test.yaml"),
                      str(twice)]) == 2
-    assert "remove paper_spiral_angle_deg = 30" in capsys.readouterr().err
+    assert ("design.spiral_angle_deg = 35: the study's design point, and "
+            "paper_spiral_angle_deg = 30 another" in capsys.readouterr().err)

@@ -459,8 +459,8 @@ END_TO_END = {
                        "sweep.spiral_angles_deg[1] = 35.0000001"),
     "too few samples": ("simulation:\n  samples: 2\n", "simulation.samples = 2"),
     "even map steps": ("misalignment_map:\n  steps: 8\n", "misalignment_map.steps = 8"),
-    "spiral angle twice": ("design:\n  spiral_angle_deg: 30\nsweep:\n  spiral_angles_deg: [35]\n",
-                           "design.spiral_angle_deg = 30: sets the study's one spiral angle"),
+    "spiral angle twice": ("design:\n  spiral_angle_deg: 30\npaper_spiral_angle_deg: 35\n",
+                           "design.spiral_angle_deg = 30: the study's design point"),
 }
 
 
@@ -509,21 +509,28 @@ def test_an_analysis_problem_stops_the_run_before_any_job(tmp_path):
 
 
 def test_one_key_sets_the_studys_spiral_angle(tmp_path):
-    """design.spiral_angle_deg in a study's file is its paper point and its sweep; set with
-    either of the two keys it replaces, or a paper angle outside the sweep: refused,
-    saying what to set."""
+    """design.spiral_angle_deg in a study's file is its paper point and, unless the file
+    lists the sweep's angles (it among them), its sweep; set apart from either, or a paper
+    angle outside the sweep: refused, saying what to set."""
     given = {"design": {"spiral_angle_deg": 30}}
     config = merge_config(load(), given)
     assert config_check.check_config(config, SCHEMA, given=given) == []
     assert list(plan.design_points(config)) == [("circular", "30"), ("logarithmic", "30")]
     assert "spiral_angle_deg" not in config["design"] and config["paper_spiral_angle_deg"] == 30
-    for also in ({"paper_spiral_angle_deg": 35}, {"sweep": {"spiral_angles_deg": [30, 35]}}):
+    # with the sweep's angles too (30 among them): the paper's point of that sweep
+    swept = merge_config(given, {"sweep": {"spiral_angles_deg": [30, 40]}})
+    config = merge_config(load(), swept)
+    assert config_check.check_config(config, SCHEMA, given=swept) == []
+    assert (config["paper_spiral_angle_deg"], config["sweep"]["spiral_angles_deg"]) == (30, [30, 40])
+    for also, problem in (({"paper_spiral_angle_deg": 35}, "design.spiral_angle_deg = 30: the "
+                           "study's design point, and paper_spiral_angle_deg = 35 another; "
+                           "remove paper_spiral_angle_deg"),
+                          ({"sweep": {"spiral_angles_deg": [35]}}, "design.spiral_angle_deg = "
+                           "30: not one of sweep.spiral_angles_deg = [35]; add 30 there, or "
+                           "remove sweep.spiral_angles_deg for a study of that one angle")):
         twice = merge_config(given, also)
-        (problem,) = config_check.check_config(merge_config(load(), twice), SCHEMA, given=twice)
-        assert problem.startswith("design.spiral_angle_deg = 30: sets the study's one spiral "
-                                  "angle (its paper point and its sweep); remove "), problem
-        assert ("paper_spiral_angle_deg = 35" in problem) != ("spiral_angles_deg = [30, 35]"
-                                                              in problem), problem
+        assert config_check.check_config(merge_config(load(), twice), SCHEMA,
+                                         given=twice) == [problem]
     # the former two keys of a study at 30 deg: the paper's angle alone is one more point
     config = merge_config(load(), {"sweep": {"spiral_angles_deg": [35]},
                                    "paper_spiral_angle_deg": 30})
