@@ -2,7 +2,12 @@
 
 :func:`check_config` is the one check ``workflow/rules/common.smk`` calls
 while Snakemake reads the workflow (``snakemake -n`` included), before the
-DAG is built. It returns every problem as one line that starts with the
+DAG is built, with ``analyses=False``: steps 8 to 10 and 12 below run an
+analysis at the design points (a TCA, an FE section, an ISO 10300 rating,
+the practice design's root finding) and are :func:`analysis_problems` and
+:func:`practice_analysis_problems`, which the Snakefile's ``onstart`` runs in
+the submitting Snakemake before the first job. Nothing is kept between runs.
+It returns every problem as one line that starts with the
 user's key path and value, in the configuration's units (``design.face_width_mm
 = 500``, never lsbg's SI name ``face_width = 0.5``). In order (each step
 assumes the ones before it passed):
@@ -10,7 +15,8 @@ assumes the ones before it passed):
 1. every number is finite: JSON Schema's range keywords let NaN through
    (every comparison with NaN is false) and inf through any lower bound;
 2. the schema (workflow/schemas/config.schema.yaml): types, ranges, enums,
-   list lengths, duplicates, required and unknown keys;
+   list lengths, duplicates, required and unknown keys; then the study's spiral
+   angle in one key (:func:`one_spiral_angle`: ``design.spiral_angle_deg``);
 
 then, with the schema's defaults filled in (:func:`fill_defaults`, as
 ``snakemake.utils.validate`` does), all of these (each a function of the
@@ -18,7 +24,7 @@ configuration that returns its problem lines):
 
 3. file names: sweep values that differ but give the same file name
    (:func:`lsbg.files.label_clashes`: file names keep 6 decimals), the
-   spiral angles here, the sensitivity factors in
+   spiral angles here (and the paper's among them), the sensitivity factors in
    :func:`lsbg.experiments.checks.case_name_problems`;
 4. the settings as lsbg's commands will read them: the paper engine and each
    engine's simulation settings (:func:`lsbg.dynamics.checks.engine_problems`),
@@ -43,20 +49,16 @@ configuration that returns its problem lines):
    (:func:`~lsbg.study.resources.run_cost_problems`); the load and the pinion
    speed against what the teeth of each contact model can carry and the
    full-rate record can resolve (:func:`~lsbg.study.resources.load_problems`);
-8. the contact state at each design point that passed 6 and 7
-   (:mod:`lsbg.tca.checks`: odd map steps first, then
-   :func:`~lsbg.tca.checks.contact_state_problems` at each point): the relief
+8. the contact state: odd map steps and flanks lsbg can build (a topography
+   file that is there) while parsing; at each design point that passed 6 and 7
+   (:func:`~lsbg.tca.checks.contact_state_problems`, in the analyses): the relief
    within the backlash, the misalignment and the V-H map's corners neither
-   losing contact nor closing the backlash; kept here
-   (:func:`check_cache_dir`): its quick TCAs and numba's start cost
-   about 1.2 s once per configuration;
+   losing contact nor closing the backlash;
 9. the tooth section, the compliance case and each FE compliance's estimated
-   cost (:func:`lsbg.tooth.config.tooth_problems`); its fillet check (the FE
-   segment's sections with scipy's splines, whose import alone takes 0.7 s) kept
-   as the contact state's;
+   cost and fillets (:func:`lsbg.tooth.config.tooth_problems`, in the analyses);
 10. the rating section and the paper point's ISO 10300 rating
-    (:func:`lsbg.rating.config.rating_problems`), and the ease-off optimisation's
-    section and its budget (:func:`lsbg.optimise.checks.optimise_problems`);
+    (:func:`lsbg.rating.config.rating_problems`, in the analyses), and the ease-off
+    optimisation's section and its budget (:func:`lsbg.optimise.checks.optimise_problems`);
 11. the sweeps (:func:`lsbg.study.sweep_checks.sweep_problems`): every point of every
     sweep through the schema and steps 4, 6 and 7 as if its values were set in
     their own sections, at the sweep's own design points; points that give one
@@ -67,8 +69,8 @@ configuration that returns its problem lines):
 A ``load_sweep`` section (the former extension) gets one line naming the
 ``sweeps`` entry that replaces it (:func:`lsbg.study.sweep_checks.load_sweep_moved`).
 Each stage's checks live in its own package (a function of the configuration
-that returns its problem lines); this module only calls them, shares the
-design points that passed between them, and keeps the contact state's answers.
+that returns its problem lines); this module only calls them and shares the
+design points that passed between them.
 
 A YAML syntax error in a ``--configfile`` never reaches this module:
 Snakemake 9 reads that file before the Snakefile and stops with
