@@ -302,12 +302,18 @@ BEYOND_SCHEMA = {
 }
 
 
-@pytest.mark.parametrize("name", BEYOND_SCHEMA)
-def test_checks_beyond_the_schema_name_the_key_and_value(name):
+def beyond_schema(name):
+    """The test study with the overrides of BEYOND_SCHEMA[name], and the key it names."""
     overrides, key = BEYOND_SCHEMA[name]
     config = base()
     for section, values in overrides.items():
         config[section] = {**config.get(section, {}), **values}
+    return config, key
+
+
+@pytest.mark.parametrize("name", BEYOND_SCHEMA)
+def test_checks_beyond_the_schema_name_the_key_and_value(name):
+    config, key = beyond_schema(name)
     problems = config_check.check_config(config, SCHEMA)
     assert_rejected(problems, key)
     if name.endswith("module"):  # the key at fault, in mm, not lsbg's metres
@@ -326,10 +332,7 @@ ANALYSED = {"crowning beyond the backlash", "bias beyond the backlash", "a gear 
 
 @pytest.mark.parametrize("name", BEYOND_SCHEMA)
 def test_all_but_the_analyses_are_found_while_the_workflow_is_parsed(name):
-    overrides, key = BEYOND_SCHEMA[name]
-    config = base()
-    for section, values in overrides.items():
-        config[section] = {**config.get(section, {}), **values}
+    config, key = beyond_schema(name)
     problems = config_check.check_config(config, SCHEMA, analyses=False)
     if name in ANALYSED:
         assert problems == [], problems
