@@ -68,6 +68,7 @@ for extension in config["extensions"]:
 # run forks its jobs from the job server and runs without Snakemake's default job
 # rate limit, whose timers kept Snakemake itself busy (lsbg.study.job_order).
 onstart:
+    check_analyses()
     plan.write_study_config(FILES["study_config"], config)
     start_job_server()
     plan.lift_job_rate_limit(workflow)

@@ -46,10 +46,11 @@ def run_check_config(args):
     base = args.workflow_dir / "config.yaml"
     if not base.is_file():
         raise CommandError(f"--workflow-dir {args.workflow_dir}: no config.yaml there")
-    config = _read_yaml(base, "workflow config")
+    given = {}  # what the study's files set over the workflow's config.yaml
     for path in args.configfiles:
-        config = merge_config(config, _read_yaml(path, "configfile"))
-    problems = check_config(config, _read_yaml(SCHEMA_PATH, "schema"))
+        given = merge_config(given, _read_yaml(path, "configfile"))
+    config = merge_config(_read_yaml(base, "workflow config"), given)
+    problems = check_config(config, _read_yaml(SCHEMA_PATH, "schema"), given=given)
     if problems:
         for line in problems:
             print(f"invalid configuration: {line}", file=sys.stderr)

@@ -2,7 +2,12 @@
 
 :func:`check_config` is the one check ``workflow/rules/common.smk`` calls
 while Snakemake reads the workflow (``snakemake -n`` included), before the
-DAG is built. It returns every problem as one line that starts with the
+DAG is built, with ``analyses=False``: steps 8 to 10 and 12 below run an
+analysis at the design points (a TCA, an FE section, an ISO 10300 rating,
+the practice design's root finding) and are :func:`analysis_problems` and
+:func:`practice_analysis_problems`, which the Snakefile's ``onstart`` runs in
+the submitting Snakemake before the first job. Nothing is kept between runs.
+It returns every problem as one line that starts with the
 user's key path and value, in the configuration's units (``design.face_width_mm
 = 500``, never lsbg's SI name ``face_width = 0.5``). In order (each step
 assumes the ones before it passed):
@@ -10,7 +15,8 @@ assumes the ones before it passed):
 1. every number is finite: JSON Schema's range keywords let NaN through
    (every comparison with NaN is false) and inf through any lower bound;
 2. the schema (lsbg/schemas/config.schema.yaml): types, ranges, enums,
-   list lengths, duplicates, required and unknown keys;
+   list lengths, duplicates, required and unknown keys; then the study's spiral
+   angle in one key (:func:`one_spiral_angle`: ``design.spiral_angle_deg``);
 
 then, with the schema's defaults filled in (:func:`fill_defaults`, as
 ``snakemake.utils.validate`` does), all of these (each a function of the
@@ -18,7 +24,7 @@ configuration that returns its problem lines):
 
 3. file names: sweep values that differ but give the same file name
    (:func:`lsbg.files.label_clashes`: file names keep 6 decimals), the
-   spiral angles here, the sensitivity factors in
+   spiral angles here (and the paper's among them), the sensitivity factors in
    :func:`lsbg.experiments.checks.case_name_problems`;
 4. the settings as lsbg's commands will read them: the paper engine and each
    engine's simulation settings (:func:`lsbg.dynamics.checks.engine_problems`),
@@ -43,20 +49,16 @@ configuration that returns its problem lines):
    (:func:`~lsbg.study.resources.run_cost_problems`); the load and the pinion
    speed against what the teeth of each contact model can carry and the
    full-rate record can resolve (:func:`~lsbg.study.resources.load_problems`);
-8. the contact state at each design point that passed 6 and 7
-   (:mod:`lsbg.tca.checks`: odd map steps first, then
-   :func:`~lsbg.tca.checks.contact_state_problems` at each point): the relief
+8. the contact state: odd map steps and flanks lsbg can build (a topography
+   file that is there) while parsing; at each design point that passed 6 and 7
+   (:func:`~lsbg.tca.checks.contact_state_problems`, in the analyses): the relief
    within the backlash, the misalignment and the V-H map's corners neither
-   losing contact nor closing the backlash; kept here
-   (:func:`check_cache_dir`): its quick TCAs and numba's start cost
-   about 1.2 s once per configuration;
+   losing contact nor closing the backlash;
 9. the tooth section, the compliance case and each FE compliance's estimated
-   cost (:func:`lsbg.tooth.config.tooth_problems`); its fillet check (the FE
-   segment's sections with scipy's splines, whose import alone takes 0.7 s) kept
-   as the contact state's;
+   cost and fillets (:func:`lsbg.tooth.config.tooth_problems`, in the analyses);
 10. the rating section and the paper point's ISO 10300 rating
-    (:func:`lsbg.rating.config.rating_problems`), and the ease-off optimisation's
-    section and its budget (:func:`lsbg.optimise.checks.optimise_problems`);
+    (:func:`lsbg.rating.config.rating_problems`, in the analyses), and the ease-off
+    optimisation's section and its budget (:func:`lsbg.optimise.checks.optimise_problems`);
 11. the sweeps (:func:`lsbg.study.sweep_checks.sweep_problems`): every point of every
     sweep through the schema and steps 4, 6 and 7 as if its values were set in
     their own sections, at the sweep's own design points; points that give one
@@ -67,8 +69,8 @@ configuration that returns its problem lines):
 A ``load_sweep`` section (the former extension) gets one line naming the
 ``sweeps`` entry that replaces it (:func:`lsbg.study.sweep_checks.load_sweep_moved`).
 Each stage's checks live in its own package (a function of the configuration
-that returns its problem lines); this module only calls them, shares the
-design points that passed between them, and keeps the contact state's answers.
+that returns its problem lines); this module only calls them and shares the
+design points that passed between them.
 
 A YAML syntax error in a ``--configfile`` never reaches this module:
 Snakemake 9 reads that file before the Snakefile and stops with
@@ -81,11 +83,7 @@ Snakemake does, names the file and line of such an error, and runs
 
 from __future__ import annotations
 
-import hashlib
 import os
-from pathlib import Path
-
-import numpy as np
 
 from lsbg.config import fill_defaults, key_path, nonfinite_problems, schema_problems
 from lsbg.files import label_clashes, number_label
@@ -97,12 +95,12 @@ from lsbg.study.resources import (engines_run, geometry_problem, load_problems,
                                   speed_sweep_problems)
 
 __all__ = [
-    "key_path", "check_config", "nonfinite_problems", "schema_problems", "fill_defaults",
+    "key_path", "check_config", "analysis_problems", "nonfinite_problems", "schema_problems", "fill_defaults",
     "check_cache_dir", "AD_MIN_SAMPLES"
 ]
 
 
-def check_config(config, schema):
+def check_config(config, schema, analyses=True, given=None):
     """Every problem of a workflow configuration; fills in the schema's defaults.
 
     Parameters
@@ -112,6 +110,15 @@ def check_config(config, schema):
         the schema's defaults are filled in once it passes the schema.
     schema : dict
         lsbg/schemas/config.schema.yaml, loaded.
+    analyses : bool, optional
+        Also run :func:`analysis_problems` (steps 8 to 10: a TCA and an ISO
+        10300 rating at the design points) on the points that pass the others.
+        The workflow checks without them while it is parsed (``snakemake -n``)
+        and runs them in its ``onstart`` handler, before any job.
+    given : dict, optional
+        What the study's own files set over workflow/config.yaml (Snakemake's
+        ``overwrite_config``: the ``--configfile`` files and ``--config``), for
+        :func:`one_spiral_angle`; default: unknown.
 
     Returns
     -------
@@ -130,40 +137,135 @@ def check_config(config, schema):
     problems += _design_point_keys(config)
     if problems:
         return problems
+    problems = one_spiral_angle(config, given)
+    if problems:
+        return problems
     fill_defaults(config, schema)
     pairs = {}  # the design points that pass the physics and the resource guard
     problems = (_name_problems(config) + _settings_problems(config) + run_cost_problems(config)
                 + _statistics_problems(config) + _design_problems(config, pairs))
-    # the later stages' checks import numba's kernels: imported where they run
-    from lsbg.optimise.checks import optimise_problems
-    from lsbg.rating.config import rating_problems
-    from lsbg.tooth.config import tooth_problems
+    from lsbg.optimise.checks import optimise_problems  # (imports numba's kernels)
 
-    problems += load_problems(config, pairs)
-    problems += _contact_state_problems(config, pairs) + tooth_problems(
-        config, pairs, *memory_limit_gb(config), answer=_kept_answer) + rating_problems(
-        config, pairs)
-    problems += optimise_problems(config)
+    problems += load_problems(config, pairs) + _flank_problems(config) + optimise_problems(config)
+    if analyses:
+        problems += analysis_problems(config, pairs)
     if not problems and config.get("sweeps"):
         problems += _sweeps_problems(config, schema, pairs)
-    if not problems and "line" in config["sweep"]["contact_models"]:
-        from lsbg.practice.checks import practice_problems
-
-        problems += practice_problems(config)
+    if analyses and not problems:
+        problems += practice_analysis_problems(config)
     return list(dict.fromkeys(problems))
 
 
-#: The design point's own keys: a command of one point takes them, the study its sweep.
-_POINT_KEYS = {"trace": "sweep.traces", "spiral_angle_deg": "sweep.spiral_angles_deg and "
-                                                            "paper_spiral_angle_deg"}
+def analysis_problems(config, pairs=None):
+    """Steps 8 to 10: the checks that run an analysis at the design points.
+
+    Parameters
+    ----------
+    config : dict
+        A configuration that passed :func:`check_config` with ``analyses=False``
+        (defaults filled in).
+    pairs : dict, optional
+        ``(trace, spiral label) -> lsbg.gear.geometry.GearPair`` of the design
+        points that passed step 6 and 7; default: built here.
+
+    Returns
+    -------
+    list of str
+        One line per problem, as :func:`check_config`'s.
+    """
+    # these import numba's kernels and scipy: imported where they run
+    from lsbg.rating.config import rating_problems
+    from lsbg.tooth.config import tooth_problems
+
+    if pairs is None:
+        pairs = {}
+        _design_problems(config, pairs)
+    problems = _contact_state_problems(config, pairs)
+    problems += tooth_problems(config, pairs, *memory_limit_gb(config))
+    problems += rating_problems(config, pairs)
+    return list(dict.fromkeys(problems))
+
+
+def practice_analysis_problems(config):
+    """Step 12: the practice design (:func:`lsbg.practice.checks.practice_problems`), made
+    by its rules (scipy's root finding) when the study runs the line model; [] otherwise."""
+    if "line" not in config["sweep"]["contact_models"]:
+        return []
+    from lsbg.practice.checks import practice_problems
+
+    return practice_problems(config)
 
 
 def _design_point_keys(config):
-    """A design point's coordinates given in the ``design`` section: the study's come from
-    its sweep (``lsbg geometry`` and the rules set them per point)."""
+    """The trace given in the ``design`` section: the study's come from ``sweep.traces``
+    (``lsbg geometry`` and the rules set it per point)."""
     design = config.get("design") if isinstance(config.get("design"), dict) else {}
-    return [f"design.{key} = {design[key]!r}: the study's design points are set by {where}; "
-            f"remove it here" for key, where in _POINT_KEYS.items() if key in design]
+    return [f"design.trace = {design['trace']!r}: the study's design points are set by "
+            f"sweep.traces; remove it here"] if "trace" in design else []
+
+
+#: The keys that set the study's spiral angles when design.spiral_angle_deg does not.
+_ANGLE_KEYS = ("paper_spiral_angle_deg", "sweep.spiral_angles_deg")
+
+
+def one_spiral_angle(config, given=None):
+    """A study's spiral angle, set in one place (a schema-valid ``config``; in place).
+
+    ``design.spiral_angle_deg: 30`` is the study's design point: the paper's point
+    (``paper_spiral_angle_deg`` set to it) and, unless the study's own files list
+    the sweep's angles in ``sweep.spiral_angles_deg`` (30 among them), the sweep's
+    only angle; the key is then removed from ``design`` (the rules set it per point).
+    (Without it, the paper's angle must be one of the sweep's: :func:`check_config`'s
+    file-name step.)
+
+    Parameters
+    ----------
+    config : dict
+        The merged configuration (workflow/config.yaml and the study's files).
+    given : dict, optional
+        What the study's own files set (:func:`check_config`'s ``given``); None
+        (unknown, e.g. a merge done in Python): the sweep is the one angle.
+
+    Returns
+    -------
+    list of str
+        One line if the study's files set the angle twice apart, naming what to change.
+    """
+    design = config["design"]
+    if "spiral_angle_deg" not in design:
+        return []
+    angle, given = design["spiral_angle_deg"], given or {}
+    paper, swept = (_value_at(given, key) for key in _ANGLE_KEYS)
+    if paper is not None and number_label(paper) != number_label(angle):
+        return [f"design.spiral_angle_deg = {angle!r}: the study's design point, and "
+                f"paper_spiral_angle_deg = {paper!r} another; remove paper_spiral_angle_deg"]
+    if swept is not None and number_label(angle) not in {number_label(a) for a in swept}:
+        return [f"design.spiral_angle_deg = {angle!r}: not one of sweep.spiral_angles_deg = "
+                f"{swept!r}; add {angle!r} there, or remove sweep.spiral_angles_deg for a "
+                f"study of that one angle"]
+    config["design"] = {k: v for k, v in design.items() if k != "spiral_angle_deg"}
+    config["paper_spiral_angle_deg"] = angle
+    config["sweep"] = {**config["sweep"], "spiral_angles_deg": swept or [angle]}
+    return []
+
+
+def _paper_angle_problems(config):
+    """The paper's spiral angle outside the sweep: one more design point, unasked."""
+    paper, swept = config["paper_spiral_angle_deg"], config["sweep"]["spiral_angles_deg"]
+    if number_label(paper) in {number_label(a) for a in swept}:
+        return []
+    return [f"paper_spiral_angle_deg = {paper!r}: not one of sweep.spiral_angles_deg = "
+            f"{swept!r}; for a study of that one angle set design.spiral_angle_deg: {paper!r} "
+            f"instead of both keys, or add {paper!r} to sweep.spiral_angles_deg"]
+
+
+def _value_at(config, dotted):
+    """``config``'s value at a dotted key path, or None."""
+    for key in dotted.split("."):
+        if not isinstance(config, dict) or key not in config:
+            return None
+        config = config[key]
+    return config
 
 
 def _sweeps_problems(config, schema, pairs):
@@ -198,7 +300,7 @@ def _name_problems(config):
     from lsbg.experiments.checks import case_name_problems
 
     return (label_clashes(config["sweep"]["spiral_angles_deg"], "sweep.spiral_angles_deg")
-            + case_name_problems(config))
+            + _paper_angle_problems(config) + case_name_problems(config))
 
 
 def _settings_problems(config):
@@ -231,21 +333,35 @@ def _design_problems(config, pairs=None):
 
 
 # ------------------------------------------------------------ contact state
+def _flank_problems(config):
+    """What the contact state's sections say without a TCA: odd map steps
+    (:func:`lsbg.tca.checks.map_steps_problems`) and flanks that lsbg can build
+    (:meth:`lsbg.tca.separation.RealFlanks.from_config`: a topography file that is
+    there, a relief of its own keys)."""
+    from lsbg.tca.checks import map_steps_problems
+    from lsbg.tca.separation import RealFlanks
+
+    try:
+        RealFlanks.from_config(config["flank_modification"], config["misalignment"])
+    except ValueError as error:
+        return map_steps_problems(config["misalignment_map"]) + [str(error)]
+    return map_steps_problems(config["misalignment_map"])
+
+
 def _contact_state_problems(config, pairs):
     """The flank modification, the misalignment and the V-H map's corners at each
     point of ``pairs`` (:mod:`lsbg.tca.checks`): one line per key at fault, naming
-    the design points where it fails."""
-    from lsbg.tca.checks import map_steps_problems, user_lines
+    the design points where it fails. Only for sections :func:`_flank_problems` passes."""
+    from lsbg.tca.checks import user_lines
 
     section = config["misalignment_map"]
-    odd = map_steps_problems(section)
-    if odd or not pairs:
-        return odd
+    if _flank_problems(config) or not pairs:
+        return []
     failing = {}  # key path -> [first line, design points]
     for (trace, spiral), pair in pairs.items():
         map_config = {"axes": list(section["axes"]), "range": section["range"],
                       "steps": map_steps(config, spiral)}
-        lines = user_lines(_point_contact_state(pair, config, trace, spiral, map_config), config)
+        lines = user_lines(_point_contact_state(pair, config, map_config), config)
         for line in lines:
             key = line.split(" = ", 1)[0].split(":", 1)[0]
             where = failing.setdefault(key, [line, []])[1]
@@ -256,10 +372,10 @@ def _contact_state_problems(config, pairs):
 
 
 def check_cache_dir():
-    """Where the check keeps the answers of its costly parts (each design point's contact
-    state and FE fillets): ``config-checks`` in lsbg's machine-wide cache
-    (:func:`lsbg.numba_cache.numba_cache_root`, beside numba's compiled kernels); None
-    (kept by the process only) if ``LSBG_CHECK_CACHE=off``."""
+    """The folder of lsbg's machine-wide cache that ``workflow/rules/common.smk``'s
+    ``sources()`` keeps its import listings in (``config-checks`` beside numba's
+    kernels, :func:`lsbg.numba_cache.numba_cache_root`); None (kept by the process
+    only) if ``LSBG_CHECK_CACHE=off``. The configuration check keeps nothing."""
     if os.environ.get("LSBG_CHECK_CACHE", "").lower() in ("0", "off", "no", "false"):
         return None
     from lsbg.numba_cache import numba_cache_root
@@ -267,35 +383,8 @@ def check_cache_dir():
     return numba_cache_root() / "config-checks"
 
 
-def _kept_answer(modules, inputs, compute):
-    """``compute()`` or its answer kept in :func:`check_cache_dir`
-    (:func:`lsbg.study.stages.cached_answer`)."""
-    from lsbg.study.stages import cached_answer
+def _point_contact_state(pair, config, map_config):
+    """lsbg's contact-state problems at one design point (:func:`lsbg.tca.checks.point_problems`)."""
+    from lsbg.tca.checks import point_problems
 
-    return cached_answer(check_cache_dir(), modules, inputs, compute)
-
-
-def _point_contact_state(pair, config, trace, spiral, map_config):
-    """lsbg's contact-state problems at one design point
-    (:func:`lsbg.tca.checks.point_problems`), kept for the next start
-    (:func:`lsbg.study.stages.cached_answer`: asked again when an input, the topography
-    file's content or a source that lsbg.tca.checks runs changes)."""
-    from importlib import metadata
-
-    modification, misalignment = config["flank_modification"], config["misalignment"]
-    name = modification.get("topography_file")
-    try:
-        topography = hashlib.sha256(Path(name).read_bytes()).hexdigest() if name else None
-    except OSError:
-        topography = "missing"
-    inputs = {"design": {**config["design"], "trace": trace, "spiral_angle_deg": float(spiral)},
-              "flank_modification": modification, "misalignment": misalignment,
-              "misalignment_map": map_config, "topography": topography,
-              "versions": [np.__version__, metadata.version("numba")]}
-
-    def compute():
-        from lsbg.tca.checks import point_problems
-
-        return point_problems(pair, config, map_config)
-
-    return _kept_answer("tca.checks", inputs, compute)
+    return point_problems(pair, config, map_config)

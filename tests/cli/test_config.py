@@ -53,3 +53,35 @@ def test_a_commands_config_reads_the_files_check_config_reads(tmp_path, capsys):
     assert err.startswith(f"lsbg summary: error: --config {bad}: not valid YAML (line 4, "
                           f"column 1") and err.count("\n") == 1, err
     assert not (tmp_path / "s.csv").exists()
+
+
+def test_a_broken_or_missing_file_is_one_line_from_a_real_process(tmp_path):
+    """The README's first command for a study of one's own: the file, line and column of
+    a YAML error, or the missing file, in one line (exit 2), no traceback."""
+    import subprocess
+    import sys
+
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("design:\n  face_width_mm: [25\nsweep: {}\n")
+    for path, where in ((bad, "not valid YAML (line 3, column 6"),
+                        (tmp_path / "missing.yaml", "No such file")):
+        done = subprocess.run([sys.executable, "-c", "import sys; from lsbg.cli import main; "
+                               "sys.exit(main())", "check-config", str(path)],
+                              capture_output=True, text=True, timeout=120)
+        assert done.returncode == 2, done.stderr
+        assert done.stderr.count("\n") == 1 and str(path) in done.stderr, done.stderr
+        assert where in done.stderr and "Traceback" not in done.stderr + done.stdout
+
+
+def test_the_study_files_set_the_spiral_angle_once(tmp_path, capsys):
+    at30 = tmp_path / "at30.yaml"
+    at30.write_text("design:\n  spiral_angle_deg: 30\n")
+    assert cli.main(["check-config", str(REPO / "workflow" / "config-test.yaml"),
+                     str(at30)]) == 0
+    assert "valid: 2 design points" in capsys.readouterr().out
+    twice = tmp_path / "twice.yaml"
+    twice.write_text("paper_spiral_angle_deg: 30\n")
+    assert cli.main(["check-config", str(REPO / "workflow" / "config-test.yaml"),
+                     str(twice)]) == 2
+    assert ("design.spiral_angle_deg = 35: the study's design point, and "
+            "paper_spiral_angle_deg = 30 another" in capsys.readouterr().err)

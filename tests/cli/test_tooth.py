@@ -159,12 +159,13 @@ def deep_update(base, over):
 
 
 def test_the_configuration_check_names_the_tooth_keys():
-    from lsbg.study.checks import check_config
+    from lsbg.study.checks import check_config, one_spiral_angle
 
     schema = yaml.safe_load((REPO / "lsbg/schemas/config.schema.yaml").read_text())
     base = yaml.safe_load((REPO / "workflow/config.yaml").read_text())
     test = yaml.safe_load((REPO / "workflow/config-test.yaml").read_text())
     merged = deep_update(base, test)
+    assert one_spiral_angle(merged, test) == []   # the test study's one angle, as the workflow
 
     def problems(**changes):
         config = copy.deepcopy(merged)

@@ -20,7 +20,8 @@ from pathlib import Path
 import pytest
 import yaml
 
-from lsbg.study import checks as config_check, resources, stages, plan
+from lsbg.config import merge_config
+from lsbg.study import checks as config_check, resources, plan
 from lsbg.gear.design import GearPairDesign
 from lsbg.gear.geometry import GearPair
 
@@ -42,10 +43,15 @@ OPTIONAL_SECTIONS = {
 
 
 def load(*names):
-    """workflow/config.yaml with other config files merged over it (as --configfile)."""
-    config = {}
-    for name in ("config.yaml", *names):
-        config.update(yaml.safe_load((REPO / "workflow" / name).read_text(encoding="utf-8")))
+    """workflow/config.yaml with other config files merged over it (as --configfile), the
+    study's spiral angle set where design.spiral_angle_deg asks (as the check does)."""
+    given = {}
+    for name in names:
+        given = merge_config(given, yaml.safe_load((REPO / "workflow" / name).read_text(
+            encoding="utf-8")))
+    config = merge_config(yaml.safe_load((REPO / "workflow" / "config.yaml").read_text(
+        encoding="utf-8")), given)
+    assert config_check.one_spiral_angle(config, given) == []
     return config
 
 
@@ -296,12 +302,18 @@ BEYOND_SCHEMA = {
 }
 
 
-@pytest.mark.parametrize("name", BEYOND_SCHEMA)
-def test_checks_beyond_the_schema_name_the_key_and_value(name):
+def beyond_schema(name):
+    """The test study with the overrides of BEYOND_SCHEMA[name], and the key it names."""
     overrides, key = BEYOND_SCHEMA[name]
     config = base()
     for section, values in overrides.items():
         config[section] = {**config.get(section, {}), **values}
+    return config, key
+
+
+@pytest.mark.parametrize("name", BEYOND_SCHEMA)
+def test_checks_beyond_the_schema_name_the_key_and_value(name):
+    config, key = beyond_schema(name)
     problems = config_check.check_config(config, SCHEMA)
     assert_rejected(problems, key)
     if name.endswith("module"):  # the key at fault, in mm, not lsbg's metres
@@ -309,7 +321,23 @@ def test_checks_beyond_the_schema_name_the_key_and_value(name):
     if key.startswith(("flank_modification.", "misalignment")):
         # one line for the key, naming the design points (both, here)
         assert len(problems) == 1 and problems[0].startswith(key), problems
-        assert "(at every design point)" in problems[0] or "steps" in key, problems
+        assert ("(at every design point)" in problems[0] or "steps" in key
+                or "topography_file" in key), problems
+
+
+#: The cases only an analysis at the design points finds (a TCA: the workflow's onstart).
+ANALYSED = {"crowning beyond the backlash", "bias beyond the backlash", "a gear pushed into mesh",
+            "a map whose corners interfere", "a map of G closing the backlash"}
+
+
+@pytest.mark.parametrize("name", BEYOND_SCHEMA)
+def test_all_but_the_analyses_are_found_while_the_workflow_is_parsed(name):
+    config, key = beyond_schema(name)
+    problems = config_check.check_config(config, SCHEMA, analyses=False)
+    if name in ANALYSED:
+        assert problems == [], problems
+    else:
+        assert_rejected(problems, key)
 
 
 def test_contact_state_is_checked_at_each_point_with_its_steps(monkeypatch):
@@ -327,8 +355,6 @@ def test_contact_state_is_checked_at_each_point_with_its_steps(monkeypatch):
         return []
 
     monkeypatch.setattr(lsbg.tca.checks, "contact_state_problems", fake)
-    monkeypatch.setattr(config_check, "check_cache_dir", lambda: None)
-    monkeypatch.setattr(stages, "_ANSWERS", {})
     config = base()
     config["sweep"]["spiral_angles_deg"] = [30, 35]
     del config["speed_sweep"]
@@ -351,80 +377,32 @@ def test_contact_state_is_checked_at_each_point_with_its_steps(monkeypatch):
     assert calls == []
 
 
-def test_contact_state_answers_are_kept_on_disk(monkeypatch, tmp_path):
-    """Each design point's answer is kept (the quick TCAs and numba's start cost about
-    a second at every snakemake start otherwise) and asked again when an input changes."""
+def test_the_parse_time_check_runs_no_analysis_and_keeps_nothing(monkeypatch, tmp_path):
+    """Without ``analyses`` (the workflow's parse, ``snakemake -n``) no TCA, FE section,
+    rating or practice design runs; :func:`analysis_problems` (the workflow's onstart)
+    names what they find; neither writes into lsbg's cache folder."""
+    import lsbg.practice.checks
+    import lsbg.rating.iso10300
     import lsbg.tca.checks
-
-    monkeypatch.setattr(config_check, "check_cache_dir", lambda: tmp_path)
-    monkeypatch.setattr(stages, "_ANSWERS", {})
-    config = base()
-    config["misalignment"] = {"gear_axial_G_mm": -0.5}
-    first = config_check.check_config(copy.deepcopy(config), SCHEMA)
-    assert_rejected(first, "misalignment.gear_axial_G_mm = -0.5")
-    # one per design point, and the FE fillets of its two members (test_fillet_answers...)
-    assert len(list(tmp_path.glob("*.json"))) == 2 + 2 * 2
-
-    def never(*args):
-        raise AssertionError("asked again")
-
-    monkeypatch.setattr(lsbg.tca.checks, "contact_state_problems", never)
-    monkeypatch.setattr(stages, "_ANSWERS", {})                # a new snakemake
-    assert config_check.check_config(copy.deepcopy(config), SCHEMA) == first
-    config["misalignment"] = {"gear_axial_G_mm": -0.4}
-    with pytest.raises(AssertionError, match="asked again"):
-        config_check.check_config(copy.deepcopy(config), SCHEMA)
-    # a cache that cannot be written is no cache
-    (tmp_path / "file").write_text("")
-    monkeypatch.setattr(config_check, "check_cache_dir", lambda: tmp_path / "file")
-    monkeypatch.setattr(lsbg.tca.checks, "contact_state_problems", lambda *args: [])
-    assert config_check.check_config(copy.deepcopy(config), SCHEMA) == []
-    monkeypatch.undo()
-    monkeypatch.delenv("LSBG_CHECK_CACHE", raising=False)
-    assert config_check.check_cache_dir().name == "config-checks"
-    monkeypatch.setenv("LSBG_CHECK_CACHE", "off")
-    assert config_check.check_cache_dir() is None
-
-
-def test_fillet_answers_are_kept_on_disk(monkeypatch, tmp_path):
-    """The FE segment's fillet check of each member (scipy's splines: 0.7 s to import at
-    every snakemake start otherwise) is kept, with its problem, and asked again when an
-    input changes."""
     import lsbg.tooth.config
 
-    computed = []
-    fillet_problem = lsbg.tooth.config.fillet_problem
-
-    def counted(pair, member, teeth, radius):
-        computed.append((pair.design.trace, round(math.degrees(pair.design.spiral_angle), 6),
-                         member, radius))
-        return fillet_problem(pair, member, teeth, radius)
-
-    monkeypatch.setattr(lsbg.tooth.config, "fillet_problem", counted)
-    monkeypatch.setattr(config_check, "check_cache_dir", lambda: tmp_path)
-    monkeypatch.setattr(stages, "_ANSWERS", {})
-    config = with_value(with_value(base(), ("contact", "compliance"), "fe"),
-                        ("sweep", "spiral_angles_deg"), [35, 45])
-    config["sensitivity"]["compliance"] = ["uniform"]
-    config = with_value(config, ("tooth", "fillet_radius_module"), 0.34)
-    first = config_check.check_config(copy.deepcopy(config), SCHEMA)
-    # two traces at two angles, two members each: the gear's fillets do not fit at 45 deg
-    # (and the contact state's answer at each of the 4 design points)
-    assert len(computed) == 8 and len(list(tmp_path.glob("*.json"))) == 8 + 4
-    radii = sorted(radius for *_, radius in computed)
-    wide = [line for line in first if line.startswith("tooth.fillet_radius_module = 0.34")]
-    assert sorted(line.split(": ")[1] for line in wide) == ["circular 45 deg",
-                                                            "logarithmic 45 deg"]
-    assert all("the gear's root fillets do not fit" in line for line in wide)
-    computed.clear()
-    monkeypatch.setattr(stages, "_ANSWERS", {})                # a new snakemake
-    assert config_check.check_config(copy.deepcopy(config), SCHEMA) == first
-    assert computed == []
-    # another radius: asked again, at every point
-    config = with_value(config, ("tooth", "fillet_radius_module"), 0.3)
-    config_check.check_config(copy.deepcopy(config), SCHEMA)
-    assert sorted(radius for *_, radius in computed) == pytest.approx(
-        [radius * 0.3 / 0.34 for radius in radii], rel=1e-12)
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
+    config = with_value(base(), ("misalignment", "gear_axial_G_mm"), -0.5)
+    config["sweep"]["contact_models"] = ["point", "line"]
+    analysed = copy.deepcopy(config)
+    for module, name in ((lsbg.tca.checks, "point_problems"),
+                         (lsbg.tooth.config, "fillet_problem"),
+                         (lsbg.rating.iso10300, "rate"),
+                         (lsbg.practice.checks, "practice_problems")):
+        monkeypatch.setattr(module, name, lambda *args, _n=name: pytest.fail(f"{_n} ran"))
+    assert config_check.check_config(config, SCHEMA, analyses=False) == []
+    monkeypatch.undo()
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
+    assert config_check.check_config(analysed, SCHEMA, analyses=False) == []
+    assert_rejected(config_check.analysis_problems(analysed),
+                    "misalignment.gear_axial_G_mm = -0.5")
+    assert config_check.practice_analysis_problems(analysed) == []
+    assert list(tmp_path.rglob("*.json")) == []
 
 
 @pytest.mark.parametrize("names", [(), ("config-test.yaml",), ("config-speed.yaml",),
@@ -484,8 +462,8 @@ END_TO_END = {
                        "sweep.spiral_angles_deg[1] = 35.0000001"),
     "too few samples": ("simulation:\n  samples: 2\n", "simulation.samples = 2"),
     "even map steps": ("misalignment_map:\n  steps: 8\n", "misalignment_map.steps = 8"),
-    "interference": ("misalignment:\n  gear_axial_G_mm: -0.5\n",
-                     "misalignment.gear_axial_G_mm = -0.5"),
+    "spiral angle twice": ("design:\n  spiral_angle_deg: 30\npaper_spiral_angle_deg: 35\n",
+                           "design.spiral_angle_deg = 30: the study's design point"),
 }
 
 
@@ -514,6 +492,63 @@ def test_snakemake_stops_before_any_job_with_one_clean_message(tmp_path, name):
         assert returncode != 0 and re.search(r'bad\.yaml", line 2', verbose), verbose
     else:
         assert "invalid configuration" in output and f"config key {key}" in output, output
+
+
+def test_an_analysis_problem_stops_the_run_before_any_job(tmp_path):
+    """What only a TCA finds is checked by the workflow's onstart, before the first job:
+    one clean message naming the key; no job started, no log, no settings file left."""
+    (tmp_path / "bad.yaml").write_text("misalignment:\n  gear_axial_G_mm: -0.5\n")
+    proc = subprocess.run([sys.executable, "-m", "snakemake", "-j1", "--snakefile",
+                           REPO / "Snakefile", "--configfile", REPO / "workflow" /
+                           "config-test.yaml", tmp_path / "bad.yaml"],
+                          cwd=tmp_path, capture_output=True, text=True, timeout=600)
+    output = proc.stdout + proc.stderr
+    assert proc.returncode != 0
+    assert "config key misalignment.gear_axial_G_mm = -0.5: the members interfere" in output
+    assert "Traceback" not in output and "common.smk" not in output, output
+    assert not re.search(r"^(local)?rule \w+:", output, re.M), output
+    assert not (tmp_path / "logs").exists()
+    assert [p for p in (tmp_path / "results").rglob("*") if p.is_file()] == []
+
+
+def test_one_key_sets_the_studys_spiral_angle(tmp_path):
+    """design.spiral_angle_deg in a study's file is its paper point and, unless the file
+    lists the sweep's angles (it among them), its sweep; set apart from either, or a paper
+    angle outside the sweep: refused, saying what to set."""
+    given = {"design": {"spiral_angle_deg": 30}}
+    config = merge_config(load(), given)
+    assert config_check.check_config(config, SCHEMA, given=given) == []
+    assert list(plan.design_points(config)) == [("circular", "30"), ("logarithmic", "30")]
+    assert "spiral_angle_deg" not in config["design"] and config["paper_spiral_angle_deg"] == 30
+    # with the sweep's angles too (30 among them): the paper's point of that sweep
+    swept = merge_config(given, {"sweep": {"spiral_angles_deg": [30, 40]}})
+    config = merge_config(load(), swept)
+    assert config_check.check_config(config, SCHEMA, given=swept) == []
+    assert (config["paper_spiral_angle_deg"], config["sweep"]["spiral_angles_deg"]) == (30, [30, 40])
+    for also, problem in (({"paper_spiral_angle_deg": 35}, "design.spiral_angle_deg = 30: the "
+                           "study's design point, and paper_spiral_angle_deg = 35 another; "
+                           "remove paper_spiral_angle_deg"),
+                          ({"sweep": {"spiral_angles_deg": [35]}}, "design.spiral_angle_deg = "
+                           "30: not one of sweep.spiral_angles_deg = [35]; add 30 there, or "
+                           "remove sweep.spiral_angles_deg for a study of that one angle")):
+        twice = merge_config(given, also)
+        assert config_check.check_config(merge_config(load(), twice), SCHEMA,
+                                         given=twice) == [problem]
+    # the former two keys of a study at 30 deg: the paper's angle alone is one more point
+    config = merge_config(load(), {"sweep": {"spiral_angles_deg": [35]},
+                                   "paper_spiral_angle_deg": 30})
+    assert config_check.check_config(config, SCHEMA) == [
+        "paper_spiral_angle_deg = 30: not one of sweep.spiral_angles_deg = [35]; for a study of "
+        "that one angle set design.spiral_angle_deg: 30 instead of both keys, or add 30 to "
+        "sweep.spiral_angles_deg"]
+    # the workflow reads the study's own files: the test study at 30 deg plans 30 deg only
+    (tmp_path / "at30.yaml").write_text("design:\n  spiral_angle_deg: 30\n")
+    proc = subprocess.run([sys.executable, "-m", "snakemake", "-n", "--snakefile",
+                           REPO / "Snakefile", "--configfile", REPO / "workflow" /
+                           "config-test.yaml", tmp_path / "at30.yaml"],
+                          cwd=tmp_path, capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert "_beta30" in proc.stdout and "_beta35" not in proc.stdout, proc.stdout
 
 
 def test_a_configuration_file_with_a_key_twice_is_refused(tmp_path):

@@ -53,11 +53,13 @@ def extension_file(name):
 def check_config(config):
     """Check ``config`` (schema defaults filled in, in place); stop naming every bad key.
 
-    Printed and exited rather than raised: Snakemake prints a raised error with
-    the stack lines of this file around the message. Inside a job (a SLURM job's
-    Snakemake and its job step) the submitting Snakemake has checked the same
-    configuration: only the defaults are filled in there, which spares every
-    job about a CPU-second per Snakemake (the physics of every design point).
+    The checks that need no analysis, while the workflow is parsed (``snakemake -n``
+    too); those that run one at the design points (a TCA, an FE section, an ISO
+    10300 rating) by :func:`check_analyses`, before the first job. Printed and exited
+    rather than raised: Snakemake prints a raised error with the stack lines of this
+    file around the message. Inside a job (a SLURM job's Snakemake and its job step)
+    the submitting Snakemake has checked the same configuration: only the defaults
+    are filled in there.
     """
     schema = load_schema(SCHEMA)   # libyaml's loader: read by every Snakemake of a job too
     if workflow.remote_exec or workflow.subprocess_exec:
@@ -67,12 +69,31 @@ def check_config(config):
     if duplicated:
         logger.error("invalid configuration file:\n" + "\n".join(f"  {p}" for p in duplicated))
         sys.exit(1)
-    problems = config_check.check_config(config, schema)
+    # (given: what the study's --configfile files and --config set over workflow/config.yaml)
+    problems = config_check.check_config(config, schema, analyses=False,
+                                         given=workflow.config_settings.overwrite_config)
     known = sorted({p.stem for folder in EXTENSION_DIRS for p in folder.glob("*.smk")})
     problems += [f"extensions[{k}] = {name!r}: no workflow/extensions/{name}.smk here or in "
                  f"the repository (known: {', '.join(known)})"
                  for k, name in enumerate(config.get("extensions", []))
                  if extension_file(name) is None]
+    stop_if(problems)
+
+
+def check_analyses():
+    """The checks that run an analysis at each design point
+    (lsbg.study.checks.analysis_problems): called by the Snakefile's ``onstart``,
+    in the submitting Snakemake, after the plan and before any job runs. The settings
+    file this parse wrote for the plan is removed if they fail (it says "as validated")."""
+    problems = (config_check.analysis_problems(config)
+                + config_check.practice_analysis_problems(config))
+    if problems and not STUDY_CONFIG_KEPT:
+        Path(FILES["study_config"]).unlink(missing_ok=True)
+    stop_if(problems)
+
+
+def stop_if(problems):
+    """Print ``problems`` (lines naming a configuration key) and exit 1, if any."""
     if problems:
         logger.error("invalid configuration (keys as in lsbg/schemas/config.schema.yaml):\n"
                      + "\n".join(f"  config key {p}" for p in problems))
@@ -90,6 +111,7 @@ wildcard_constraints:
     **STUDY.wildcards,
 
 
+STUDY_CONFIG_KEPT = Path(FILES["study_config"]).exists()  # (check_analyses)
 plan.write_study_config(FILES["study_config"], config, only_if_missing=True)
 #: Targets of ``rule all``; an extension appends its own (see workflow/extensions).
 EXTENSION_TARGETS = []
