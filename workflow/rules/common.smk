@@ -273,7 +273,8 @@ def finish_rules(rules):
 
 
 def repo_path(relative):
-    """A file of the repository, relative to the working directory if inside it."""
+    """A file of the repository (a path relative to it, or lsbg's package data), relative
+    to the working directory if inside it: a copy of the study finds its inputs as recorded."""
     path = REPO / relative
     inside = os.path.relpath(path)
     return path.as_posix() if inside.startswith("..") else Path(inside).as_posix()

@@ -8,7 +8,7 @@ STATISTICS = config["statistics"]
 
 rule report_paper:
     input:
-        notebook=(NOTEBOOKS / "paper.ipynb").as_posix(),
+        notebook=repo_path(NOTEBOOKS / "paper.ipynb"),
         runs=STUDY.paper_runs,
         sensitivity_runs=STUDY.sensitivity_runs(),
         mesh_files=STUDY.paper_meshes,
@@ -56,7 +56,7 @@ rule report_paper:
 
 rule report_sweep:
     input:
-        notebook=(NOTEBOOKS / "sweep.ipynb").as_posix(),
+        notebook=repo_path(NOTEBOOKS / "sweep.ipynb"),
         sweep_file=FILES["sweep"],
         summary_file=FILES["summary"],
         speed_curve_file=[FILES["speed_curve"]] if STUDY.speed_sweep else [],
@@ -79,7 +79,7 @@ rule report_sweep:
 
 rule report_verification:
     input:
-        notebook=(NOTEBOOKS / "verification.ipynb").as_posix(),
+        notebook=repo_path(NOTEBOOKS / "verification.ipynb"),
         convergence_files=STUDY.convergence_files,
         geometry_dirs=STUDY.paper_geometry,
         runs=STUDY.paper_runs,
