@@ -493,9 +493,9 @@ def spearman(x, y):
     """Spearman's rank correlation of two series and its two-sided p-value.
 
     Up to :data:`EXACT_SPEARMAN_UP_TO` values the p-value is exact: the share of all
-    n! orderings of ``y`` whose correlation is as far from 0
-    (:func:`scipy.stats.permutation_test`); three monotone points give 1/3, not the
-    t approximation's 0. Beyond, scipy's t approximation.
+    n! orderings of ``y`` whose correlation is as far from 0 (Pearson's r of the ranks
+    under :class:`scipy.stats.PermutationMethod` with every ordering); three monotone
+    points give 1/3, not the t approximation's 0. Beyond, scipy's t approximation.
 
     Parameters
     ----------
@@ -510,19 +510,11 @@ def spearman(x, y):
     x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
     if np.ptp(x) == 0 or np.ptp(y) == 0:
         return float("nan"), float("nan")
-    if x.size > EXACT_SPEARMAN_UP_TO:
-        rho, p = sps.spearmanr(x, y)
-        return float(rho), float(p)
-    rank_x = sps.rankdata(x) - (x.size + 1) / 2
-    rank_y = sps.rankdata(y) - (y.size + 1) / 2
-
-    def rho(ranks, axis=-1):  # Pearson's r of the ranks, for every ordering at once
-        ranks = np.moveaxis(ranks, axis, -1)
-        return (ranks @ rank_x) / np.sqrt((ranks ** 2).sum(-1) * (rank_x ** 2).sum())
-
-    test = sps.permutation_test((rank_y,), rho, permutation_type="pairings",
-                                n_resamples=np.inf, vectorized=True)
-    return float(test.statistic), float(min(1.0, test.pvalue))
+    rho, p = sps.spearmanr(x, y)
+    if x.size <= EXACT_SPEARMAN_UP_TO:
+        p = sps.pearsonr(sps.rankdata(x), sps.rankdata(y),
+                         method=sps.PermutationMethod(n_resamples=np.inf)).pvalue
+    return float(rho), float(min(1.0, p))
 
 
 # ------------------------------------------------------------ speed sweep
