@@ -5,7 +5,8 @@ ran (the pair as published, as a designer would make it, each type at its best
 ease-off), each cell coloured by its verdict (:data:`lsbg.tables.claims.VERDICT_WORDS`)
 and carrying the number of model-form cells behind it, with a legend that
 defines every verdict word. Every report of a configuration coarser than the
-study's defaults (``workflow/config.yaml`` over the schema's defaults) opens
+study's defaults (the schema's, which ``workflow/config.yaml`` keeps for every
+setting compared) opens
 with a banner naming what ran coarser, from the settings its own input files
 record (:func:`recorded_settings`).
 
@@ -18,7 +19,6 @@ record (:func:`recorded_settings`).
 from __future__ import annotations
 
 import html
-from pathlib import Path
 
 import pandas as pd
 
@@ -26,7 +26,7 @@ from lsbg.tables import claims as claim_tables
 
 __all__ = ["LEVELS", "VERDICT_COLOURS", "verdict_matrix", "matrix_html", "legend_html",
            "screen_html",
-           "verdict_sentence", "STUDY_CONFIG_PATH", "study_defaults", "recorded_settings",
+           "verdict_sentence", "COMPARED_KEYS", "study_defaults", "recorded_settings",
            "coarse_settings", "coarse_banner", "banner_of_files"]
 
 #: The levels of the study, in the matrix's order: (key, column heading).
@@ -163,9 +163,6 @@ def verdict_sentence(matrix):
 
 
 # ------------------------------------------------------------- the banner
-#: The study's defaults: the workflow's configuration (merged over the schema's defaults).
-STUDY_CONFIG_PATH = Path(__file__).resolve().parents[2] / "workflow" / "config.yaml"
-
 #: Settings whose larger value is the coarser one (an element size); for every other
 #: setting of :func:`recorded_settings` the smaller value is the coarser.
 COARSER_WHEN_LARGER = {"tooth.element_size_module", "tooth.rim_element_factor"}
@@ -184,14 +181,18 @@ RECORDED = {
     "fronts": {"population": "optimise.population", "generations": "optimise.generations"},
 }
 
+#: Every setting the banner compares: the recorded ones and the V-H maps' steps.
+COMPARED_KEYS = tuple(dict.fromkeys(
+    [key for keys in RECORDED.values() for key in keys.values()]
+    + ["misalignment_map.steps", "misalignment_map.sweep_steps"]))
 
-def study_defaults(path=STUDY_CONFIG_PATH):
-    """The study's default configuration: ``workflow/config.yaml`` over the schema's defaults.
 
-    Parameters
-    ----------
-    path : str or pathlib.Path
-        Default :data:`STUDY_CONFIG_PATH`.
+def study_defaults():
+    """The study's defaults: the schema's (lsbg's package data), every section filled in.
+
+    ``workflow/config.yaml`` keeps the schema's default of every setting in
+    :data:`COMPARED_KEYS` (a test checks it), so a pip-installed lsbg that has no
+    checkout decides "coarse" as the workflow does.
 
     Returns
     -------
@@ -200,7 +201,7 @@ def study_defaults(path=STUDY_CONFIG_PATH):
     """
     from lsbg.config import resolve_config
 
-    return resolve_config([path])
+    return resolve_config()
 
 
 def recorded_settings(**datasets):

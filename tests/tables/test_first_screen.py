@@ -1,11 +1,16 @@
 """The first screen: the verdict matrix and its legend, the coarse configuration's banner."""
 
+from pathlib import Path
+
 import pandas as pd
 import pytest
 import xarray as xr
 
 from lsbg.tables import claims as claim_tables
 from lsbg.tables import first_screen
+
+#: The workflow's configurations (the repository's).
+WORKFLOW = Path(__file__).resolve().parents[2] / "workflow"
 
 
 def verdict(better):
@@ -83,16 +88,25 @@ def test_coarse_is_decided_against_the_studys_defaults():
 
 
 def test_the_test_configuration_is_coarse():
-    from pathlib import Path
-
     from lsbg.config import resolve_config
 
-    test = resolve_config([first_screen.STUDY_CONFIG_PATH,
-                           Path(first_screen.STUDY_CONFIG_PATH).with_name("config-test.yaml")])
+    test = resolve_config([WORKFLOW / "config.yaml", WORKFLOW / "config-test.yaml"])
     recorded = {"simulation.duration_s": test["simulation"]["duration_s"],
                 "tca.positions": test["tca"]["positions"],
                 "optimise.population": test["optimise"]["population"]}
     assert len(first_screen.coarse_settings(recorded, first_screen.study_defaults())) == 3
+
+
+def test_the_studys_defaults_are_the_workflows_configuration():
+    """The banner compares with the schema's defaults (package data, no checkout needed):
+    workflow/config.yaml must keep them for every setting the banner compares."""
+    from lsbg.config import resolve_config
+
+    workflow = resolve_config([WORKFLOW / "config.yaml"])
+    defaults = first_screen.study_defaults()
+    for key in first_screen.COMPARED_KEYS:
+        section, name = key.split(".")
+        assert workflow[section][name] == defaults[section][name], key
 
 
 def test_the_screen_puts_the_banner_above_the_matrix_and_the_legend_below():
