@@ -83,8 +83,6 @@ Snakemake does, names the file and line of such an error, and runs
 
 from __future__ import annotations
 
-import os
-
 from lsbg.config import fill_defaults, key_path, nonfinite_problems, schema_problems
 from lsbg.files import label_clashes, number_label
 from lsbg.gear.checks import design_problems, points_named
@@ -95,8 +93,9 @@ from lsbg.study.resources import (engines_run, geometry_problem, load_problems,
                                   speed_sweep_problems)
 
 __all__ = [
-    "key_path", "check_config", "analysis_problems", "nonfinite_problems", "schema_problems", "fill_defaults",
-    "check_cache_dir", "AD_MIN_SAMPLES"
+    "key_path", "check_config", "analysis_problems", "practice_analysis_problems",
+    "one_spiral_angle", "nonfinite_problems", "schema_problems", "fill_defaults",
+    "AD_MIN_SAMPLES"
 ]
 
 
@@ -352,7 +351,7 @@ def _contact_state_problems(config, pairs):
     """The flank modification, the misalignment and the V-H map's corners at each
     point of ``pairs`` (:mod:`lsbg.tca.checks`): one line per key at fault, naming
     the design points where it fails. Only for sections :func:`_flank_problems` passes."""
-    from lsbg.tca.checks import user_lines
+    from lsbg.tca.checks import point_problems, user_lines
 
     section = config["misalignment_map"]
     if _flank_problems(config) or not pairs:
@@ -361,7 +360,7 @@ def _contact_state_problems(config, pairs):
     for (trace, spiral), pair in pairs.items():
         map_config = {"axes": list(section["axes"]), "range": section["range"],
                       "steps": map_steps(config, spiral)}
-        lines = user_lines(_point_contact_state(pair, config, map_config), config)
+        lines = user_lines(point_problems(pair, config, map_config), config)
         for line in lines:
             key = line.split(" = ", 1)[0].split(":", 1)[0]
             where = failing.setdefault(key, [line, []])[1]
@@ -369,22 +368,3 @@ def _contact_state_problems(config, pairs):
                 where.append(f"{trace} {spiral} deg")
     points = design_points(config)
     return [f"{line} (at {points_named(where, points)})" for line, where in failing.values()]
-
-
-def check_cache_dir():
-    """The folder of lsbg's machine-wide cache that ``workflow/rules/common.smk``'s
-    ``sources()`` keeps its import listings in (``config-checks`` beside numba's
-    kernels, :func:`lsbg.numba_cache.numba_cache_root`); None (kept by the process
-    only) if ``LSBG_CHECK_CACHE=off``. The configuration check keeps nothing."""
-    if os.environ.get("LSBG_CHECK_CACHE", "").lower() in ("0", "off", "no", "false"):
-        return None
-    from lsbg.numba_cache import numba_cache_root
-
-    return numba_cache_root() / "config-checks"
-
-
-def _point_contact_state(pair, config, map_config):
-    """lsbg's contact-state problems at one design point (:func:`lsbg.tca.checks.point_problems`)."""
-    from lsbg.tca.checks import point_problems
-
-    return point_problems(pair, config, map_config)

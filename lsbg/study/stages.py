@@ -46,7 +46,8 @@ from lsbg.files import kept_file_digest
 
 __all__ = ["PACKAGE", "module_files", "import_statements", "module_imports", "module_closure",
            "function_closure", "notebook_closure", "closure_files", "sources_listing",
-           "write_if_changed", "sources_digest", "package_digest", "cached_answer"]
+           "write_if_changed", "sources_digest", "package_digest", "cached_answer",
+           "listing_cache_dir"]
 
 #: The lsbg package directory.
 PACKAGE = Path(__file__).resolve().parents[1]
@@ -157,14 +158,22 @@ _STATEMENTS = {"known": None, "grown": False}
 STATEMENT_ENTRIES = 4000
 
 
-def _statements_file():
-    """``source-imports.json`` in the configuration check's cache folder (None: kept by the
-    process only, ``LSBG_CHECK_CACHE=off``)."""
+def listing_cache_dir():
+    """Where the source listings' answers are kept between Snakemake starts
+    (:func:`cached_answer`): ``config-checks`` in lsbg's machine-wide cache
+    (:func:`lsbg.numba_cache.numba_cache_root`, beside numba's kernels); None (kept by
+    the process only) if ``LSBG_CHECK_CACHE=off``."""
     if os.environ.get("LSBG_CHECK_CACHE", "").lower() in ("0", "off", "no", "false"):
         return None
     from lsbg.numba_cache import numba_cache_root
 
-    return numba_cache_root() / "config-checks" / "source-imports.json"
+    return numba_cache_root() / "config-checks"
+
+
+def _statements_file():
+    """``source-imports.json`` in :func:`listing_cache_dir` (None: kept by the process only)."""
+    folder = listing_cache_dir()
+    return None if folder is None else folder / "source-imports.json"
 
 
 def _known_statements():

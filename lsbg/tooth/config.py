@@ -12,11 +12,8 @@ the stage's sources) matches.
 
 from __future__ import annotations
 
-import dataclasses
-import functools
 import logging
 import math
-from importlib import metadata
 from pathlib import Path
 
 from lsbg.config import config_key, section_objects
@@ -158,7 +155,7 @@ def fe_design_points(config, pairs):
     return {key: pair for key, pair in pairs.items() if key[1] == paper}
 
 
-def tooth_problems(config, pairs, memory_limit, memory_source, answer=None):
+def tooth_problems(config, pairs, memory_limit, memory_source):
     """The ``tooth`` section, the compliance case and the FE cost, checked before any job.
 
     Parameters
@@ -172,11 +169,6 @@ def tooth_problems(config, pairs, memory_limit, memory_source, answer=None):
         Memory one job may use [GB].
     memory_source : str
         Where that limit comes from, for the message (``limits.memory_gb``).
-    answer : callable, optional
-        ``answer(modules, inputs, compute)``: ``compute()``, or its answer kept from an
-        earlier call with the same ``inputs`` and sources of ``modules``
-        (:func:`lsbg.study.stages.cached_answer` with a folder, as the study's check
-        passes it). Asked for each fillet check; default: computed here.
 
     Returns
     -------
@@ -184,9 +176,6 @@ def tooth_problems(config, pairs, memory_limit, memory_source, answer=None):
         One line per problem, starting with the key and its value.
     """
     from lsbg.tooth.resources import fe_resource_estimate
-
-    if answer is None:
-        answer = _computed
 
     try:
         _, settings, _ = tooth_from_config(config.get("tooth", {}))
@@ -200,16 +189,11 @@ def tooth_problems(config, pairs, memory_limit, memory_source, answer=None):
                             f"contact.compliance = {base!r} (a case switches it)")
     minutes = config["limits"].get("tooth_minutes", 10)
     size = config.get("tooth", {}).get("element_size_module", settings.tooth_size)
-    versions = [metadata.version("numpy"), metadata.version("scipy")]  # of the fillet check
     for (trace, spiral), pair in fe_design_points(config, pairs).items():
         # the root fillets must fit in the gaps (the loft's sections, without gmsh)
         rho = settings.fillet_radius * pair.design.mean_module * math.cos(pair.design.spiral_angle)
         for member in (1, 2):
-            inputs = {"design": dataclasses.asdict(pair.design), "member": member,
-                      "teeth": settings.segment_teeth, "fillet_radius": rho,
-                      "versions": versions}
-            error = answer("tooth.outline", inputs, functools.partial(
-                fillet_problem, pair, member, settings.segment_teeth, rho))
+            error = fillet_problem(pair, member, settings.segment_teeth, rho)
             if error:
                 problems.append(f"tooth.fillet_radius_module = {settings.fillet_radius!r}: "
                                 f"{trace} {spiral} deg: {error}")
@@ -255,6 +239,3 @@ def fillet_problem(pair, member, teeth, fillet_radius):
         return str(error)
     return None
 
-
-def _computed(modules, inputs, compute):
-    return compute()
