@@ -202,7 +202,7 @@ def practice_traces(config):
     Parameters
     ----------
     config : dict
-        The study's configuration, defaults filled in.
+        Its ``practice`` section with the schema's defaults.
 
     Returns
     -------

@@ -17,8 +17,9 @@ PRACTICE = dict(profile_shift=0.44793242616994483, thickness_modification=0.0060
 
 
 @pytest.fixture(scope="module", params=[("logarithmic", {}), ("circular", {}),
-                                        ("logarithmic", PRACTICE), ("circular", PRACTICE)],
-                ids=["lsbg", "sbg", "lsbg-practice", "sbg-practice"])
+                                        ("logarithmic", PRACTICE), ("circular", PRACTICE),
+                                        ("face_milled", PRACTICE)],
+                ids=["lsbg", "sbg", "lsbg-practice", "sbg-practice", "iso-sbg-practice"])
 def pair(request):
     trace, shift = request.param
     return GearPair(GearPairDesign(trace=trace, **shift))
