@@ -21,7 +21,10 @@ import xarray as xr
 
 import lsbg
 from lsbg.contact.parameters import CONTACT_MODELS
-from lsbg.gear.design import TRACES, TRACE_LABELS
+from lsbg.gear.design import TRACES, TRACE_LABELS, TRACE_NAMES
+
+#: The trace coordinate's long name: each trace's gear type and construction.
+TRACE_LONG_NAME = "tooth trace (" + "; ".join(f"{t}: {n}" for t, n in TRACE_NAMES.items()) + ")"
 from lsbg.dynamics.dataset import FULL_RATE_VARIABLES, VARIABLES, open_run
 from lsbg.files import as_path_list, open_dataset
 from lsbg.aggregate.runs import datasets_by_key, open_mesh, run_source, run_spiral_angle
@@ -216,8 +219,7 @@ def combine_runs(paths, meshes=(), tca=(), vh_maps=()) -> xr.Dataset:
         "contact_model": ("contact_model", models, {
             "long_name": "contact model (point: the paper's IMPACT incident per tooth pair; "
                          "line: sliced contact lines)"}),
-        "trace": ("trace", traces, {"long_name": "tooth trace (logarithmic: LSBG, "
-                                                 "circular: SBG)"}),
+        "trace": ("trace", traces, {"long_name": TRACE_LONG_NAME}),
         "gear_type": ("trace", [TRACE_LABELS.get(t, t) for t in traces],
                       {"long_name": "gear type as named in the paper"}),
         "spiral_angle": ("spiral_angle", np.asarray(angles, dtype=float),
@@ -347,7 +349,7 @@ def _with_points(sweep, keys):
         return sweep
     attrs = {name: dict(sweep[name].attrs) if name in sweep.coords else default
              for name, default in (
-                 ("trace", {"long_name": "tooth trace (logarithmic: LSBG, circular: SBG)"}),
+                 ("trace", {"long_name": TRACE_LONG_NAME}),
                  ("gear_type", {"long_name": "gear type as named in the paper"}),
                  ("spiral_angle", {"units": "degree",
                                    "long_name": "mean spiral angle on the pitch cone"}))}

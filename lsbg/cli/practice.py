@@ -48,6 +48,7 @@ def add_practice_parser(subparsers):
 def run_practice(args):
     """Handler of ``lsbg practice``: its summary lines."""
     from lsbg.files import write_text_atomically
+    from lsbg.gear.design import TRACE_NAMES
     from lsbg.practice.design import practice_overlay
     from lsbg.study.params import yaml_text
 
@@ -57,7 +58,8 @@ def run_practice(args):
                f"{figures['rated_torque_pitting_N_m']:.1f} N m (pitting), "
                f"{figures['rated_torque_bending_N_m']:.1f} N m (bending); the published "
                f"pair's {figures['published_rated_torque_pitting_N_m']:.1f} and "
-               f"{figures['published_rated_torque_bending_N_m']:.1f} N m")
+               f"{figures['published_rated_torque_bending_N_m']:.1f} N m; its SBG: "
+               f"{TRACE_NAMES[args.settings['practice']['sbg_trace']]}")
     text = yaml_text(overlay, comment)
     write_text_atomically(args.out, text)
     return [f"x_hm1 = {figures['profile_shift']:.4f}, x_smn1 = "

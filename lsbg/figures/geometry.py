@@ -30,7 +30,8 @@ __all__ = [
 PICTURE_CAPTION_SHARE = 0.08
 
 #: The tooth trace of each gear type, in words.
-TRACE_WORDS = {"circular": "circular-arc tooth trace", "logarithmic": "logarithmic-spiral tooth trace"}
+TRACE_WORDS = {"circular": "circular-arc tooth trace", "logarithmic": "logarithmic-spiral tooth trace",
+               "face_milled": "ISO 23509 face-milled tooth trace"}
 
 
 def _picture_without_caption(image, caption_share=PICTURE_CAPTION_SHARE, margin=0.02):

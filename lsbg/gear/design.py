@@ -20,11 +20,15 @@ from functools import cached_property
 
 import numpy as np
 
+from lsbg.gear.plane import GeneratingCurve
 from lsbg.memo import per_member
 
-TRACES = ("logarithmic", "circular")
-#: Tooth trace -> the paper's name of the gear type.
-TRACE_LABELS = {"logarithmic": "LSBG", "circular": "SBG"}
+TRACES = ("logarithmic", "circular", "face_milled")
+#: Tooth trace -> the paper's name of the gear type (both circular traces are SBGs).
+TRACE_LABELS = {"logarithmic": "LSBG", "circular": "SBG", "face_milled": "SBG"}
+#: Tooth trace -> the gear type and which construction made it.
+TRACE_NAMES = {"logarithmic": "LSBG", "circular": "SBG, paper's arc",
+               "face_milled": "SBG, ISO 23509 face-milled"}
 BASE_CONE_RULES = ("involute", "paper")
 HANDS = ("left", "right")
 UNDERCUT = ("accept", "refuse")
@@ -76,13 +80,16 @@ class GearPairDesign:
         Hand of spiral of the pinion; the gear has the other hand.
     addendum, dedendum : float
         Outer addendum h_a and dedendum h_f, equal for both members [m].
-    trace : {"logarithmic", "circular"}
-        Generating curve in the plane of action: a plane logarithmic spiral
-        (LSBG) or a circular arc of the face-mill cutter (conventional SBG).
+    trace : {"logarithmic", "circular", "face_milled"}
+        Generating curve in the plane of action (:class:`lsbg.gear.plane.GeneratingCurve`):
+        a plane logarithmic spiral (LSBG); the face-mill cutter's circular arc drawn
+        in the plane of action (the paper's SBG); or the SBG of ISO 23509 and AGMA
+        929, whose cutter circle lies in the generating crown gear's pitch plane
+        (its spiral angle at every cone distance the standard's).
     face_width : float
         Face width b along the pitch cone generator [m].
     cutter_radius : float
-        Radius of the circular generating arc, used for ``trace="circular"`` [m].
+        Cutter radius r_c0 of the SBGs (``trace="circular"`` or ``"face_milled"``) [m].
     base_cone_rule : {"involute", "paper"}
         How the base cones are chosen: ``"involute"`` gives the normal pressure
         angle ``normal_pressure_angle`` at the mean point; ``"paper"`` is the
@@ -214,14 +221,18 @@ class GearPairDesign:
                 name = "pinion_bore" if member == 1 else "gear_bore"
                 fail(name, bore, f"leaves no hub under the teeth (inner root radius "
                      f"{root_radius:.6g} m)")
-        if self.trace == "circular":
-            # The arc must not turn radial inside the face (the angle to the
-            # ray reaches 90 deg where sin(beta_p) = 1).
-            s_max = np.max(np.abs(circular_arc_sin_angle(
-                self, np.array([self.inner_cone_distance, self.outer_cone_distance]))))
-            if s_max >= 0.98:
+        if self.trace != "logarithmic":
+            # The circle must not turn radial inside the face (its angle to the ray
+            # reaches 90 deg where sin = 1; |sin| is largest at the toe or the heel).
+            ends = np.array([self.inner_cone_distance, self.outer_cone_distance])
+            sines = GeneratingCurve(self.trace, self.plane_spiral_angle, self.mean_cone_distance,
+                                    self.cutter_radius, self.plane_of_action_tilt
+                                    ).circle_sin_angle(ends)
+            if np.max(np.abs(sines)) >= 0.98:
                 fail("cutter_radius", self.cutter_radius,
-                     "is too small: the cutter arc turns nearly radial within the face width")
+                     f"is too small: the cutter {'circle' if self.trace == 'face_milled' else 'arc'}"
+                     f" turns nearly radial within the face width (sin of its angle to the "
+                     f"ray {sines[0]:.4g} at the toe, {sines[1]:.4g} at the heel; at most 0.98)")
 
     @classmethod
     def from_units(cls, **keys) -> "GearPairDesign":
@@ -573,25 +584,3 @@ def _config_key(key: str):
             return key[: -len(suffix)], scale
     return key, None
 
-
-def circular_arc_sin_angle(design: "GearPairDesign", rho):
-    """sin of the angle between the cutter arc and the ray, at distance rho.
-
-    Law of cosines in the triangle apex - point - arc centre, with the centre
-    placed on the apex side so that the angle equals beta_p at R_m:
-    sin(beta_p(rho)) = (rho^2 - R_m^2 + 2 R_m r_c sin(beta_p,m)) / (2 rho r_c).
-
-    Parameters
-    ----------
-    design : GearPairDesign
-    rho : array_like
-        Distance from the apex in the plane of action [m].
-
-    Returns
-    -------
-    numpy.ndarray
-        sin(|beta_p|) [-]; it increases from toe to heel.
-    """
-    rho = np.asarray(rho, dtype=float)
-    rm, rc = design.mean_cone_distance, design.cutter_radius
-    return (rho**2 - rm**2 + 2 * rm * rc * math.sin(design.plane_spiral_angle)) / (2 * rho * rc)

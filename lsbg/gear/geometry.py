@@ -82,7 +82,8 @@ class GearPair:
             normal = np.array([0.0, math.cos(tilt), math.sin(tilt)])
             in_plane = np.cross(normal, self.pitch_dir)
             beta = self._hand_signed_beta(normal, in_plane)
-            curve = GeneratingCurve(d.trace, beta, d.mean_cone_distance, d.cutter_radius)
+            curve = GeneratingCurve(d.trace, beta, d.mean_cone_distance, d.cutter_radius,
+                                    gamma)
             m0 = -math.sin(beta) * self.pitch_dir + math.cos(beta) * in_plane
             if side == "drive":
                 # Pinion drives: its flank moves along the contact normal.

@@ -4,6 +4,10 @@ from __future__ import annotations
 
 __all__ = ["practice_problems"]
 
+#: The design keys whose fault at a practice pair is the user's (the overlay sets the
+#: shift, the thickness and the undercut rule).
+_USER_KEYS = ("design.cutter_radius_mm", "design.face_width_mm", "design.module_mm")
+
 
 def practice_problems(config):
     """Problems of the ``practice`` section, one line each naming the key.
@@ -27,9 +31,10 @@ def practice_problems(config):
     import math
 
     from lsbg.config import merge_config
+    from lsbg.gear.checks import user_message
     from lsbg.gear.design import DesignError, GearPairDesign
     from lsbg.gear.geometry import GearPair
-    from lsbg.practice.design import practice_overlay
+    from lsbg.practice.design import practice_overlay, practice_traces
     from lsbg.practice.spectrum import check_spectrum
     from lsbg.tca.checks import modification_problems
     from lsbg.tca.modification import FlankModification
@@ -66,13 +71,18 @@ def practice_problems(config):
                             f"{reach:g} of the rated torque), where the load curves are")
     merged = merge_config(config, overlay)
     modification = FlankModification.from_config(merged["flank_modification"])
-    for trace in ("logarithmic", "circular"):
+    for trace in practice_traces(config):
         try:
             pair = GearPair(GearPairDesign.from_config({**merged["design"], "trace": trace,
                                                         "spiral_angle_deg": spiral}))
         except (ValueError, DesignError) as error:
-            problems.append(f"practice.profile_shift = {section['profile_shift']!r}: the "
-                            f"practice design's {trace} pair: {error}")
+            head, why = user_message(error, config, ["paper_spiral_angle_deg"])
+            if isinstance(error, DesignError) and head.split(" =")[0] in _USER_KEYS:
+                # a key of the user's design section (the cutter radius), not the overlay's
+                problems.append(f"{head}: {why} (at the practice design's {trace} pair)")
+            else:
+                problems.append(f"practice.profile_shift = {section['profile_shift']!r}: the "
+                                f"practice design's {trace} pair: {error}")
             continue
         problems += [f"practice: the practice design's {trace} pair: {line}"
                      for line in modification_problems(pair, modification)]

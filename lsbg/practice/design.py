@@ -12,6 +12,9 @@ made as practice makes it, each step by a stated rule:
   gear and pinion", AGMA 209.03) reached with the standard's own form and
   stress correction factors instead of its charts;
 * undercut refused (``undercut: refuse``);
+* its SBG face-milled as ISO 23509 defines it (``practice.sbg_trace``,
+  :func:`practice_traces`): the cutter circle in the generating crown gear's
+  pitch plane, where the published pair keeps the paper's arc;
 * the edges: a linear tip relief of both members whose amount is the mesh's
   deflection under the rated load, C_a = F_mt / (b_eff c_gamma_alpha), with
   ISO 6336-1's mesh stiffness of the virtual cylindrical gears (the figure its
@@ -30,7 +33,7 @@ from __future__ import annotations
 import math
 
 __all__ = ["root_stress_ratio", "balanced_thickness_modification", "practice_design",
-           "rated_gear_torque", "deflection_tip_relief", "practice_overlay"]
+           "rated_gear_torque", "deflection_tip_relief", "practice_traces", "practice_overlay"]
 
 
 def _rating(design, config, gear_torque):
@@ -191,6 +194,24 @@ def deflection_tip_relief(design, config, gear_torque, profile_contact_ratio):
     mesh = iso6336_mesh_stiffness(single, f["transverse_contact_ratio"])
     amount = f["F_mt1"] / (f["effective_face_width"] * mesh)
     return float(amount), (profile_contact_ratio - 1.0) / profile_contact_ratio
+
+
+def practice_traces(config):
+    """The practice design's two traces: the LSBG and ``practice.sbg_trace``'s SBG.
+
+    Parameters
+    ----------
+    config : dict
+        Its ``practice`` section with the schema's defaults.
+
+    Returns
+    -------
+    tuple of str
+        ``("logarithmic", "face_milled")`` by default (ISO 23509's SBG, its cutter
+        circle in the generating crown gear's pitch plane), or with ``"circular"``
+        (the paper's arc in the plane of action).
+    """
+    return ("logarithmic", config["practice"]["sbg_trace"])
 
 
 def practice_overlay(published, config):

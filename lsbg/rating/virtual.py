@@ -97,7 +97,8 @@ def rating_geometry(design, tool_edge_radius=0.25, effective_face_width=0.85):
     h_fm1 / m_mn + x_hm1) and, with the thickness modification x_smn1,
     their thicknesses; the backlash is split between the two tooth
     thicknesses (each thinner by j/2 in the transverse section). The tooth trace's curvature at the
-    mean point: the cutter radius for the circular trace; for the
+    mean point: the cutter radius for both SBGs (ISO 10300's r_c0, the paper's arc
+    and ISO 23509's face-milled trace alike); for the
     logarithmic spiral, whose tangent keeps the angle beta_p to the ray in
     the plane of action, R_m / sin(beta_m) on the pitch cone (Eq. 12-13 of
     the paper give the curve).
@@ -123,7 +124,7 @@ def rating_geometry(design, tool_edge_radius=0.25, effective_face_width=0.85):
     # (transverse), the pinion's thicker by x_smn1 and the gear's thinner
     x_sm = -d.backlash * math.cos(d.spiral_angle) / (4 * m_mn)
     x_s = (x_sm + d.thickness_modification, x_sm - d.thickness_modification)
-    if d.trace == "circular":
+    if d.trace != "logarithmic":
         curvature = d.cutter_radius
     else:
         curvature = d.mean_cone_distance / math.sin(d.spiral_angle)

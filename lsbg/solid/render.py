@@ -23,6 +23,9 @@ __all__ = ["rasterize", "render_pair"]
 
 #: Flat colours of the members (pinion, gear) [RGB, 0-1].
 COLOURS = {1: (0.85, 0.50, 0.22), 2: (0.55, 0.62, 0.75)}
+#: The caption's name of each tooth trace.
+PICTURE_TRACES = {"logarithmic": "LSBG (logarithmic spiral)", "circular": "SBG (circular arc)",
+                  "face_milled": "SBG (ISO 23509 face-milled)"}
 #: Ambient share of the Lambert shading [-].
 AMBIENT = 0.35
 
@@ -181,8 +184,7 @@ def render_pair(path, pair, meshes, size=(900, 700), supersample=2):
     image = _downsample(image, supersample)
     image *= 255.0 / supersample**2
     picture = Image.fromarray(np.round(image).astype(np.uint8), "RGB")
-    trace = "LSBG (logarithmic spiral)" if d.trace == "logarithmic" else "SBG (circular arc)"
-    text = (f"{trace}, spiral angle {math.degrees(d.spiral_angle):g}°, "
+    text = (f"{PICTURE_TRACES[d.trace]}, spiral angle {math.degrees(d.spiral_angle):g}°, "
             f"{d.pinion_teeth}:{d.gear_teeth}, m = {1e3 * d.module:g} mm")
     draw = ImageDraw.Draw(picture)
     font = ImageFont.load_default(size=round(0.03 * size[1]))

@@ -327,8 +327,28 @@ def _design_problems(config, pairs=None):
     """lsbg's physics checks and the resource guard at every design point
     (:func:`lsbg.gear.checks.design_problems`); ``pairs`` is filled in with
     ``(trace, spiral label) -> lsbg.gear.geometry.GearPair`` of each point that passes."""
-    return design_problems(config, design_points(config), pairs,
-                           guard=lambda pair: geometry_problem(pair, config))
+    problems = design_problems(config, design_points(config), pairs,
+                               guard=lambda pair: geometry_problem(pair, config))
+    return problems + _practice_trace_problems(config)
+
+
+def _practice_trace_problems(config):
+    """The practice design's SBG (``practice.sbg_trace``) on the design section's cutter:
+    its design rules (:class:`lsbg.gear.design.GearPairDesign`, the cutter circle across
+    the face), before the practice design itself is made (step 12)."""
+    from lsbg.gear.checks import user_message
+    from lsbg.gear.design import DesignError, GearPairDesign
+
+    section, trace = config["practice"], config["practice"]["sbg_trace"]
+    if not section["enabled"] or "line" not in config["sweep"]["contact_models"]:
+        return []
+    spiral = float(config["paper_spiral_angle_deg"])
+    try:
+        GearPairDesign.from_config({**config["design"], "trace": trace, "spiral_angle_deg": spiral})
+    except DesignError as error:
+        head, why = user_message(error, config, ["paper_spiral_angle_deg"])
+        return [f"{head}: {why} (at the practice design's {trace} {spiral:g} deg)"]
+    return []
 
 
 # ------------------------------------------------------------ contact state

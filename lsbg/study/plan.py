@@ -26,6 +26,8 @@ from lsbg.study.params import (CONTACT_STATE_SECTIONS, STUDY_SECTIONS, canonical
                                contact_state_params, simulation_params,
                                simulation_runtime, write_study_config,
                                yaml_text)
+from lsbg.gear.design import TRACES
+from lsbg.practice.design import practice_traces
 from lsbg.study.points import (CONTACT_MODELS, FILES, PAPER_TRACES, REPORT_NAMES,
                                design_points, map_steps, speed_labels)
 
@@ -325,6 +327,12 @@ class Study:
         ``practice`` section's ``enabled``; its stability claim needs line-model runs)."""
         return bool(self.config["practice"]["enabled"]) and "line" in self.sweep_models
 
+    @property
+    def practice_traces(self):
+        """The practice design's traces: the LSBG and the SBG of ``practice.sbg_trace``
+        (ISO 23509's face-milled by default, or the paper's arc)."""
+        return practice_traces(self.config)
+
     def practice_file(self, kind, trace):
         """A practice design point's file: ``kind`` one of geometry, compliance,
         fe_ltca, fe_envelope, tca, vh_map, run, rating (``FILES["practice_<kind>"]``)."""
@@ -333,7 +341,7 @@ class Study:
 
     def practice_files(self, kind):
         """:meth:`practice_file` of both traces (none without the practice design)."""
-        return [self.practice_file(kind, t) for t in PAPER_TRACES] if self.practice else []
+        return [self.practice_file(kind, t) for t in self.practice_traces] if self.practice else []
 
     @property
     def optimise(self):
@@ -357,7 +365,8 @@ class Study:
         """Every front: both traces, both seeds (none without the optimisation)."""
         if not self.optimise:
             return []
-        return [self.optimise_front(t, s) for t in PAPER_TRACES for s in self.optimise_seeds]
+        return [self.optimise_front(t, s) for t in self.practice_traces
+                for s in self.optimise_seeds]
 
     def best_file(self, kind, trace):
         """A file of the practice design point with each type's chosen ease-off: ``kind``
@@ -367,7 +376,7 @@ class Study:
 
     def best_files(self, kind):
         """:meth:`best_file` of both traces (none without the optimisation)."""
-        return [self.best_file(kind, t) for t in PAPER_TRACES] if self.optimise else []
+        return [self.best_file(kind, t) for t in self.practice_traces] if self.optimise else []
 
     def load_curve(self, design_set, trace):
         return _format(FILES["load_curve"], design_set=design_set, trace=trace,
@@ -375,10 +384,12 @@ class Study:
 
     @property
     def load_curves(self):
-        """The load curves of both designs (``paper``, ``practice``) and both traces."""
+        """The load curves of both designs (``paper``, ``practice``) and both traces (each
+        design's own: :data:`PAPER_TRACES`, :attr:`practice_traces`)."""
         if not self.practice:
             return []
-        return [self.load_curve(d, t) for d in DESIGN_SETS for t in PAPER_TRACES]
+        traces = {"paper": PAPER_TRACES, "practice": self.practice_traces}
+        return [self.load_curve(d, t) for d in DESIGN_SETS for t in traces[d]]
 
     # -------------------------------------------------------------- targets
     @property
@@ -408,7 +419,7 @@ class Study:
     def wildcards(self):
         """Constraints of the wildcards (regular expressions)."""
         return {
-            "trace": "|".join(PAPER_TRACES),
+            "trace": "|".join(TRACES),
             "spiral": r"\d+(\.\d+)?",
             "engine": "pybullet|scipy|compiled",
             "model": "|".join(CONTACT_MODELS),

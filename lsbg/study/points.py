@@ -66,8 +66,9 @@ FILES = {
     "load_curve": "results/load_curves/{design_set}_{trace}_beta{spiral}.nc",
 }
 
-#: Both traces run at the paper's design point (the paper compares them).
+#: Both traces run at the paper's design point (the paper compares them): the paper's SBG.
 PAPER_TRACES = ("logarithmic", "circular")
+
 CONTACT_MODELS = ("point", "line")
 REPORT_NAMES = ("paper", "sweep", "verification")
 

@@ -18,7 +18,7 @@ from lsbg.aggregate.runs import TYPE_ORDER, gear_type
 from lsbg.tables import claims as claim_tables
 
 __all__ = ["PRACTICE_CELL", "FE_ISO_BAND", "SPECTRUM_QUANTITIES", "by_type", "practice_claims",
-           "practice_design_table", "design_words", "load_curve_table", "fe_iso_ratio_table",
+           "practice_design_table", "design_words", "sbg_words", "load_curve_table", "fe_iso_ratio_table",
            "spectrum_life_table", "read_practice", "practice_load", "practice_text",
            "claims_text", "with_answers"]
 
@@ -350,7 +350,25 @@ def practice_text(claims, practice, where):
     relief_words = (f", both tips relieved by {float(relief):.3g} µm" if relief is not None
                     else "")
     return claims_text(claims, f"**As a designer would make it** ({design_words(record)}"
-                               f"{relief_words}), {where}, its rated pitting torque:")
+                               f"{relief_words}; {sbg_words(practice['records'])}), {where}, "
+                               f"its rated pitting torque:")
+
+
+def sbg_words(records):
+    """Which SBG a design's records hold, in words ("SBG, ISO 23509 face-milled, cutter
+    radius 76.2 mm"), or "no SBG".
+
+    Parameters
+    ----------
+    records : dict
+        ``{gear type: design.json record}`` (:func:`read_practice`'s ``records``).
+    """
+    from lsbg.gear.design import TRACE_NAMES
+
+    record = records.get("SBG")
+    if record is None:
+        return "no SBG"
+    return f"{TRACE_NAMES[record['trace']]}, cutter radius {float(record['cutter_radius_mm']):g} mm"
 
 
 def with_answers(table, claims, column, at=2):

@@ -25,6 +25,7 @@ import numpy as np
 import pandas as pd
 
 from lsbg.gear.design import TRACE_LABELS
+from lsbg.gear.plane import face_milled_spiral_angle
 from lsbg.files import as_path_list
 from lsbg.aggregate.runs import records_by_type, run_spiral_angle, steady
 from lsbg.stats.samples import format_number
@@ -577,14 +578,19 @@ def verification_checks(checks, meshes, records, convergence=None, agreement=Non
                          r["mean_cone_distance_mm"], r["cutter_radius_mm"])
         if r["trace"] == "circular":
             plane = np.arcsin((rho**2 - rm**2 + 2 * rm * rc * np.sin(plane)) / (2 * rho * rc))
-        closed = np.ptp(np.degrees(np.arctan(np.tan(plane) / math.cos(
-            math.radians(r["plane_of_action_tilt_deg"])))))
+        milled = r["trace"] == "face_milled"  # ISO 23509's closed form, at every R
+        curve = np.degrees(face_milled_spiral_angle(
+            rho, rm, rc, math.radians(r["spiral_angle_deg"])) if milled else np.arctan(
+            np.tan(plane) / math.cos(math.radians(r["plane_of_action_tilt_deg"]))))
+        closed = np.ptp(curve)
         # the tangent: a central difference over +-1e-6 R_e of points off by eps R_e
         bound = 2 * math.degrees((eps * 1e6 + 2 * EPS) / math.sin(math.radians(min(beta)))
                                  + (1e-6 * r["outer_cone_distance_mm"] / rho.min())**2)
         add(f"spiral_{label}", f"{label} spiral angle " + ("varies along the face as its "
             "cutter's circle" if closed else "constant along the face"),
-            abs(np.ptp(beta) - closed), bound, "°", "closed form tan β = tan β_p(ρ)/cos γ, ± "
+            np.abs(np.asarray(beta) - curve) if milled else abs(np.ptp(beta) - closed), bound,
+            "°", ("ISO 23509's sin β(R) of the circle in the pitch plane at every R" if milled
+                  else "closed form tan β = tan β_p(ρ)/cos γ") + ", ± "
             "twice the round-off of an arccos of points 16 ε R_e off, ±10⁻⁶ R_e apart",
             result=f"{_number(np.ptp(beta), 3 if closed else 2)}°",
             bound_text=f"{_number(closed, 6)} ± {_number(bound)}°" if closed else None)

@@ -175,6 +175,7 @@ def _surface_constants(pair, misalignment, side):
     if curve.kind != "logarithmic":
         g[surface.G_RHO0], g[surface.G_THETA0], g[surface.G_BRANCH] = curve._arc
         g[surface.G_RC] = curve.cutter_radius
+        g[surface.G_POLAR_SCALE] = curve.polar_scale
     # the gear's active flank: beyond it the gear's tip sweeps the pinion's
     # undercut, which the generated pinion does not have
     g[surface.G_THETA_LO2], g[surface.G_THETA_HI2] = active_polar_range(pair, 2, side)

@@ -37,11 +37,12 @@ from numba import njit
 # ROOT2: the gear's root angle, for the flank chart's height R (theta - root)
 # COS_DELTA_B2, COS_PSI_G2, SIN_PSI_G2: cosines and sine of DELTA_B2 and PSI_G2, so that
 # the contact search turns the plane-of-action point without trigonometric calls
+# POLAR_SCALE: the curve's polar angle over its circle's (GeneratingCurve.polar_scale)
 (G_PSI_G2, G_ROLL2, G_DELTA_B2, G_SIDE, G_S2, G_OFFSET2, G_KIND, G_TAN_BETA, G_RM, G_RHO0,
  G_THETA0, G_BRANCH, G_RC, G_THETA_LO2, G_THETA_HI2, G_R_IN, G_R_OUT, G_GEAR_PITCH, G_RATIO,
  G_S1, G_PINION_PITCH, G_OFFSET1, G_ROOT2, G_COS_DELTA_B2, G_COS_PSI_G2,
- G_SIN_PSI_G2) = range(36, 62)
-N_GEOMETRY = 62
+ G_SIN_PSI_G2, G_POLAR_SCALE) = range(36, 63)
+N_GEOMETRY = 63
 
 # --- per mesh position: outputs of contact_search (columns O_*)
 # S*: moments of the region's points in the gear frame (true size); C*: in the
@@ -62,7 +63,7 @@ def _curve_angle(rho, g):
     rho0, rc = g[G_RHO0], g[G_RC]
     c = (rho * rho + rho0 * rho0 - rc * rc) / (2.0 * rho * rho0)
     c = min(1.0, max(-1.0, c))
-    return g[G_THETA0] + g[G_BRANCH] * math.acos(c)
+    return g[G_POLAR_SCALE] * (g[G_THETA0] + g[G_BRANCH] * math.acos(c))
 
 
 @njit(cache=True)

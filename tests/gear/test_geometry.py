@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from lsbg.gear.design import DesignError, GearPairDesign, circular_arc_sin_angle
+from lsbg.gear.design import DesignError, GearPairDesign
 from lsbg.gear.geometry import GearPair
 from lsbg.gear.vectors import rotate
 
@@ -17,8 +17,9 @@ PRACTICE = dict(profile_shift=0.44793242616994483, thickness_modification=0.0060
 
 
 @pytest.fixture(scope="module", params=[("logarithmic", {}), ("circular", {}),
-                                        ("logarithmic", PRACTICE), ("circular", PRACTICE)],
-                ids=["lsbg", "sbg", "lsbg-practice", "sbg-practice"])
+                                        ("logarithmic", PRACTICE), ("circular", PRACTICE),
+                                        ("face_milled", PRACTICE)],
+                ids=["lsbg", "sbg", "lsbg-practice", "sbg-practice", "iso-sbg-practice"])
 def pair(request):
     trace, shift = request.param
     return GearPair(GearPairDesign(trace=trace, **shift))
@@ -92,7 +93,7 @@ def test_sbg_spiral_angle_varies_as_the_cutter_arc_predicts(sbg):
     # increasing from toe to heel (cutter centre on the apex side)
     assert np.all(np.diff(beta) > 0)
     # closed form: tan(beta) = tan(beta_p(rho)) / cos(gamma), sin(beta_p) from the arc
-    beta_p = np.arcsin(circular_arc_sin_angle(d, rho))
+    beta_p = np.arcsin(sbg.planes["drive"].curve.circle_sin_angle(rho))
     expected = np.arctan(np.tan(beta_p) / math.cos(d.plane_of_action_tilt))
     np.testing.assert_allclose(beta, expected, atol=1e-8)
     # about 10 deg across a 25 mm face with a 76.2 mm cutter

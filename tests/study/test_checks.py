@@ -263,6 +263,13 @@ BEYOND_SCHEMA = {
     "dedendum below the addendum": ({"design": {"dedendum_mm": 3}}, "design.dedendum_mm = 3"),
     "cutter radius too small": ({"design": {"cutter_radius_mm": 10}},
                                 "design.cutter_radius_mm = 10"),
+    # 23 mm spans the face as the paper's arc but not as ISO 23509's circle in the pitch
+    # plane (sin beta = 0.998 at the heel): the practice pair's SBG and a sweep's
+    "cutter radius the practice design's face-milled SBG cannot span": (
+        {"design": {"cutter_radius_mm": 23}}, "design.cutter_radius_mm = 23: is too small"),
+    "cutter radius a face-milled sweep point cannot span": (
+        {"design": {"cutter_radius_mm": 23}, "practice": {"sbg_trace": "circular"},
+         "sweep": {"traces": ["face_milled"]}}, "design.cutter_radius_mm = 23: is too small"),
     "bore through the teeth": ({"design": {"gear_bore_mm": 500}}, "design.gear_bore_mm = 500"),
     "pinion larger than the gear": ({"design": {"pinion_teeth": 40}},
                                     "design.pinion_teeth = 40"),

@@ -4,6 +4,7 @@ tests/study/test_checks.py)."""
 
 import copy
 import os
+import re
 from pathlib import Path
 
 import pytest
@@ -76,19 +77,27 @@ def test_every_run_and_file_of_the_default_study_is_planned_once(default):
                              *study.practice_files("vh_map"), *study.load_curves,
                              *study.optimise_fronts, *study.best_files("rating"),
                              *study.best_files("vh_map")]
-    # each trace's search at two seeds, and the chosen ease-off's rating and V-H map
+    # each trace's search at two seeds, and the chosen ease-off's rating and V-H map: the
+    # practice pair's traces, its SBG ISO 23509's face-milled one
+    assert study.practice_traces == ("logarithmic", "face_milled")
     assert study.optimise_fronts == [f"results/optimise/{t}_beta35_seed{s}_front.nc"
-                                     for t in ("logarithmic", "circular") for s in (1, 2)]
+                                     for t in ("logarithmic", "face_milled") for s in (1, 2)]
     assert study.best_files("rating") == ["results/best/rating/logarithmic_beta35.nc",
-                                          "results/best/rating/circular_beta35.nc"]
-    # the practice design point of each trace and the load curves of both designs
+                                          "results/best/rating/face_milled_beta35.nc"]
+    # the practice design point of each trace and the load curves of both designs (the
+    # published pair's SBG the paper's arc)
     assert study.practice_files("rating") == ["results/practice/rating/logarithmic_beta35.nc",
-                                              "results/practice/rating/circular_beta35.nc"]
+                                              "results/practice/rating/face_milled_beta35.nc"]
     assert study.load_curves == [f"results/load_curves/{d}_{t}_beta35.nc"
-                                 for d in ("paper", "practice")
-                                 for t in ("logarithmic", "circular")]
-    assert study.practice_file("run", "circular") == \
-        "results/practice/runs/circular_beta35_line_compiled.nc"
+                                 for d, sbg in (("paper", "circular"), ("practice", "face_milled"))
+                                 for t in ("logarithmic", sbg)]
+    assert study.practice_file("run", "face_milled") == \
+        "results/practice/runs/face_milled_beta35_line_compiled.nc"
+    # the paper's SBG for the practice pair too, when asked
+    papers = plan.Study(load(practice={"sbg_trace": "circular"}))
+    assert papers.practice_files("rating") == ["results/practice/rating/logarithmic_beta35.nc",
+                                               "results/practice/rating/circular_beta35.nc"]
+    assert re.fullmatch(study.wildcards["trace"], "face_milled")
     # the sensitivity cases: every case's run; the V-H maps and FE loaded TCAs of the
     # cases that reach them (crowning and line stiffness; crowning)
     assert len(study.sensitivity_runs()) == 2 * len(study.sensitivity) == 2 * 13

@@ -93,3 +93,30 @@ def test_peak_to_peak_resolution_covers_the_sampling_error():
                 sampled = curve[offset::100000 // n][:n]
                 error = np.ptp(curve) - np.ptp(sampled)
                 assert 0 <= error <= peak_to_peak_resolution(sampled, at_cusps) + 1e-12
+
+
+def spiral_rows(trace, **design):
+    """The spiral-angle row of verification_checks from a design point's record."""
+    from lsbg.gear.design import GearPairDesign
+    from lsbg.gear.geometry import GearPair
+    from lsbg.solid.export import design_record
+
+    record = design_record(GearPair(GearPairDesign(trace=trace, **design)))
+    checks = verification_tables.verification_checks({}, {}, {"SBG": record})
+    return checks[checks.key == "spiral_SBG"].iloc[0], record
+
+
+def test_the_face_milled_sbgs_spiral_angle_is_checked_at_every_cone_distance():
+    """ISO 23509's closed form at each of the record's cone distances, not its spread."""
+    row, record = spiral_rows("face_milled")
+    assert row["pass"] and row["value"] < 1e-6 < 0.01
+    assert "at every R" in row["reason"]
+    # a record whose heel is off by 0.01 deg fails, though its toe and mean are right
+    record["spiral_angle_along_face_deg"][-1] += 0.01
+    checks = verification_tables.verification_checks({}, {}, {"SBG": record})
+    assert not checks[checks.key == "spiral_SBG"].iloc[0]["pass"]
+
+
+def test_the_papers_arc_is_checked_against_its_own_closed_form():
+    row, _ = spiral_rows("circular")
+    assert row["pass"] and "tan β = tan β_p(ρ)/cos γ" in row["reason"]

@@ -30,7 +30,7 @@ from lsbg.tca.analysis import (MARKING_COMPOUND, designed_transmission_error, to
 from lsbg.tca.misalignment import Misalignment
 from lsbg.tca.modification import FlankModification
 
-TRACES = ("logarithmic", "circular")
+TRACES = ("logarithmic", "circular", "face_milled")
 CROWNED = FlankModification(25e-6, 5e-6)
 LENGTHWISE = FlankModification(25e-6, 0.0)
 POSITIONS = 60

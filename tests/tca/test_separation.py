@@ -33,7 +33,7 @@ CROWNED = FlankModification(25e-6, 5e-6)
 PHASES = 60
 
 
-@pytest.fixture(scope="module", params=["logarithmic", "circular"])
+@pytest.fixture(scope="module", params=["logarithmic", "circular", "face_milled"])
 def pair(request):
     return GearPair(GearPairDesign.from_config(dict(trace=request.param, spiral_angle_deg=35)))
 
