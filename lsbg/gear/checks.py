@@ -20,6 +20,7 @@ import warnings
 import numpy as np
 
 from lsbg.config import section_values
+from lsbg.gear.depth import TAPER_DEFAULTS
 from lsbg.gear.design import CONFIG_KEYS, DesignError, GearPairDesign
 
 __all__ = ["user_message", "design_value", "points_named", "design_problems"]
@@ -69,7 +70,8 @@ def design_value(config, key):
     design = config["design"]
     if key in design:
         return f"design.{key} = {design[key]!r}"
-    return f"design.{key} = {GearPairDesign().to_config()[key]!r} (default)"
+    defaults = {**TAPER_DEFAULTS, **GearPairDesign().to_config()}
+    return f"design.{key} = {defaults[key]!r} (default)"
 
 
 def _value_at(config, path):
