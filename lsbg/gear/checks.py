@@ -26,7 +26,8 @@ from lsbg.gear.design import CONFIG_KEYS, DesignError, GearPairDesign
 __all__ = ["user_message", "design_value", "points_named", "design_problems"]
 
 #: lsbg's SI name of each design key (``face_width`` -> ``face_width_mm``).
-_DESIGN_KEYS = {re.sub(r"_(mm|deg|kg_m3)$", "", key): key for key in CONFIG_KEYS}
+_DESIGN_KEYS = {re.sub(r"_(mm|deg|kg_m3)$", "", key): key
+                for key in (*CONFIG_KEYS, *TAPER_DEFAULTS)}
 
 
 #: The design keys each of lsbg's design rules compares a key with (its

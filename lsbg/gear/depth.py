@@ -42,8 +42,10 @@ __all__ = ["TAPERS", "TAPER_DEFAULTS", "dedendum_angles", "addendum_angles", "me
 #: The depth tapers lsbg builds (``design.depth_taper``).
 TAPERS = ("apex", "given_dedendum_angles", "standard", "uniform")
 
-#: The taper keys' defaults; :meth:`lsbg.gear.design.GearPairDesign.to_config` leaves
-#: them out at these values (the published pair's records stay as they were).
+#: The taper's design keys and their defaults: beside :data:`lsbg.gear.design.CONFIG_KEYS`
+#: (the keys every record holds), left out of
+#: :meth:`lsbg.gear.design.GearPairDesign.to_config` under the apex taper (the published
+#: pair's records stay as they were).
 TAPER_DEFAULTS = {"depth_taper": "apex", "dedendum_angles_deg": None}
 
 
@@ -177,16 +179,15 @@ def root_polar_angle(design, member, cone_distance):
         design.mean_cone_distance, cone_distance)
 
 
-def angles_from_config(value):
-    """``dedendum_angles_deg`` as the design's field: a tuple of radians, or None."""
-    from lsbg.gear.design import DesignError
-
+def angles_from_config(value, error):
+    """``dedendum_angles_deg`` as the design's field: a tuple of radians, or None;
+    ``error`` (:class:`lsbg.gear.design.DesignError`) raised where they are not numbers."""
     if value is None:
         return None
     try:
         return tuple(math.radians(float(v)) for v in value)
     except (TypeError, ValueError):
-        raise DesignError(f"dedendum_angles_deg = {value!r}: must be two angles in degrees "
+        raise error(f"dedendum_angles_deg = {value!r}: must be two angles in degrees "
                           f"[theta_f1, theta_f2]") from None
 
 

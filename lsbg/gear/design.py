@@ -266,11 +266,11 @@ class GearPairDesign:
         kwargs = {}
         for key, value in config.items():
             name, scale = _config_key(key)
-            if key not in CONFIG_KEYS:
+            if key not in CONFIG_KEYS and key not in depth.TAPER_DEFAULTS:
                 raise DesignError(f"{key} = {value!r}: unknown design parameter "
-                                  f"(known: {sorted(CONFIG_KEYS)})")
+                                  f"(known: {sorted({*CONFIG_KEYS, *depth.TAPER_DEFAULTS})})")
             if key == "dedendum_angles_deg":
-                value = depth.angles_from_config(value)
+                value = depth.angles_from_config(value, DesignError)
             elif scale is not None:
                 try:
                     value = scale[0](float(value))
@@ -292,7 +292,7 @@ class GearPairDesign:
     @cached_property
     def _config(self) -> dict:
         out = {}
-        for key in CONFIG_KEYS:
+        for key in (*CONFIG_KEYS, *depth.TAPER_DEFAULTS):
             name, scale = _config_key(key)
             value = getattr(self, name)
             if key in depth.TAPER_DEFAULTS:  # left out at the apex taper (records as they were)
@@ -574,7 +574,7 @@ CONFIG_KEYS = (
     "normal_pressure_angle_deg", "spiral_angle_deg", "pinion_hand", "addendum_mm",
     "dedendum_mm", "trace", "face_width_mm", "cutter_radius_mm", "base_cone_rule",
     "backlash_mm", "density_kg_m3", "pinion_bore_mm", "gear_bore_mm", "profile_shift",
-    "thickness_modification", "undercut", "depth_taper", "dedendum_angles_deg",
+    "thickness_modification", "undercut",
 )
 
 
