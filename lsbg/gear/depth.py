@@ -36,7 +36,7 @@ import math
 import numpy as np
 
 __all__ = ["TAPERS", "TAPER_DEFAULTS", "dedendum_angles", "addendum_angles", "mean_depth",
-           "heel_depth", "toe_depth", "cone_polar_angle", "tip_polar_angle",
+           "heel_depth", "toe_depth", "outer_tip_diameter", "cone_polar_angle", "tip_polar_angle",
            "root_polar_angle", "taper_problem", "angles_from_config", "angles_to_config"]
 
 #: The depth tapers lsbg builds (``design.depth_taper``).
@@ -115,6 +115,25 @@ def toe_depth(design, member, which):
         return outer * design.inner_cone_distance / design.outer_cone_distance
     run = design.mean_cone_distance - design.inner_cone_distance
     return mean_depth(design, member, which) - run * math.tan(_angle(design, member, which))
+
+
+def outer_tip_diameter(design, member, unit=1.0):
+    """The outer tip diameter d_ae = d_e + 2 h_ae cos(delta) (ISO 23509's) [m, times unit].
+
+    Under the apex taper 2 R_e sin(delta_a) / cos(theta_a), the same number.
+
+    Parameters
+    ----------
+    design : lsbg.gear.design.GearPairDesign
+    member : {1, 2}
+    unit : float
+        The scale of the result: 1 for metres, 1e3 for millimetres.
+    """
+    if design.depth_taper == "apex":
+        return 2 * unit * design.outer_cone_distance * math.sin(
+            design.tip_angle(member)) / math.cos(design.member_addendum_angle(member))
+    return unit * (design.pitch_diameter(member)
+                   + 2 * design.outer_addendum(member) * math.cos(design.pitch_angle(member)))
 
 
 def cone_polar_angle(depth, angle, mean_cone_distance, cone_distance):

@@ -538,8 +538,7 @@ class GearPairDesign:
             out[f"base_cone_angle_{name}_deg"] = math.degrees(self.base_cone_angle(member))
             out[f"tip_angle_{name}_deg"] = math.degrees(self.tip_angle(member))
             out[f"root_angle_{name}_deg"] = math.degrees(self.root_angle(member))
-            out[f"outer_tip_diameter_{name}_mm"] = 2e3 * self.outer_cone_distance * math.sin(
-                self.tip_angle(member)) / math.cos(self.member_addendum_angle(member))
+            out[f"outer_tip_diameter_{name}_mm"] = depth.outer_tip_diameter(self, member, 1e3)
             out[f"mean_tooth_thickness_{name}_mm"] = 1e3 * self.mean_tooth_thickness(member)
             out[f"outer_addendum_{name}_mm"] = 1e3 * self.outer_addendum(member)
             out[f"outer_dedendum_{name}_mm"] = 1e3 * self.outer_dedendum(member)

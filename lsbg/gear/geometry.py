@@ -312,6 +312,7 @@ class GearPair:
                 name = MEMBER_NAMES[member]
                 at = distances[np.argmin(land)]
                 culprit = ("base_cone_rule", d.base_cone_rule) if d.base_cone_rule == "paper" \
+                    else ("dedendum_angles", d.dedendum_angles) if d.dedendum_angles \
                     else ("depth_taper", d.depth_taper) if d.depth_taper != "apex" \
                     else (("profile_shift", d.profile_shift) if d.profile_shift
                           or d.thickness_modification else ("addendum", d.addendum))
