@@ -95,6 +95,10 @@ def test_mean_depths_as_iso_tr_10300_30_prints_them(sample):
     rating = rating_geometry(sample)
     assert [h / MM for h in rating.mean_addendum] == pytest.approx([4.837, 1.590], abs=6e-4)
     assert [h / MM for h in rating.mean_dedendum] == pytest.approx([2.393, 5.640], abs=6e-4)
+    # ISO/TR 10300-30's thickness modifications with the backlash's share, x_sm1 and
+    # x_sm2 = 0.036 and -0.055, and its basic crown gear's dedendum factor 1.25
+    assert rating.thickness_modification == pytest.approx((0.036, -0.055), abs=1e-3)
+    assert rating.crown_dedendum_factor == pytest.approx(1.25, rel=1e-12)
     # the rating's virtual tip diameters (ISO/TR 10300-30: 68.023 and 455.984 mm)
     tips = virtual_cylindrical_gears(rating).tip_diameter
     assert [t / MM for t in tips] == pytest.approx([68.023, 455.984], abs=2e-3)
