@@ -211,8 +211,8 @@ def shift_rule(section):
 
     if section["profile_shift"] != "gleason":
         return "given (practice.profile_shift)"
-    return f"{ADDENDUM_RULES[section['addendum_rule']]} (practice.addendum_rule: " \
-           f"{section['addendum_rule']})"
+    return f"{ADDENDUM_RULES[section['addendum_rule']]}; practice.addendum_rule: " \
+           f"{section['addendum_rule']}"
 
 
 def practice_overlay(published, config):
