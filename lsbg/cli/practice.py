@@ -33,8 +33,9 @@ def add_practice_parser(subparsers):
     parser = subparsers.add_parser(
         "practice", help="the pair as a designer would make it, as a configuration overlay",
         description="Make the pair of the 'design' section as bevel practice makes it, by the "
-                    "rules of the 'practice' section: the Gleason system's depth shares as ISO "
-                    "23509's mean profile shift x_hm1, the thickness modification x_smn1 that "
+                    "rules of the 'practice' section: the depth shares of its addendum_rule "
+                    "(ISO 23509's mean addendum factor, or AGMA 209's) as ISO 23509's mean "
+                    "profile shift x_hm1, the thickness modification x_smn1 that "
                     "balances the ISO 10300 root stresses, undercut refused, a linear tip "
                     "relief of both members as large as the mesh's deflection at its rated "
                     "torque (ISO 6336-1's mesh stiffness), and that torque as its load; write "
@@ -53,7 +54,8 @@ def run_practice(args):
     from lsbg.study.params import yaml_text
 
     overlay, figures = practice_overlay(design_of(args.settings), args.settings)
-    comment = (f"the practice design (lsbg practice): x_hm1 {figures['profile_shift']:.6f}, "
+    comment = (f"the practice design (lsbg practice): x_hm1 {figures['profile_shift']:.6f} "
+               f"by {figures['profile_shift_rule']}, "
                f"x_smn1 {figures['thickness_modification']:.6f}, rated gear torque "
                f"{figures['rated_torque_pitting_N_m']:.1f} N m (pitting), "
                f"{figures['rated_torque_bending_N_m']:.1f} N m (bending); the published "
@@ -62,7 +64,7 @@ def run_practice(args):
                f"{TRACE_NAMES[args.settings['practice']['sbg_trace']]}")
     text = yaml_text(overlay, comment)
     write_text_atomically(args.out, text)
-    return [f"x_hm1 = {figures['profile_shift']:.4f}, x_smn1 = "
+    return [f"x_hm1 = {figures['profile_shift']:.4f} ({figures['profile_shift_rule']}), x_smn1 = "
             f"{figures['thickness_modification']:.4f}, rated torque "
             f"{figures['rated_torque_pitting_N_m']:.1f} N m (published pair "
             f"{figures['published_rated_torque_pitting_N_m']:.1f}), tip relief "

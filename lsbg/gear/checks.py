@@ -20,12 +20,14 @@ import warnings
 import numpy as np
 
 from lsbg.config import section_values
+from lsbg.gear.depth import TAPER_DEFAULTS
 from lsbg.gear.design import CONFIG_KEYS, DesignError, GearPairDesign
 
 __all__ = ["user_message", "design_value", "points_named", "design_problems"]
 
 #: lsbg's SI name of each design key (``face_width`` -> ``face_width_mm``).
-_DESIGN_KEYS = {re.sub(r"_(mm|deg|kg_m3)$", "", key): key for key in CONFIG_KEYS}
+_DESIGN_KEYS = {re.sub(r"_(mm|deg|kg_m3)$", "", key): key
+                for key in (*CONFIG_KEYS, *TAPER_DEFAULTS)}
 
 
 #: The design keys each of lsbg's design rules compares a key with (its
@@ -69,7 +71,8 @@ def design_value(config, key):
     design = config["design"]
     if key in design:
         return f"design.{key} = {design[key]!r}"
-    return f"design.{key} = {GearPairDesign().to_config()[key]!r} (default)"
+    defaults = {**TAPER_DEFAULTS, **GearPairDesign().to_config()}
+    return f"design.{key} = {defaults[key]!r} (default)"
 
 
 def _value_at(config, path):

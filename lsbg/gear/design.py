@@ -6,9 +6,8 @@ The defaults are the paper's Table 1: a 9:37 pair, outer transverse module
 inside; :meth:`GearPairDesign.from_config` reads the paper's units (``*_mm``,
 ``*_deg``) used by the workflow configuration.
 
-Every derived quantity here is closed form (standard bevel gear geometry with
-tooth depth tapering to the common apex). The flank surfaces built on top of
-these numbers live in :mod:`lsbg.gear.geometry`.
+Every derived quantity here is closed form (standard bevel gear geometry, the depth's
+taper in :mod:`lsbg.gear.depth`); the flanks on these numbers: :mod:`lsbg.gear.geometry`.
 """
 
 from __future__ import annotations
@@ -20,6 +19,7 @@ from functools import cached_property
 
 import numpy as np
 
+from lsbg.gear import depth
 from lsbg.gear.plane import GeneratingCurve
 from lsbg.memo import per_member
 
@@ -119,6 +119,9 @@ class GearPairDesign:
         lsbg builds. The paper's pair is undercut at 35 deg and below (its
         9-tooth pinion is unshifted), so its design accepts it; a practice
         design refuses it.
+    depth_taper : {"apex", "given_dedendum_angles", "standard", "uniform"}
+        The depth's taper along the face, all cones to the apex or ISO 23509's
+        (:mod:`lsbg.gear.depth`); ``dedendum_angles`` (theta_f1, theta_f2) [rad] the given.
     """
 
     pinion_teeth: int = 9
@@ -141,6 +144,8 @@ class GearPairDesign:
     profile_shift: float = 0.0
     thickness_modification: float = 0.0
     undercut: str = "accept"
+    depth_taper: str = "apex"
+    dedendum_angles: tuple | None = None
 
     def __post_init__(self):
         self._validate()
@@ -198,6 +203,8 @@ class GearPairDesign:
                 fail(name, value, "must be a number of mean normal modules in (-1.5, 1.5)")
         if self.undercut not in UNDERCUT:
             fail("undercut", self.undercut, f"must be one of {UNDERCUT}")
+        if (problem := depth.taper_problem(self)) is not None:
+            fail(*problem)
         if self.addendum > 1.25 * self.module:
             fail("addendum", self.addendum, f"exceeds 1.25 module = {1.25 * self.module:.6g} m")
         for member in (1, 2):
@@ -270,10 +277,12 @@ class GearPairDesign:
         kwargs = {}
         for key, value in config.items():
             name, scale = _config_key(key)
-            if key not in CONFIG_KEYS:
+            if key not in CONFIG_KEYS and key not in depth.TAPER_DEFAULTS:
                 raise DesignError(f"{key} = {value!r}: unknown design parameter "
-                                  f"(known: {sorted(CONFIG_KEYS)})")
-            if scale is not None:
+                                  f"(known: {sorted({*CONFIG_KEYS, *depth.TAPER_DEFAULTS})})")
+            if key == "dedendum_angles_deg":
+                value = depth.angles_from_config(value, DesignError)
+            elif scale is not None:
                 try:
                     value = scale[0](float(value))
                 except (TypeError, ValueError):
@@ -294,9 +303,13 @@ class GearPairDesign:
     @cached_property
     def _config(self) -> dict:
         out = {}
-        for key in CONFIG_KEYS:
+        for key in (*CONFIG_KEYS, *depth.TAPER_DEFAULTS):
             name, scale = _config_key(key)
             value = getattr(self, name)
+            if key in depth.TAPER_DEFAULTS:  # left out at the apex taper (records as they were)
+                if self.depth_taper != "apex":
+                    out[key] = depth.angles_to_config(value, scale, _exact_inverse)
+                continue
             out[key] = _exact_inverse(value, *scale) if scale is not None else value
         return out
 
@@ -319,6 +332,7 @@ class GearPairDesign:
             stored = attrs.get(f"design_{key}")
             same = stored is not None and (
                 stored == value if isinstance(value, str)
+                else np.allclose(np.asarray(stored, float), value, rtol=1e-12) if isinstance(value, list)
                 else math.isclose(float(stored), float(value), rel_tol=1e-12))
             if not same:
                 return key, stored, value
@@ -400,12 +414,17 @@ class GearPairDesign:
 
     @per_member
     def outer_addendum(self, member: int) -> float:
-        """Outer addendum of a member, h_a +- the profile shift [m]."""
+        """Outer addendum of a member, h_a +- the profile shift [m] (other tapers:
+        :func:`lsbg.gear.depth.heel_depth`; the mean and toe depths: :mod:`lsbg.gear.depth`)."""
+        if self.depth_taper != "apex":
+            return depth.heel_depth(self, member, "addendum")
         return self.addendum + self.outer_shift(member)
 
     @per_member
     def outer_dedendum(self, member: int) -> float:
-        """Outer dedendum of a member, h_f -+ the profile shift [m]."""
+        """Outer dedendum of a member, h_f -+ the profile shift [m] (other tapers as above)."""
+        if self.depth_taper != "apex":
+            return depth.heel_depth(self, member, "dedendum")
         return self.dedendum - self.outer_shift(member)
 
     @per_member
@@ -442,12 +461,16 @@ class GearPairDesign:
 
     @per_member
     def member_addendum_angle(self, member: int) -> float:
-        """Addendum angle theta_a,i = atan(h_a,i / R_e) of a member [rad]."""
+        """Addendum angle theta_a,i = atan(h_a,i / R_e) of a member [rad] (or the taper's)."""
+        if self.depth_taper != "apex":
+            return depth.addendum_angles(self)[member - 1]
         return math.atan(self.outer_addendum(member) / self.outer_cone_distance)
 
     @per_member
     def member_dedendum_angle(self, member: int) -> float:
-        """Dedendum angle theta_f,i = atan(h_f,i / R_e) of a member [rad]."""
+        """Dedendum angle theta_f,i = atan(h_f,i / R_e) of a member [rad] (or the taper's)."""
+        if self.depth_taper != "apex":
+            return depth.dedendum_angles(self)[member - 1]
         return math.atan(self.outer_dedendum(member) / self.outer_cone_distance)
 
     @per_member
@@ -526,8 +549,7 @@ class GearPairDesign:
             out[f"base_cone_angle_{name}_deg"] = math.degrees(self.base_cone_angle(member))
             out[f"tip_angle_{name}_deg"] = math.degrees(self.tip_angle(member))
             out[f"root_angle_{name}_deg"] = math.degrees(self.root_angle(member))
-            out[f"outer_tip_diameter_{name}_mm"] = 2e3 * self.outer_cone_distance * math.sin(
-                self.tip_angle(member)) / math.cos(self.member_addendum_angle(member))
+            out[f"outer_tip_diameter_{name}_mm"] = depth.outer_tip_diameter(self, member, 1e3)
             out[f"mean_tooth_thickness_{name}_mm"] = 1e3 * self.mean_tooth_thickness(member)
             out[f"outer_addendum_{name}_mm"] = 1e3 * self.outer_addendum(member)
             out[f"outer_dedendum_{name}_mm"] = 1e3 * self.outer_dedendum(member)

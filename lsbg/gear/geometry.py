@@ -41,6 +41,7 @@ import math
 
 import numpy as np
 
+from lsbg.gear.depth import tip_polar_angle
 from lsbg.gear.design import DesignError, GearPairDesign
 from lsbg.gear.plane import GeneratingCurve, PlaneOfAction
 from lsbg.gear.vectors import cross, rotate, unit
@@ -281,10 +282,19 @@ class GearPair:
         return diff if member == 1 else -diff
 
     def top_land(self, member, cone_distance):
-        """Top land width (arc on the tip cone) at cone distances [m]."""
+        """Top land width (arc on the tip cone) at cone distances [m].
+
+        The arc on the sphere of each cone distance at the face cone's polar
+        angle there (:func:`lsbg.gear.depth.tip_polar_angle`: the tip angle under
+        the apex taper).
+        """
         d = self.design
-        tip = d.tip_angle(member)
-        return self.angular_thickness(member, cone_distance, tip) * np.asarray(cone_distance) * math.sin(tip)
+        if d.depth_taper == "apex":
+            tip = d.tip_angle(member)
+            return (self.angular_thickness(member, cone_distance, tip)
+                    * np.asarray(cone_distance) * math.sin(tip))
+        tip = tip_polar_angle(d, member, cone_distance)
+        return self.angular_thickness(member, cone_distance, tip) * np.asarray(cone_distance) * np.sin(tip)
 
     #: The narrowest top land lsbg builds, in mean normal modules (ISO 23509 and AGMA
     #: 929-A06 take about 0.2-0.3 m_mn as the least a case-hardened tip stands: a
@@ -303,6 +313,8 @@ class GearPair:
                 name = MEMBER_NAMES[member]
                 at = distances[np.argmin(land)]
                 culprit = ("base_cone_rule", d.base_cone_rule) if d.base_cone_rule == "paper" \
+                    else ("dedendum_angles", d.dedendum_angles) if d.dedendum_angles \
+                    else ("depth_taper", d.depth_taper) if d.depth_taper != "apex" \
                     else (("profile_shift", d.profile_shift) if d.profile_shift
                           or d.thickness_modification else ("addendum", d.addendum))
                 shape = "come out pointed" if np.min(land) <= 0 else "get too narrow a top land"
@@ -312,6 +324,14 @@ class GearPair:
                     f"the least is {self.MIN_TOP_LAND:g} m_mn = {1e3 * least:.3f} mm; "
                     f"normal pressure angle at the mean point "
                     f"{math.degrees(d.mean_normal_pressure_angle):.2f} deg)")
+        if d.depth_taper != "apex":
+            # the field of contact, the solids, the FE segment and the TCAs bound the teeth by
+            # cones through the pitch apex
+            raise DesignError(
+                f"depth_taper = {d.depth_taper!r}: lsbg's flanks, solids, FE tooth and TCAs "
+                f"take the tip and root cones through the pitch apex (depth_taper: apex); "
+                f"this taper is in the design's depths and angles (lsbg.gear.depth) and "
+                f"the ISO 10300 rating (lsbg.rating) only")
         ratio = self.contact_ratio()
         if ratio["total"] < 1.0:
             raise DesignError(

@@ -1,4 +1,20 @@
-"""A bevel pair as practice proportions it: the depth shared out by the Gleason system.
+"""A bevel pair as practice proportions it: the depth shared out between the members.
+
+Two rules give the practice design's mean profile shift x_hm1
+(``practice.addendum_rule``, :func:`practice_profile_shift`):
+
+* ``iso23509`` (the default): ISO 23509:2016's mean addendum factor of the gear,
+  its Gleason-type rule for spiral bevel gears (Annex C, C.3.2.3, Table C.2;
+  also ANSI/AGMA 2005-D03's gear mean addendum factor)
+
+      c_ham = 0.210 + 0.290 / u_a^2,  u_a = m_90 the equivalent 90-deg ratio,
+
+  the gear's mean addendum c_ham h_mw of the mean working depth h_mw = k_d m_mn,
+  hence (ISO 23509's Table 4, data type II to I) x_hm1 = k_d (0.5 - c_ham)
+  (:func:`iso23509_profile_shift`). At ISO 23509's Annex F sample 1 (14/39,
+  k_d = 2) c_ham = 0.24737 and x_hm1 = 0.505, the pair of ISO/TR 10300-30's
+  sample 1;
+* ``agma209``: the Gleason spiral bevel system of AGMA 209.03 (below).
 
 The paper's pair has equal addenda (0.85 m of a 1.7 m working depth each), so
 its 9-tooth pinion is undercut and its gear's teeth stronger than they need
@@ -22,7 +38,16 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["equivalent_ratio", "gleason_gear_addendum", "gleason_profile_shift"]
+__all__ = ["ADDENDUM_RULES", "equivalent_ratio", "gleason_gear_addendum",
+           "gleason_profile_shift", "iso23509_mean_addendum_factor", "iso23509_profile_shift",
+           "practice_profile_shift"]
+
+#: The rules of the practice design's profile shift (``practice.addendum_rule``),
+#: each with the words a report says it in.
+ADDENDUM_RULES = {
+    "iso23509": "ISO 23509's mean addendum factor c_ham = 0.210 + 0.290/u_a²",
+    "agma209": "the Gleason system's addenda of AGMA 209.03",
+}
 
 
 def equivalent_ratio(design):
@@ -69,3 +94,50 @@ def gleason_profile_shift(design):
     moved = design.addendum - gleason_gear_addendum(design)
     return moved / (design.mean_normal_module * design.outer_cone_distance
                     / design.mean_cone_distance)
+
+
+def iso23509_mean_addendum_factor(design):
+    """ISO 23509's mean addendum factor of the gear, c_ham = 0.210 + 0.290 / u_a^2 [-].
+
+    Parameters
+    ----------
+    design : lsbg.gear.design.GearPairDesign
+        Its teeth and pitch angles (u_a = :func:`equivalent_ratio`).
+    """
+    return 0.210 + 0.290 / equivalent_ratio(design) ** 2
+
+
+def iso23509_profile_shift(design):
+    """The pinion's mean profile shift x_hm1 = k_d (0.5 - c_ham) by ISO 23509 [-].
+
+    Parameters
+    ----------
+    design : lsbg.gear.design.GearPairDesign
+        Its unshifted addendum ``h_a`` sets the depth factor: the mean working
+        depth h_mw = 2 h_a R_m / R_e (the apex taper's, kept by every taper) is
+        k_d m_mn.
+
+    Returns
+    -------
+    float
+        x_hm1 in mean normal modules: the gear's mean addendum c_ham h_mw, the
+        pinion's (1 - c_ham) h_mw.
+    """
+    working = 2 * design.addendum * design.mean_cone_distance / design.outer_cone_distance
+    depth_factor = working / design.mean_normal_module
+    return depth_factor * (0.5 - iso23509_mean_addendum_factor(design))
+
+
+def practice_profile_shift(design, rule="iso23509"):
+    """x_hm1 by one of :data:`ADDENDUM_RULES` [-].
+
+    Parameters
+    ----------
+    design : lsbg.gear.design.GearPairDesign
+    rule : {"iso23509", "agma209"}
+    """
+    if rule == "iso23509":
+        return iso23509_profile_shift(design)
+    if rule == "agma209":
+        return gleason_profile_shift(design)
+    raise ValueError(f"practice.addendum_rule = {rule!r}: must be one of {sorted(ADDENDUM_RULES)}")

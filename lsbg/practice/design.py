@@ -3,8 +3,10 @@
 The paper's pair (docs/model.md, "The pair as a designer would make it") is
 made as practice makes it, each step by a stated rule:
 
-* the depth: the Gleason system's long-and-short addenda as ISO 23509's mean
-  profile shift x_hm1 (:func:`lsbg.gear.practice.gleason_profile_shift`);
+* the depth: long-and-short addenda as ISO 23509's mean profile shift x_hm1, by
+  ISO 23509's mean addendum factor c_ham (``practice.addendum_rule: iso23509``,
+  the default) or by the Gleason system's addenda of AGMA 209.03 (``agma209``)
+  (:func:`lsbg.gear.practice.practice_profile_shift`);
 * the thickness: the pinion's tooth made thicker and the gear's thinner by
   the thickness modification x_smn1 that makes the two members' ISO 10300
   root stresses equal (:func:`balanced_thickness_modification`), the Gleason
@@ -99,7 +101,7 @@ def balanced_thickness_modification(design, section, tooth_section, bracket=(-0.
 
 
 def practice_design(design, section, tooth_section, profile_shift="gleason",
-                    thickness_modification="balanced"):
+                    thickness_modification="balanced", addendum_rule="iso23509"):
     """The pair as practice makes it: shifted, thickness-balanced, not undercut.
 
     Parameters
@@ -109,19 +111,23 @@ def practice_design(design, section, tooth_section, profile_shift="gleason",
     section, tooth_section : dict
         The ``rating`` and ``tooth`` sections (the balance's form factors).
     profile_shift : "gleason" or float
-        x_hm1 by the Gleason system (:func:`lsbg.gear.practice.gleason_profile_shift`)
+        x_hm1 by ``addendum_rule`` (:func:`lsbg.gear.practice.practice_profile_shift`)
         or given [-].
     thickness_modification : "balanced" or float
         x_smn1 that balances the root stresses, or given [-].
+    addendum_rule : {"iso23509", "agma209"}
+        The rule of ``profile_shift="gleason"``: ISO 23509's mean addendum factor
+        or AGMA 209.03's gear addendum.
 
     Returns
     -------
     lsbg.gear.design.GearPairDesign
         With ``undercut="refuse"``.
     """
-    from lsbg.gear.practice import gleason_profile_shift
+    from lsbg.gear.practice import practice_profile_shift
 
-    x_hm = gleason_profile_shift(design) if profile_shift == "gleason" else float(profile_shift)
+    x_hm = (practice_profile_shift(design, addendum_rule) if profile_shift == "gleason"
+            else float(profile_shift))
     shifted = design.replace(profile_shift=x_hm, undercut="refuse")
     x_s = (balanced_thickness_modification(shifted, section, tooth_section)
            if thickness_modification == "balanced" else float(thickness_modification))
@@ -214,6 +220,22 @@ def practice_traces(config):
     return ("logarithmic", config["practice"]["sbg_trace"])
 
 
+def shift_rule(section):
+    """What gave the practice design's x_hm1, in words (the report's and the overlay's).
+
+    Parameters
+    ----------
+    section : dict
+        The ``practice`` section, defaults filled in.
+    """
+    from lsbg.gear.practice import ADDENDUM_RULES
+
+    if section["profile_shift"] != "gleason":
+        return "given (practice.profile_shift)"
+    return f"{ADDENDUM_RULES[section['addendum_rule']]}; practice.addendum_rule: " \
+           f"{section['addendum_rule']}"
+
+
 def practice_overlay(published, config):
     """The practice design as a configuration overlay, and the figures behind it.
 
@@ -236,14 +258,16 @@ def practice_overlay(published, config):
         and ``simulation.load_torque_N_m`` (the practice load), to merge over
         the study's configuration.
     figures : dict
-        x_hm1, x_smn1, the rated torques of both designs [N m], C_a [um] and
+        x_hm1 and the rule that gave it (``profile_shift_rule``), x_smn1, the rated
+        torques of both designs [N m], C_a [um] and
         L, and the practice load [N m].
     """
     from lsbg.gear.geometry import GearPair
 
     section = config["practice"]
     design = practice_design(published, config["rating"], config["tooth"],
-                             section["profile_shift"], section["thickness_modification"])
+                             section["profile_shift"], section["thickness_modification"],
+                             section["addendum_rule"])
     rated = rated_gear_torque(design, config)
     load = rated["pitting"] if section["load_torque_N_m"] == "rated" \
         else float(section["load_torque_N_m"])
@@ -267,6 +291,7 @@ def practice_overlay(published, config):
     }
     published_rated = rated_gear_torque(published, config)
     figures = {"profile_shift": design.profile_shift,
+               "profile_shift_rule": shift_rule(section),
                "thickness_modification": design.thickness_modification,
                "rated_torque_pitting_N_m": rated["pitting"],
                "rated_torque_bending_N_m": rated["bending"],

@@ -24,6 +24,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, fields
 
+from lsbg.gear.depth import mean_depth
+
 __all__ = ["BevelRatingGeometry", "VirtualCylindricalGears", "rating_geometry",
            "virtual_cylindrical_gears", "contact_line_length"]
 
@@ -91,8 +93,8 @@ class BevelRatingGeometry:
 def rating_geometry(design, tool_edge_radius=0.25, effective_face_width=0.85):
     """The ISO 10300 description of one of lsbg's designs.
 
-    lsbg's teeth have tapered depth (addendum and dedendum angles to the
-    apex); the design's profile shift x_hm1 moves depth between the members'
+    The addenda and dedenda are the mean point's (ISO 10300 reads them there),
+    whatever the depth's taper (:func:`lsbg.gear.depth.mean_depth`); the design's profile shift x_hm1 moves depth between the members'
     addenda and dedenda (the basic crown gear's dedendum factor is
     h_fm1 / m_mn + x_hm1) and, with the thickness modification x_smn1,
     their thicknesses; the backlash is split between the two tooth
@@ -116,10 +118,10 @@ def rating_geometry(design, tool_edge_radius=0.25, effective_face_width=0.85):
     BevelRatingGeometry
     """
     d = design
-    scale = d.mean_cone_distance / d.outer_cone_distance
     m_mn = d.mean_module * math.cos(d.spiral_angle)
-    h_am = tuple(d.outer_addendum(i) * scale for i in (1, 2))
-    h_fm = tuple(d.outer_dedendum(i) * scale for i in (1, 2))
+    # the mean point's depths, under every depth taper (lsbg.gear.depth)
+    h_am = tuple(mean_depth(d, i, "addendum") for i in (1, 2))
+    h_fm = tuple(mean_depth(d, i, "dedendum") for i in (1, 2))
     # s_mn = m_mn (pi/2 + 2 (x_hm tan(alpha_n) + x_sm)): each tooth thinner by j/2
     # (transverse), the pinion's thicker by x_smn1 and the gear's thinner
     x_sm = -d.backlash * math.cos(d.spiral_angle) / (4 * m_mn)

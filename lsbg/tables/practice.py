@@ -90,17 +90,23 @@ def practice_claims(runs, vh_maps, ratings, fe_ltcas, curves=None, spectrum=None
     return claims, tables
 
 
-def design_words(record):
+def design_words(record, profile_shift="gleason", addendum_rule="iso23509"):
     """The practice design in a few words, from its design.json record.
 
     Parameters
     ----------
     record : dict
         :func:`lsbg.solid.directory.read_record` of a practice geometry.
+    profile_shift, addendum_rule : str or float
+        The study's ``practice.profile_shift`` and ``practice.addendum_rule``: the
+        rule that gave x_hm1 (:func:`lsbg.practice.design.shift_rule`).
     """
+    from lsbg.practice.design import shift_rule
+
     shift = float(record.get("profile_shift", 0.0))
     thickness = float(record.get("thickness_modification", 0.0))
-    return (f"profile shift x_hm1 = {shift:.3f} (the Gleason system's addenda), thickness "
+    rule = shift_rule({"profile_shift": profile_shift, "addendum_rule": addendum_rule})
+    return (f"profile shift x_hm1 = {shift:.3f} ({rule}), thickness "
             f"modification x_smn1 = {thickness:.3f} (equal root stresses), undercut refused")
 
 
@@ -325,7 +331,7 @@ def claims_text(claims, heading):
     return "\n".join(lines)
 
 
-def practice_text(claims, practice, where):
+def practice_text(claims, practice, where, profile_shift="gleason", addendum_rule="iso23509"):
     """The finding's paragraph on the practice design: what it is, each claim's answer.
 
     Parameters
@@ -336,6 +342,8 @@ def practice_text(claims, practice, where):
         :func:`read_practice`.
     where : str
         The design point and load in words ("at 35°, 585 N·m").
+    profile_shift, addendum_rule : str or float
+        The study's practice rules of x_hm1 (:func:`design_words`).
 
     Returns
     -------
@@ -349,7 +357,8 @@ def practice_text(claims, practice, where):
     relief = flanks.get("flank_modification_pinion_tip_relief_um")
     relief_words = (f", both tips relieved by {float(relief):.3g} µm" if relief is not None
                     else "")
-    return claims_text(claims, f"**As a designer would make it** ({design_words(record)}"
+    return claims_text(claims, f"**As a designer would make it** ("
+                               f"{design_words(record, profile_shift, addendum_rule)}"
                                f"{relief_words}; {sbg_words(practice['records'])}), {where}, "
                                f"its rated pitting torque:")
 

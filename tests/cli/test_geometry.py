@@ -176,10 +176,15 @@ def test_every_design_key_can_be_set(capsys):
     from lsbg.cli.options import design_of, settings_of
     from lsbg.config import load_schema
 
-    assert set(CONFIG_KEYS) == set(load_schema()["properties"]["design"]["properties"])
+    from lsbg.gear.depth import TAPER_DEFAULTS
+
+    assert {*CONFIG_KEYS, *TAPER_DEFAULTS} == set(
+        load_schema()["properties"]["design"]["properties"])
     other = GearPairDesign.from_config({"trace": "circular", "spiral_angle_deg": 30,
                                         "module_mm": 5, "face_width_mm": 24,
-                                        "pinion_hand": "right", "backlash_mm": 0.07})
+                                        "pinion_hand": "right", "backlash_mm": 0.07,
+                                        "depth_taper": "given_dedendum_angles",
+                                        "dedendum_angles_deg": [2.5, 5]})
     parser = cli.build_parser()
     args = parser.parse_args(["geometry", "--out", "x"] + [
         arg for key, value in other.to_config().items()

@@ -145,3 +145,34 @@ def test_derived_quantities_are_memoised_bit_for_bit():
     config["module_mm"] = 1.0  # a copy: the memo keeps the design's
     assert design.to_config()["module_mm"] == 4.5
     assert GearPairDesign.from_config(design.to_config()) == design
+
+
+def test_a_depth_taper_refuses_no_dedendum_at_the_toe_naming_its_key():
+    from lsbg.gear.depth import toe_depth
+
+    with pytest.raises(DesignError, match=r"^dedendum_angles = .*: leaves the pinion no "
+                                          r"dedendum at the toe \(dedendum -"):
+        GearPairDesign.from_units(depth_taper="given_dedendum_angles", dedendum_angles_deg=[18, 2])
+    # a uniform depth keeps the mean depths at the toe and heel
+    uniform = GearPairDesign(depth_taper="uniform")
+    for member in (1, 2):
+        assert uniform.outer_dedendum(member) == toe_depth(uniform, member, "dedendum") == \
+            pytest.approx(GearPairDesign().outer_dedendum(member) * uniform.mean_cone_distance
+                          / uniform.outer_cone_distance, rel=1e-12)
+    with pytest.raises(DesignError, match=r"^dedendum_angles = None: must be the two"):
+        GearPairDesign(depth_taper="given_dedendum_angles")
+    with pytest.raises(DesignError, match=r"^depth_taper = 'parallel': must be one of"):
+        GearPairDesign(depth_taper="parallel")
+    with pytest.raises(DesignError, match=r"^dedendum_angles_deg = \['a', 2\]: must be two"):
+        GearPairDesign.from_units(depth_taper="given_dedendum_angles", dedendum_angles_deg=["a", 2])
+
+
+@pytest.mark.parametrize("angles, member", [([0, -4], "pinion"), ([-12, 0], "gear")])
+def test_a_depth_taper_that_points_the_teeth_is_refused_naming_its_key(angles, member):
+    from lsbg.gear.geometry import GearPair
+
+    design = GearPairDesign.from_units(depth_taper="given_dedendum_angles",
+                                       dedendum_angles_deg=angles)
+    with pytest.raises(DesignError, match=rf"^dedendum_angles = .*: the {member} teeth come "
+                                          r"out pointed \(top land -"):
+        GearPair(design)

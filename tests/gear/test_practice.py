@@ -76,3 +76,24 @@ def test_too_much_shift_gives_a_narrow_top_land():
         GearPair(GearPairDesign(profile_shift=1.0))
     with pytest.raises(DesignError, match="profile_shift = 1.1: leaves the gear no addendum"):
         GearPairDesign(profile_shift=1.1)
+
+
+def test_iso_23509_mean_addendum_factor_gives_annex_f_sample_1():
+    """ISO 23509:2016, Annex F, sample 1 (14/39, Sigma = 90 deg, k_d = 2): its printed
+    c_ham = 0.24737 and x_hm1 = k_d (0.5 - c_ham) = 0.505 (ISO/TR 10300-30's sample 1,
+    tests/rating/test_iso10300.py), where AGMA 209.03's rule gives 0.400."""
+    from lsbg.gear.practice import (iso23509_mean_addendum_factor, iso23509_profile_shift,
+                                    practice_profile_shift)
+
+    sample = GearPairDesign.from_units(pinion_teeth=14, gear_teeth=39, module_mm=176.893 / 39,
+                                       face_width_mm=25.4, pinion_bore_mm=10, gear_bore_mm=40)
+    # k_d = 2: the unshifted mean addendum is one mean normal module
+    sample = sample.replace(addendum=sample.mean_normal_module * sample.outer_cone_distance
+                            / sample.mean_cone_distance)
+    assert iso23509_mean_addendum_factor(sample) == pytest.approx(0.24737, abs=5e-6)
+    assert iso23509_profile_shift(sample) == pytest.approx(0.505, abs=5e-4)
+    assert practice_profile_shift(sample, "iso23509") == iso23509_profile_shift(sample)
+    assert practice_profile_shift(sample, "agma209") == gleason_profile_shift(sample)
+    assert gleason_profile_shift(sample) == pytest.approx(0.400, abs=1e-3)
+    with pytest.raises(ValueError, match="practice.addendum_rule = 'x'"):
+        practice_profile_shift(sample, "x")

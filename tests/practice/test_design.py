@@ -13,7 +13,7 @@ import pytest
 from lsbg.config import merge_config, resolve_config
 from lsbg.gear.design import GearPairDesign
 from lsbg.gear.geometry import GearPair
-from lsbg.gear.practice import gleason_profile_shift
+from lsbg.gear.practice import gleason_profile_shift, iso23509_profile_shift
 from lsbg.practice.design import (deflection_tip_relief, practice_overlay, rated_gear_torque,
                                   root_stress_ratio)
 from lsbg.rating.config import rate_design
@@ -48,11 +48,14 @@ def test_the_rated_torque_is_where_the_pitting_safety_is_one(published, config):
     assert 3.5 < 1964.99 / rated["pitting"] < 4.5
 
 
-def test_the_overlay_is_the_gleason_shift_with_balanced_roots(published, config, made):
+def test_the_overlay_is_the_iso_23509_shift_with_balanced_roots(published, config, made):
     overlay, figures = made
     assert overlay["design"]["undercut"] == "refuse"
-    assert overlay["design"]["profile_shift"] == pytest.approx(gleason_profile_shift(published),
+    # the default rule is ISO 23509's mean addendum factor, and the figures say so
+    assert config["practice"]["addendum_rule"] == "iso23509"
+    assert overlay["design"]["profile_shift"] == pytest.approx(iso23509_profile_shift(published),
                                                                abs=1e-6)
+    assert "ISO 23509" in figures["profile_shift_rule"]
     design = GearPairDesign.from_config({**merge_config(config, overlay)["design"],
                                          "trace": "logarithmic", "spiral_angle_deg": 35})
     assert root_stress_ratio(design, config["rating"], config["tooth"]) == pytest.approx(
@@ -68,6 +71,15 @@ def test_the_overlay_is_the_gleason_shift_with_balanced_roots(published, config,
         "published_rated_torque_pitting_N_m"]
     assert overlay["simulation"]["load_torque_N_m"] == pytest.approx(
         figures["rated_torque_pitting_N_m"], abs=1e-3)
+
+
+def test_the_agma_209_rule_is_kept_as_an_option(published, config):
+    section = {**config["practice"], "addendum_rule": "agma209"}
+    overlay, figures = practice_overlay(published, {**config, "practice": section})
+    assert overlay["design"]["profile_shift"] == pytest.approx(gleason_profile_shift(published),
+                                                               abs=1e-6)
+    assert "AGMA 209" in figures["profile_shift_rule"]
+    assert overlay["design"]["profile_shift"] < iso23509_profile_shift(published) - 0.1
 
 
 def test_the_tip_relief_is_the_deflection_under_load(published, config):

@@ -276,6 +276,21 @@ BEYOND_SCHEMA = {
     "pointed teeth": ({"design": {"normal_pressure_angle_deg": 30, "addendum_mm": 5.6,
                                   "dedendum_mm": 7}}, "design.addendum_mm = 5.6"),
     "trace is not a design key": ({"design": {"trace": "circular"}}, "design.trace"),
+    # the depth's taper (lsbg.gear.depth): no dedendum at the toe, a pointed pinion or
+    # gear, a taper the flank stages do not build
+    "a taper that leaves no dedendum at the toe": (
+        {"design": {"depth_taper": "given_dedendum_angles", "dedendum_angles_deg": [18, 2]}},
+        "design.dedendum_angles_deg = [18, 2]: leaves the pinion no dedendum at the toe"),
+    "a taper that points the pinion": (
+        {"design": {"depth_taper": "given_dedendum_angles", "dedendum_angles_deg": [0, -4]}},
+        "design.dedendum_angles_deg = [0, -4]: the pinion teeth come out pointed"),
+    "a taper that points the gear": (
+        {"design": {"depth_taper": "given_dedendum_angles", "dedendum_angles_deg": [-12, 0]}},
+        "design.dedendum_angles_deg = [-12, 0]: the gear teeth come out pointed"),
+    "dedendum angles without their taper": ({"design": {"dedendum_angles_deg": [2, 6]}},
+                                            "design.dedendum_angles_deg = [2, 6]"),
+    "a taper the flank stages do not build": ({"design": {"depth_taper": "uniform"}},
+                                              "design.depth_taper = 'uniform': lsbg's flanks"),
     # the resource guard
     "a gear of 100000 teeth": ({"design": {"gear_teeth": 100000}},
                                "design.gear_teeth = 100000"),

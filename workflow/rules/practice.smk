@@ -1,7 +1,7 @@
 # The pair as a designer would make it (docs/model.md, "The pair as a designer
 # would make it"): `lsbg practice` writes the practice design as a configuration
-# overlay (results/practice/design.yaml: ISO 23509 shift and thickness by the
-# Gleason system's rules, undercut refused, both tips relieved by the mesh's
+# overlay (results/practice/design.yaml: ISO 23509 shift by practice.addendum_rule,
+# thickness balancing the root stresses, undercut refused, both tips relieved by the mesh's
 # deflection, its rated torque as the load). Its design point of each trace then
 # runs the paper point's commands with the overlay as a second --config: the
 # geometry, the FE compliance, the FE loaded TCA aligned and at the envelope's

@@ -47,7 +47,9 @@ rule report_paper:
                           subgroup_size=STATISTICS["subgroup_size"],
                           load_spectrum_fractions=config["practice"]["load_spectrum"][
                               "torque_fractions"],
-                          load_spectrum_shares=config["practice"]["load_spectrum"]["cycle_shares"]),
+                          load_spectrum_shares=config["practice"]["load_spectrum"]["cycle_shares"],
+                          practice_profile_shift=config["practice"]["profile_shift"],
+                          practice_addendum_rule=config["practice"]["addendum_rule"]),
     log:
         "logs/report_paper/paper.log",
     shell:
