@@ -38,7 +38,7 @@ for _point in STUDY.cutter_points:
 
     rule:
         name:
-            f"cutter_{Path(_point['file']).stem}"
+            "cutter_" + Path(_point["file"]).stem.replace(".", "_")  # (a rule's name is a word)
         localrule: not (_point["fe"] and not _fe)
         input:
             config=ancient(FILES["study_config"]),
