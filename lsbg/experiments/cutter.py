@@ -61,7 +61,7 @@ def cutter_points(config):
     section = config["cutter_sweep"]
     design, trace = _design(config), section["trace"]
     usual = tuple(section["usual_range_outer_cone_distance"])
-    nominal = (fitting_radii(design, trace, usual) if section["radii_mm"] == "nominal"
+    nominal = (fitting_radii(design, trace, usual) if section["radii_mm"] is None
                else [r * 1e-3 for r in section["radii_mm"]])
     radii = {}
     for r in nominal:
@@ -106,7 +106,7 @@ def cutter_sweep_problems(config):
     except DesignError:
         return []  # (the design's own check names it)
     problems = []
-    if section["radii_mm"] != "nominal":
+    if section["radii_mm"] is not None:
         for k, radius in enumerate(section["radii_mm"]):
             why = cutter_fit_problem(design, trace, radius * 1e-3, (low, high))
             if why:

@@ -75,7 +75,12 @@ def test_every_run_and_file_of_the_default_study_is_planned_once(default):
                              *study.rating_files, *study.practice_files("rating"),
                              *study.practice_files("vh_map"), *study.load_curves,
                              *study.optimise_fronts, *study.best_files("rating"),
-                             *study.best_files("vh_map")]
+                             *study.best_files("vh_map"),
+                             *(p["file"] for p in study.cutter_points)]
+    # the cutter-radius sweep: the LSBG, then the SBG at each cutter radius
+    assert [p["file"] for p in study.cutter_points] == [
+        "results/cutter/lsbg.nc", *(f"results/cutter/circular_r{r}.nc" for r in (
+            "44.45", "63.5", "76.2", "95.25", "114.3", "135.7688"))]
     # each trace's search at two seeds, and the chosen ease-off's rating and V-H map
     assert study.optimise_fronts == [f"results/optimise/{t}_beta35_seed{s}_front.nc"
                                      for t in ("logarithmic", "circular") for s in (1, 2)]

@@ -35,10 +35,11 @@ CUTTER_TRIGGERS = dict(
 
 for _point in STUDY.cutter_points:
     _fe = cutter_fe_input(_point)
+    _name = Path(_point["file"]).stem.replace(".", "_")  # (a rule's name is a word)
 
     rule:
         name:
-            "cutter_" + Path(_point["file"]).stem.replace(".", "_")  # (a rule's name is a word)
+            f"cutter_{_name}"
         localrule: not (_point["fe"] and not _fe)
         input:
             config=ancient(FILES["study_config"]),
@@ -52,7 +53,9 @@ for _point in STUDY.cutter_points:
             **CUTTER_TRIGGERS,
         log:
             f"logs/cutter/{Path(_point['file']).stem}.log",
-        resources:
-            runtime=config["limits"]["tooth_minutes"] + 5,
+        resources:  # (no profile entry: the rules are the sweep's; an FE compliance as tooth_compliance's)
+            mem_mb=4000 if _point["fe"] and not _fe else 1000,
+            cpus_per_task=1,
+            runtime=config["limits"]["tooth_minutes"] + 5 if _point["fe"] and not _fe else 10,
         shell:
             LSBG
