@@ -17,8 +17,8 @@ for the LSBG beside them (:func:`point_dataset`):
   decomposition's), ``all`` every point.
 
 :func:`lsbg.tables.cutter.decomposition` splits each difference LSBG - SBG(design's
-cutter) into the curvature's share, SBG(matched) - SBG(design's cutter), and the constant spiral angle's,
-LSBG - SBG(matched).
+cutter) into the curvature's share, SBG(matched) - SBG(design's cutter), and the constant
+spiral angle's, LSBG - SBG(matched).
 """
 
 from __future__ import annotations

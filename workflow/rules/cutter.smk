@@ -10,7 +10,7 @@
 
 
 def cutter_point_settings(point):
-    """The ``--set`` values of a point's design (the paper's angle, the point's trace and radius)."""
+    """The ``--set`` values of a point's design: the paper's angle, its trace and radius."""
     settings = [f"design.trace={point['trace']}", f"design.spiral_angle_deg={PAPER_SPIRAL}"]
     if point["trace"] != "logarithmic":
         settings.append(f"design.cutter_radius_mm={point['radius_mm']!r}")
@@ -53,7 +53,8 @@ for _point in STUDY.cutter_points:
             **CUTTER_TRIGGERS,
         log:
             f"logs/cutter/{Path(_point['file']).stem}.log",
-        resources:  # (no profile entry: the rules are the sweep's; an FE compliance as tooth_compliance's)
+        # (no profile entry: the rules are the sweep's; an FE compliance as tooth_compliance's)
+        resources:
             mem_mb=4000 if _point["fe"] and not _fe else 1000,
             cpus_per_task=1,
             runtime=config["limits"]["tooth_minutes"] + 5 if _point["fe"] and not _fe else 10,
