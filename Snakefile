@@ -48,6 +48,11 @@ if STUDY.sweeps:
     include: "workflow/rules/sweeps.smk"
 
 
+if STUDY.cutter_points:
+
+    include: "workflow/rules/cutter.smk"
+
+
 if STUDY.practice:
 
     include: "workflow/rules/practice.smk"

@@ -324,7 +324,7 @@ def test_sweep_report(sweep_pages):
                             "4. The dynamic-factor curve", "5. The design points",
                             "6. The contact state against spiral angle",
                             "7. The paper's three claims against spiral angle",
-                            "8. Parameter sweeps", "9. Conclusion",
+                            "8. Parameter sweeps", "9. The SBG's cutter radius", "10. Conclusion",
                             "Appendix A. The loaded TCA", "Appendix B. Inputs"],
                       # loaded TCA, fluctuations, ratios, speed curve, Campbell map, the
                       # contact state against spiral angle, ISO 10300 against spiral angle

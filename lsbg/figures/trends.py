@@ -283,3 +283,45 @@ def plot_parameter_sweep(table, along, variables, units, by=None, labels=None):
         ax.grid(True, alpha=0.3)
     figure_legend(fig)
     return fig
+
+
+def plot_cutter_sweep(table, figures):
+    """The cutter-radius sweep: each figure of the SBGs against the cutter radius, the LSBG's
+    beside them.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        :func:`lsbg.tables.cutter.cutter_table`.
+    figures : dict
+        ``{column: (unit, words)}``, one panel each (:data:`lsbg.tables.cutter.FIGURES`).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The SBGs as points joined by a line (the FE stresses where computed), the
+        design's cutter ringed; the LSBG as a horizontal line; the curvature-matched
+        cutter's radius as a vertical dotted line.
+    """
+    fig, axes = new_figure(1, len(figures), width=3.2)
+    wrap = int(9 * fig.get_figwidth() / len(figures))
+    sbg = table[table["type"] == "SBG"].sort_values("cutter_radius_mm")
+    lsbg = table[table["type"] == "LSBG"]
+    roles = sbg["roles"].str.split()
+    matched = sbg[roles.apply(lambda r: "matched" in r)]["cutter_radius_mm"]
+    design = sbg[roles.apply(lambda r: "design" in r)]
+    for ax, (column, (unit, words)) in zip(axes[0], figures.items()):
+        rows = sbg[sbg[column].notna()]
+        ax.plot(rows["cutter_radius_mm"], rows[column], "o-", ms=4, color=type_color("SBG"),
+                label="SBG")
+        ax.plot(design["cutter_radius_mm"], design[column], "o", ms=9, mfc="none",
+                color=type_color("SBG"), label="SBG, the design's cutter")
+        for value in lsbg[column].dropna():
+            ax.axhline(value, color=type_color("LSBG"), ls="--", label="LSBG")
+        for radius in matched:
+            ax.axvline(radius, color="0.4", ls=":", label="curvature-matched cutter")
+        ax.set_xlabel("cutter radius r_c [mm]")
+        ax.set_ylabel(axis_label(words, unit, wrap=wrap))
+        ax.grid(True, alpha=0.3)
+    figure_legend(fig, ncols=4)
+    return fig

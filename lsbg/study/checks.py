@@ -65,6 +65,9 @@ configuration that returns its problem lines):
     file name; the number of runs against the resource guard.
 12. the practice design (:func:`lsbg.practice.checks.practice_problems`): the
     design its rules make, its pairs and relieved flanks, its load spectrum.
+13. the cutter-radius sweep (:func:`lsbg.experiments.cutter.cutter_sweep_problems`):
+    its trace, and each listed cutter radius fitting the pair at the paper's spiral
+    angle, while parsing.
 
 A ``load_sweep`` section (the former extension) gets one line naming the
 ``sweeps`` entry that replaces it (:func:`lsbg.study.sweep_checks.load_sweep_moved`).
@@ -146,6 +149,10 @@ def check_config(config, schema, analyses=True, given=None):
     from lsbg.optimise.checks import optimise_problems  # (imports numba's kernels)
 
     problems += load_problems(config, pairs) + _flank_problems(config) + optimise_problems(config)
+    if not problems:  # (at the paper's design point, which passed)
+        from lsbg.experiments.cutter import cutter_sweep_problems
+
+        problems += cutter_sweep_problems(config)
     if analyses:
         problems += analysis_problems(config, pairs)
     if not problems and config.get("sweeps"):

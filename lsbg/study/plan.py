@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, field
+from functools import cached_property
 
 from lsbg.files import number_label
 from lsbg.study.job_order import JOB_SECONDS, assign_priorities, lift_job_rate_limit
@@ -405,7 +406,21 @@ class Study:
                 *self.rating_files, *self.sweep_files, *extra,
                 *self.practice_files("rating"), *self.practice_files("vh_map"),
                 *self.load_curves, *self.optimise_fronts, *self.best_files("rating"),
-                *self.best_files("vh_map")]
+                *self.best_files("vh_map"), *(p["file"] for p in self.cutter_points)]
+
+    # ------------------------------------------------ the cutter-radius sweep
+    @cached_property
+    def cutter_points(self):
+        """The cutter-radius sweep's points (:func:`lsbg.experiments.cutter.cutter_points`),
+        each with its ``file``; none unless ``cutter_sweep.enabled``."""
+        if not self.config["cutter_sweep"]["enabled"]:
+            return []
+        from lsbg.experiments.cutter import cutter_points
+
+        return [{**p, "file": _format(FILES["cutter_point"], point=p["label"] if
+                                      p["trace"] == "logarithmic" else
+                                      f"{p['trace']}_{p['label']}")}
+                for p in cutter_points(self.config)]
 
     # ------------------------------------------------------------ wildcards
     @property

@@ -64,6 +64,9 @@ FILES = {
     "best_rating": "results/best/rating/{trace}_beta{spiral}.nc",
     # stresses, TE and pattern against torque (lsbg load-curve), design_set: paper or practice
     "load_curve": "results/load_curves/{design_set}_{trace}_beta{spiral}.nc",
+    # the SBG's cutter radius as a design variable (lsbg cutter-point, rules/cutter.smk):
+    # lsbg, or {trace}_r{radius in mm}
+    "cutter_point": "results/cutter/{point}.nc",
 }
 
 #: Both traces run at the paper's design point (the paper compares them): the paper's SBG.

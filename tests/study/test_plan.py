@@ -76,7 +76,13 @@ def test_every_run_and_file_of_the_default_study_is_planned_once(default):
                              *study.rating_files, *study.practice_files("rating"),
                              *study.practice_files("vh_map"), *study.load_curves,
                              *study.optimise_fronts, *study.best_files("rating"),
-                             *study.best_files("vh_map")]
+                             *study.best_files("vh_map"),
+                             *(p["file"] for p in study.cutter_points)]
+    # the cutter-radius sweep: the LSBG, then ISO 23509's SBG at each nominal cutter radius
+    # that fits and at the LSBG's lengthwise curvature radius R_m / sin(beta_m)
+    assert [p["file"] for p in study.cutter_points] == [
+        "results/cutter/lsbg.nc", *(f"results/cutter/face_milled_r{r}.nc" for r in (
+            "44.45", "63.5", "76.2", "95.25", "114.3", "127.581"))]
     # each trace's search at two seeds, and the chosen ease-off's rating and V-H map: the
     # practice pair's traces, its SBG ISO 23509's face-milled one
     assert study.practice_traces == ("logarithmic", "face_milled")

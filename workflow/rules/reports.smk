@@ -65,6 +65,7 @@ rule report_sweep:
         vh_files=STUDY.vh_maps,
         rating_sweep_file=RATING_SWEEP,
         parameter_sweep_files=[FILES["sweep_dataset"].format(name=s.name) for s in STUDY.sweeps],
+        cutter_files=[p["file"] for p in STUDY.cutter_points],
         sources=sources("report", "sweep"),
     output:
         report(STUDY.reports["sweep"], caption="../report/reports.rst", category="Reports",
