@@ -83,20 +83,16 @@ def cutter_points(config):
 def cutter_sweep_problems(config):
     """The ``cutter_sweep`` section's problems, one line each naming its key and value.
 
-    The trace must be one lsbg builds; a listed radius must fit the pair
+    A listed radius must fit the pair
     (:func:`lsbg.gear.cutter.cutter_fit_problem`, at the paper's spiral angle); the usual
     range must be increasing; the curvature-matched cutter must exist.
     """
     from lsbg.gear.cutter import cutter_fit_problem, matched_cutter_radius
-    from lsbg.gear.design import TRACES, DesignError
+    from lsbg.gear.design import DesignError
 
     section = config.get("cutter_sweep") or {}
     if not section.get("enabled"):
         return []
-    trace = section["trace"]
-    if trace not in TRACES or trace == "logarithmic":
-        return [f"cutter_sweep.trace = {trace!r}: not an SBG trace of this lsbg "
-                f"(its traces: {', '.join(TRACES)})"]
     low, high = section["usual_range_outer_cone_distance"]
     if not 0 < low < high:
         return [f"cutter_sweep.usual_range_outer_cone_distance = {[low, high]!r}: must be "

@@ -7,7 +7,6 @@ import pytest
 import yaml
 
 from lsbg.experiments.cutter import cutter_points
-from lsbg.gear.design import TRACES
 from lsbg.study import checks as config_check
 
 REPO = Path(__file__).resolve().parents[2]
@@ -38,7 +37,13 @@ def test_default_points_are_the_lsbg_the_fitting_nominal_cutters_and_the_matched
     (design,) = [p for p in sbg if "design" in p["roles"]]
     assert design["radius_mm"] == default["design"]["cutter_radius_mm"]
     (matched,) = [p for p in sbg if "matched" in p["roles"]]
-    assert 130 < matched["radius_mm"] < 140  # lsbg's arc in the plane of action: 135.77 mm
+    # ISO 23509's cutter circle is the developed pitch cone's trace: the matched cutter is
+    # the LSBG's R_m / sin(beta_m) itself
+    assert matched["radius_mm"] == pytest.approx(points[0]["radius_mm"], rel=1e-5)
+    # lsbg's arc in the plane of action curves tighter on the pitch cone: 135.77 mm
+    (arc,) = [p for p in cutter_points(with_cutter(default, trace="circular"))
+              if "matched" in p["roles"]]
+    assert 130 < arc["radius_mm"] < 140
     # the FE stresses at the decomposition's points only (and the LSBG's, from the study)
     assert [p["label"] for p in points if p["fe"]] == ["lsbg", "r76.2", matched["label"]]
     assert len({p["label"] for p in points}) == len(points)
@@ -69,10 +74,3 @@ def test_bad_radii_are_named_by_key_and_value_before_any_job(default):
     # a disabled sweep is not checked
     assert config_check.check_config(with_cutter(default, enabled=False, radii_mm=[20]),
                                      SCHEMA, analyses=False) == []
-
-
-@pytest.mark.skipif("face_milled" in TRACES, reason="this lsbg builds the face-milled trace")
-def test_a_trace_this_lsbg_lacks_is_named(default):
-    (line,) = config_check.check_config(with_cutter(default, trace="face_milled"), SCHEMA,
-                                        analyses=False)
-    assert line.startswith("cutter_sweep.trace = 'face_milled': not an SBG trace")

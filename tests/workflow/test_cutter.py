@@ -13,8 +13,8 @@ def cutter_jobs(tmp_path, *configfiles):
 def test_default_study_sweeps_the_fitting_nominal_cutters_and_the_matched_one(tmp_path):
     outputs, text = cutter_jobs(tmp_path)
     assert outputs == {"results/cutter/lsbg.nc",
-                       *(f"results/cutter/circular_r{r}.nc"
-                         for r in ("44.45", "63.5", "76.2", "95.25", "114.3", "135.7688"))}
+                       *(f"results/cutter/face_milled_r{r}.nc"
+                         for r in ("44.45", "63.5", "76.2", "95.25", "114.3", "127.581"))}
     # the sweep report reads every point
     report = text[text.index("rule report_sweep:"):]
     report = report[:report.index("\n\n")]
@@ -26,8 +26,8 @@ def test_default_study_sweeps_the_fitting_nominal_cutters_and_the_matched_one(tm
 
 def test_tiny_and_cluster_studies_choose_their_cutters(tmp_path):
     outputs, _ = cutter_jobs(tmp_path, str(REPO / TEST_CONFIG))
-    assert outputs == {"results/cutter/lsbg.nc", "results/cutter/circular_r76.2.nc",
-                       "results/cutter/circular_r95.25.nc", "results/cutter/circular_r135.7688.nc"}
+    assert outputs == {"results/cutter/lsbg.nc", "results/cutter/face_milled_r76.2.nc",
+                       "results/cutter/face_milled_r95.25.nc", "results/cutter/face_milled_r127.581.nc"}
     outputs, text = cutter_jobs(tmp_path, str(REPO / "workflow" / "config-cutter-cluster.yaml"))
     assert len(outputs) == 1 + 7 + 1  # the LSBG, every nominal cutter, the matched one
     assert "rule sweep_cutter_radius_combine:" in text
