@@ -93,6 +93,7 @@ def cutter_sweep_problems(config):
     section = config.get("cutter_sweep") or {}
     if not section.get("enabled"):
         return []
+    trace = section["trace"]
     low, high = section["usual_range_outer_cone_distance"]
     if not 0 < low < high:
         return [f"cutter_sweep.usual_range_outer_cone_distance = {[low, high]!r}: must be "
