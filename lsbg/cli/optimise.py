@@ -174,6 +174,8 @@ def run_release(args):
     result = release_design(evaluator_at, settings, release, fronts, compliance, log.info)
     ds = release_dataset(result, release, {
         "history": command_line(),
+        **{f"reference_flank_modification_{k}": ("" if v is None else v)
+           for k, v in settings["reference"].to_config().items()},
         **{f"design_{k}": v for k, v in design.to_config().items()}})
     write_dataset(ds, args.out)
     a, k = ds.attrs, int(ds.attrs["chosen"])
