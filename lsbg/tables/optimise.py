@@ -272,7 +272,7 @@ def release_text(releases):
     for kind, ds in releases.items():
         a, k = ds.attrs, int(ds.attrs["chosen"])
         criteria = a["release_criteria"].split()
-        where = (f"uniform bed at {a['uniform_positions']} positions, FE at "
+        where = (f"Uniform bed at {a['uniform_positions']} positions, FE at "
                  f"{a['fe_aligned_positions']} aligned and {a['fe_corners_positions']} at the "
                  f"corners (each the least whose doubling changes every figure by less than "
                  f"{100 * a['release_convergence']:g} %"
