@@ -426,7 +426,7 @@ def test_notebooks_declare_the_interface_parameters():
                   "practice_vh_files", "practice_rating_files", "practice_fe_ltca_files",
                   "practice_geometry_dirs", "load_curve_files", "load_spectrum_fractions",
                   "load_spectrum_shares", "practice_profile_shift", "practice_addendum_rule",
-                  "optimise_front_files", "best_run_files",
+                  "optimise_front_files", "optimise_release_files", "best_run_files",
                   "best_vh_files", "best_rating_files", "best_fe_ltca_files"},
         "sweep": {"sweep_file", "summary_file", "speed_curve_file", "steady_state_after_s",
                   "vh_files", "rating_sweep_file", "parameter_sweep_files"},

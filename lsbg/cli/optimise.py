@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
-from lsbg.cli.options import (add_config_options, add_geometry_input, add_output, checked,
-                              command_line)
+from lsbg.cli.options import (CommandError, add_config_options, add_geometry_input, add_output,
+                              checked, command_line)
 
-__all__ = ["add_optimise_parser"]
+__all__ = ["add_optimise_parser", "add_release_parser"]
 
 #: The sections ``lsbg optimise`` reads: its own, the shared design, the envelope,
 #: the marking compound, the line model, the pinion's speed, the rating (rated
@@ -82,19 +82,120 @@ def run_optimise(args):
 
 def _write_overlay(ds, settings, path):
     """The chosen design's ``flank_modification`` section -> ``path`` (YAML); its line."""
-    from lsbg.files import write_text_atomically
     from lsbg.optimise.choice import chosen_modification
-    from lsbg.study.params import yaml_text
 
     trace = ds.attrs["design_trace"]
     if ds.attrs["chosen"] < 0:
-        section = dict(settings["flank_modification"])
-        comment = f"{trace}: no feasible design in the front; the shared ease-off stands"
-    else:
-        section = chosen_modification(ds).to_config()
-        comment = (f"{trace}: the ease-off lsbg optimise chose ({ds.attrs['choice_rule']}, "
-                   f"seed {ds.attrs['seed']})")
+        return _overlay(None, settings, path, f"{trace}: no feasible design in the front; "
+                                              f"the shared ease-off stands")
+    return _overlay(chosen_modification(ds), settings, path,
+                    f"{trace}: the ease-off lsbg optimise chose ({ds.attrs['choice_rule']}, "
+                    f"seed {ds.attrs['seed']})")
+
+
+def _overlay(modification, settings, path, comment):
+    """A ``flank_modification`` overlay -> ``path`` (YAML; None: the configuration's own,
+    the shared design); its line."""
+    from lsbg.files import write_text_atomically
+    from lsbg.study.params import yaml_text
+
+    section = (dict(settings["flank_modification"]) if modification is None
+               else modification.to_config())
     section = {k: v for k, v in section.items() if v is not None}
     text = yaml_text({"flank_modification": section}, comment)
     write_text_atomically(path, text)
     return f"its ease-off as an overlay -> {path}"
+
+
+def add_release_parser(subparsers):
+    """``lsbg release``: the fronts' candidates under the verdict's models, one released."""
+    parser = subparsers.add_parser(
+        "release", help="release an ease-off of the fronts, or keep the shared one",
+        description="Re-evaluate the candidates of the fronts (lsbg optimise, --front, one "
+                    "per seed) and the shared design (flank_modification) at mesh positions "
+                    "doubled from optimise.phases until every figure changes by less than "
+                    "optimise.release.convergence, first on the uniform bed, then the best "
+                    "optimise.release.fe_candidates of each front with the FE loaded TCA "
+                    "(--compliance-file) over the load range, aligned and at the corners of "
+                    "the misalignment_map envelope; release the candidate that is no worse "
+                    "than the shared design in every optimise.release.criteria (within "
+                    "optimise.release.tolerance), better in one, and least by "
+                    "optimise.release.weights; else keep the shared design. Writes the "
+                    "candidates under every model to --out (NetCDF, CF-1.11) and the "
+                    "released ease-off as an overlay to --overlay-out.")
+    add_geometry_input(parser)
+    add_config_options(parser, SECTIONS)
+    parser.add_argument("--front", nargs="+", required=True, metavar="FRONT.nc",
+                        help="the fronts of the searches (lsbg optimise), one per seed")
+    parser.add_argument("--compliance-file", required=True, metavar="COMPLIANCE.nc",
+                        help="the design point's FE compliance (lsbg compliance): read if it "
+                             "holds these inputs, else computed and written there")
+    add_output(parser, metavar="RELEASE.nc")
+    add_output(parser, option="--overlay-out", metavar="OVERLAY.yaml",
+               help="the released ease-off (the shared one where none is released) as a "
+                    "configuration overlay, to be given as a further --config")
+    parser.set_defaults(handler=run_release)
+
+
+def run_release(args):
+    """Handler of ``lsbg release``: its summary lines."""
+    import dataclasses
+    import logging
+    from functools import lru_cache
+
+    import xarray as xr
+
+    from lsbg.cli.options import fe_compliance_of
+    from lsbg.files import write_dataset
+    from lsbg.gear.geometry import GearPair
+    from lsbg.optimise.checks import run_settings
+    from lsbg.optimise.objectives import Evaluator
+    from lsbg.optimise.release import (ReleaseSettings, release_dataset, release_design,
+                                       released_modification)
+    from lsbg.solid.directory import read_design
+
+    design = read_design(args.geometry)
+    settings = checked(lambda: run_settings(args.settings, design))
+    release = checked(lambda: ReleaseSettings.from_config(
+        args.settings["optimise"].get("release", {})))
+    fronts = [xr.load_dataset(path) for path in args.front]
+    traces = {str(f.attrs.get("design_trace")) for f in fronts}
+    if traces != {design.trace}:
+        raise CommandError(f"--front: fronts of {', '.join(sorted(traces))}, not of the "
+                           f"geometry's {design.trace}")
+    compliance, _ = fe_compliance_of(args)
+    pair = GearPair(design)
+
+    @lru_cache(maxsize=None)
+    def evaluator_at(positions):
+        return Evaluator(pair, dataclasses.replace(settings["evaluation"], phases=positions))
+
+    log = logging.getLogger("lsbg.release")
+    result = release_design(evaluator_at, settings, release, fronts, compliance, log.info)
+    ds = release_dataset(result, release, {
+        "history": command_line(),
+        **{f"reference_flank_modification_{k}": ("" if v is None else v)
+           for k, v in settings["reference"].to_config().items()},
+        **{f"design_{k}": v for k, v in design.to_config().items()}})
+    write_dataset(ds, args.out)
+    a, k = ds.attrs, int(ds.attrs["chosen"])
+    lines = [f"{design.trace}: {ds.sizes['candidate']} candidates of {len(fronts)} fronts, "
+             f"uniform bed at {a['uniform_positions']} positions, FE at "
+             f"{a['fe_aligned_positions']} (aligned) and {a['fe_corners_positions']} (corners; "
+             f"{a['fe_candidates_evaluated']} candidates), {a['released_candidates']} released, "
+             f"{a['run_seconds']:.3g} s"]
+    shown = ", ".join(f"{name} {float(ds[f'reference_fe_{name}']):.4g}"
+                      + ("" if k < 0 else f" -> {float(ds[f'fe_{name}'].values[k]):.4g}")
+                      for name in release.criteria)
+    if k < 0:
+        lines.append(f"none released: the shared ease-off stays (FE: {shown})")
+    else:
+        lines.append(f"released candidate {k} (seed {int(ds['front_seed'].values[k])}): FE "
+                     f"{shown}")
+    modification = released_modification(ds)
+    comment = (f"{design.trace}: no candidate released (lsbg release); the shared ease-off "
+               f"stays" if modification is None else
+               f"{design.trace}: the ease-off lsbg release released (seed "
+               f"{int(ds['front_seed'].values[k])})")
+    lines += [f"-> {args.out}", _overlay(modification, args.settings, args.overlay_out, comment)]
+    return lines

@@ -19,52 +19,101 @@ def _label(ds, name):
                       ds[name].attrs.get("units", ""), wrap=30)
 
 
-def plot_fronts(fronts):
-    """Each type's Pareto front on common axes, both seeds, the chosen and the shared design.
+def plot_fronts(fronts, releases=None):
+    """Each type's Pareto front on common axes, both seeds, the released, the alternatives
+    and the shared design; and the verdict: the FE figures of the candidates.
 
     Parameters
     ----------
     fronts : dict
         ``{(gear type, seed): front dataset}``
         (:func:`lsbg.optimise.dataset.front_dataset`).
+    releases : dict, optional
+        ``{gear type: release dataset}`` (:func:`lsbg.optimise.release.release_dataset`).
 
     Returns
     -------
     matplotlib.figure.Figure
         Three panels of the loaded TE over the load range [µrad] against the
         contact pressure [MPa], the pattern's movement over the envelope [mm]
-        and the mesh loss [%]: the front's members (filled: the study's seed,
-        open: the next), the chosen design (star) and the shared ease-off (a
-        cross: it need not meet the constraints), one colour per type.
+        and the mesh loss [%] at the search's positions: the front's members
+        (filled: the study's seed, open: the next), the candidates evaluated
+        under FE (diamonds: the alternatives), the released design (star) and
+        the shared ease-off (a cross: it need not meet the constraints), one
+        colour per type. With ``releases``, a fourth: the FE loaded TE over the
+        load range against the FE peak pressure of the shared design (cross)
+        and the candidates at converged positions (filled: released), with the
+        release's limits (the shared design's values plus the tolerance, dashed).
     """
-    fig, axes = new_figure(1, len(FRONT_PANELS), width=4.4, height=3.4)
+    panels_count = len(FRONT_PANELS) + (1 if releases else 0)
+    fig, axes = new_figure(1, panels_count, width=4.4, height=3.4)
     panels = axes.ravel()
     seeds = sorted({seed for _, seed in fronts})
+    releases = releases or {}
     for (kind, seed), ds in fronts.items():
         color = type_color(kind)
         on_front = ds["front"].values.astype(bool)
         first = seed == seeds[0]
+        release = releases.get(kind)
         for ax, (x, y) in zip(panels, FRONT_PANELS):
             if x not in ds or y not in ds:
                 continue
             ax.plot(ds[x].values[on_front], ds[y].values[on_front], "o", ms=4,
-                    color=color, mfc=color if first else "none", lw=0,
+                    color=color, mfc=color if first else "none", lw=0, alpha=0.6,
                     label=f"{kind}, front of seed {seed}")
+            if release is not None:
+                mine = (release["front_seed"].values == seed) & (
+                    release["fe_evaluated"].values == 1)
+                members = release["individual"].values[mine]
+                ax.plot(ds[x].values[members], ds[y].values[members], "D", ms=6, color=color,
+                        mec="k", mew=0.6, lw=0,
+                        label=f"{kind}, evaluated under FE" if first else None)
+                k = int(release.attrs["chosen"])
+                if k >= 0 and int(release["front_seed"].values[k]) == seed:
+                    i = int(release["individual"].values[k])
+                    ax.plot(ds[x].values[i], ds[y].values[i], "*", ms=14, color=color,
+                            mec="k", mew=0.6, label=f"{kind}, released")
             if first:
-                chosen = int(ds.attrs["chosen"])
-                if chosen >= 0:
-                    ax.plot(ds[x].values[chosen], ds[y].values[chosen], "*", ms=13,
-                            color=color, mec="k", mew=0.6, label=f"{kind}, chosen")
                 ax.plot(float(ds[f"reference_{x}"]), float(ds[f"reference_{y}"]), "x",
                         ms=9, mew=2, color=color, label=f"{kind}, shared ease-off")
     some = next(iter(fronts.values()))
     for ax, (x, y) in zip(panels, FRONT_PANELS):
         if x in some and y in some:
-            ax.set_xlabel(_label(some, x))
+            ax.set_xlabel(_label(some, x) + " (search)")
             ax.set_ylabel(_label(some, y))
         ax.grid(True, alpha=0.3)
-    figure_legend(fig, [panels[0]], ncols=3)
+    if releases:
+        _plot_verdict(panels[-1], releases)
+    figure_legend(fig, [panels[0], panels[-1]] if releases else [panels[0]], ncols=4)
     return fig
+
+
+def _plot_verdict(ax, releases):
+    """The FE panel: TE over the load range against the peak pressure, the release's limits."""
+    for kind, ds in releases.items():
+        color = type_color(kind)
+        x, y = "fe_peak_contact_pressure", "fe_transmission_error"
+        evaluated = ds["fe_evaluated"].values == 1
+        released = ds["released"].values == 1
+        ax.plot(ds[x].values[evaluated & ~released], ds[y].values[evaluated & ~released], "D",
+                ms=6, color=color, mfc="none", lw=0, label=f"{kind}, not released (FE)")
+        if released.any():
+            ax.plot(ds[x].values[released], ds[y].values[released], "D", ms=6, color=color,
+                    lw=0, label=f"{kind}, released (FE)")
+        k = int(ds.attrs["chosen"])
+        if k >= 0:
+            ax.plot(ds[x].values[k], ds[y].values[k], "*", ms=14, color=color, mec="k",
+                    mew=0.6)
+        px, py = float(ds[f"reference_{x}"]), float(ds[f"reference_{y}"])
+        ax.plot(px, py, "x", ms=9, mew=2, color=color)
+        tolerance = float(ds.attrs["release_tolerance"])
+        # the release's limits: below both lines (and the root stress's) is no worse
+        ax.axvline(px * (1 + tolerance), color=color, ls="--", lw=1)
+        ax.axhline(py * (1 + tolerance), color=color, ls="--", lw=1)
+    ax.set_xlabel(axis_label("largest Hertz pressure, edges included, over the load range "
+                             "and the envelope (FE)", "MPa", wrap=30))
+    ax.set_ylabel(axis_label("loaded TE over the load range, aligned (FE)", "µrad", wrap=30))
+    ax.grid(True, alpha=0.3)
 
 
 def plot_hypervolume(fronts):

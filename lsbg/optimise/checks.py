@@ -27,6 +27,7 @@ import math
 from lsbg.optimise.choice import CHOICE_RULES
 from lsbg.optimise.friction import FRICTION_LAWS, RZ_PER_RA, Lubricant
 from lsbg.optimise.objectives import OBJECTIVES, EvaluationSettings
+from lsbg.optimise.release import release_problems
 from lsbg.optimise.search import ALGORITHMS
 from lsbg.optimise.space import DesignSpace, bounds_problems
 
@@ -108,6 +109,7 @@ def optimise_problems(config):
             problems.append(f"{key} = {value!r}: Benedict & Kelley's roughness factor needs "
                             f"Ra < 1.27 um (50 microinches); this is Ra "
                             f"{lubricant.roughness * 1e6:.3g} um")
+    problems += release_problems(section.get("release", {}), section.get("phases", 24))
     problems += budget_problems(config)
     return problems
 

@@ -26,7 +26,7 @@ from __future__ import annotations
 import numpy as np
 
 __all__ = ["CHOICE_RULES", "knee_point", "least_transmission_error", "choose",
-           "chosen_modification"]
+           "modification_of", "chosen_modification"]
 
 #: The rules by name.
 CHOICE_RULES = ("knee", "least_transmission_error")
@@ -119,6 +119,31 @@ def choose(values, objectives, rule="knee", permissible_pressure=None):
     raise ValueError(f"optimise.choice = {rule!r}: one of {CHOICE_RULES}")
 
 
+def modification_of(dataset, index):
+    """The ease-off of one design of a front's dataset (:func:`lsbg.optimise.dataset.front_dataset`).
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        With the ease-off variables per individual (um, the reliefs' lengths as fractions).
+    index : int
+        The individual.
+
+    Returns
+    -------
+    lsbg.tca.modification.FlankModification
+    """
+    from lsbg.optimise.space import VARIABLES
+    from lsbg.tca.modification import FlankModification
+
+    values = {}
+    for field, *_ in VARIABLES.values():
+        variable = dataset[field]
+        scale = 1e-6 if variable.attrs.get("units") == "um" else 1.0
+        values[field] = float(variable.values[index]) * scale
+    return FlankModification(**values)
+
+
 def chosen_modification(dataset):
     """The chosen design of a front's dataset (:func:`lsbg.optimise.dataset.front_dataset`).
 
@@ -136,15 +161,7 @@ def chosen_modification(dataset):
     ValueError
         If the front has no feasible member (nothing was chosen).
     """
-    from lsbg.optimise.space import VARIABLES
-    from lsbg.tca.modification import FlankModification
-
     index = int(dataset.attrs.get("chosen", -1))
     if index < 0:
         raise ValueError("the front has no feasible design: nothing was chosen")
-    values = {}
-    for field, *_ in VARIABLES.values():
-        variable = dataset[field]
-        scale = 1e-6 if variable.attrs.get("units") == "um" else 1.0
-        values[field] = float(variable.values[index]) * scale
-    return FlankModification(**values)
+    return modification_of(dataset, index)

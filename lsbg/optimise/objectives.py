@@ -265,6 +265,22 @@ class Evaluator:
         -------
         dict
         """
+        return {**self.loaded(modification), **self._unloaded(modification)}
+
+    def loaded(self, modification):
+        """The quantities of :meth:`evaluate` that the loaded TCA gives (the ones its
+        positions, ``settings.phases``, change): every one but the unloaded TCA's
+        (``pattern_movement``, ``pattern_margin``, ``contact_lost``,
+        ``unloaded_transmission_error``, ``edge_contact``, ``least_backlash``).
+
+        Parameters
+        ----------
+        modification : lsbg.tca.modification.FlankModification
+
+        Returns
+        -------
+        dict
+        """
         s = self.settings
         torques = s.torques
         rated = int(np.flatnonzero(torques == s.rated_torque)[0])
@@ -289,7 +305,6 @@ class Evaluator:
         out["aligned_edge_load_share"] = float(edge_share[0])
         out["edge_load"] = float(edge_share[0] - s.edge_load_tolerance)
         out["envelope_transmission_error"] = float(max(envelope_te))
-        out.update(self._unloaded(modification))
         return out
 
     def edge_contact(self, modification):

@@ -369,6 +369,14 @@ class Study:
         return [self.optimise_front(t, s) for t in self.practice_traces
                 for s in self.optimise_seeds]
 
+    def optimise_release(self, trace):
+        return _format(FILES["optimise_release"], trace=trace, spiral=self.paper_spiral)
+
+    @property
+    def optimise_releases(self):
+        """Each trace's release (lsbg release; none without the optimisation)."""
+        return [self.optimise_release(t) for t in PAPER_TRACES] if self.optimise else []
+
     def best_file(self, kind, trace):
         """A file of the practice design point with each type's chosen ease-off: ``kind``
         one of overlay, fe_ltca, fe_envelope, tca, vh_map, run, rating."""

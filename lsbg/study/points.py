@@ -52,9 +52,11 @@ FILES = {
     "practice_run": "results/practice/runs/{trace}_beta{spiral}_line_{engine}.nc",
     "practice_rating": "results/practice/rating/{trace}_beta{spiral}.nc",
     # each type at its best ease-off (lsbg optimise on the practice design, rules/optimise.smk):
-    # the front of each seed, the chosen ease-off as an overlay, and the practice design
+    # the front of each seed, the released ease-off as an overlay, and the practice design
     # point's claims' files again with it
     "optimise_front": "results/optimise/{trace}_beta{spiral}_seed{seed}_front.nc",
+    # the fronts' candidates under the verdict's models and the released ease-off (lsbg release)
+    "optimise_release": "results/optimise/{trace}_beta{spiral}_release.nc",
     "best_overlay": "results/optimise/{trace}_beta{spiral}_best.yaml",
     "best_fe_ltca": "results/best/tooth/{trace}_beta{spiral}_ltca.nc",
     "best_fe_envelope": "results/best/tooth/{trace}_beta{spiral}_envelope.nc",

@@ -1,8 +1,11 @@
-"""Each type at its best ease-off, in the reports: the fronts, the chosen designs, the seeds.
+"""Each type at its best ease-off, in the reports: the fronts, the released designs, the seeds.
 
 Read from the fronts ``lsbg optimise`` writes (:func:`lsbg.optimise.dataset.front_dataset`):
-the chosen ease-off of each type beside the shared one with their objectives and
-mesh efficiencies, and the two seeds' hypervolumes (the search's convergence).
+the two seeds' searches and hypervolumes (the search's convergence); and from the releases ``lsbg release`` writes
+(:func:`lsbg.optimise.release.release_dataset`): the shared (practice) design, the best
+candidate under FE and the released design side by side with every figure under both
+models at converged positions, the release's verdict and the ranks under the
+alternative rules.
 """
 
 from __future__ import annotations
@@ -12,8 +15,9 @@ import pandas as pd
 
 from lsbg.aggregate.runs import TYPE_ORDER, gear_type
 
-__all__ = ["read_fronts", "study_seed", "study_fronts", "choice_text", "chosen_table",
-           "seed_table", "efficiency_text", "COEFFICIENTS"]
+__all__ = ["read_fronts", "study_seed", "study_fronts", "seed_table", "COEFFICIENTS",
+           "read_releases", "release_words",
+           "release_table", "release_text", "release_efficiency_text"]
 
 #: The ease-off coefficients shown [um].
 COEFFICIENTS = ("lengthwise_crowning", "profile_crowning", "bias", "spiral_angle_correction",
@@ -44,85 +48,6 @@ def study_fronts(fronts):
     return {kind: ds for (kind, s), ds in fronts.items() if s == seed}
 
 
-def choice_text(fronts):
-    """How the study's seed chose each type's design, in words (Markdown, no full stop).
-
-    Parameters
-    ----------
-    fronts : dict
-        :func:`read_fronts`.
-
-    Returns
-    -------
-    str
-        The rule and the members it chose from, e.g. "the knee rule among its
-        front's designs whose loaded TE at the rated torque is below the shared
-        ease-off's", naming a type whose front had none there (then chosen
-        from the whole front) and a type for which none was chosen (its shared
-        ease-off stands).
-    """
-    chosen = study_fronts(fronts)
-    first = next(iter(chosen.values()))
-    text = f"the {first.attrs['choice_rule']} rule"
-    if first.attrs.get("choose_from", "front") != "below_shared":
-        return text + " over its whole front"
-    text += (" among its front's designs whose loaded TE at the rated torque is below the "
-             "shared ease-off's")
-    unchosen = [kind for kind, ds in chosen.items() if int(ds.attrs.get("chosen", 0)) < 0]
-    missed = [kind for kind, ds in chosen.items() if kind not in unchosen
-              and not ds.attrs.get("chosen_below_shared_transmission_error", 0)]
-    notes = []
-    if missed:
-        notes.append(f"{' and '.join(missed)}: no such design passed, so chosen from the "
-                     f"whole front")
-    if unchosen:
-        notes.append(f"{' and '.join(unchosen)}: no design of the front passed, so the shared "
-                     f"ease-off stands")
-    return text + (f" ({'; '.join(notes)})" if notes else "")
-
-
-def chosen_table(fronts):
-    """The shared ease-off and each type's chosen one, with their objectives.
-
-    Parameters
-    ----------
-    fronts : dict
-        :func:`read_fronts`.
-
-    Returns
-    -------
-    pandas.DataFrame
-        One row per ease-off coefficient [µm] and objective (and the loaded
-        TE at the rated torque [µrad] and the mesh efficiency [%]); columns
-        ``shared`` and, per type, its chosen design and the shared design's
-        value at its own trace (a type with none chosen keeps the shared
-        ease-off: its chosen values are the shared ones).
-    """
-    rows = {}
-    for kind, ds in study_fronts(fronts).items():
-        chosen = int(ds.attrs["chosen"])
-        for name in COEFFICIENTS:
-            row = rows.setdefault((name.replace("_", " "), "µm"), {})
-            row["shared"] = float(ds.attrs.get(f"reference_flank_modification_{name}_um", 0.0))
-            # none chosen (chosen < 0): the type keeps the shared ease-off
-            row[f"{kind} chosen"] = (float(ds[name].values[chosen]) if chosen >= 0
-                                     else row["shared"])
-        # the loaded TE at the rated torque beside the objectives: what the issue's check reads
-        shown = dict.fromkeys((*ds.attrs["objectives"].split(), "rated_transmission_error",
-                               "efficiency"))
-        for name in (n for n in shown if n in ds):
-            units = ds[name].attrs.get("units", "")
-            row = rows.setdefault((ds[name].attrs.get("long_name", name), units), {})
-            row[f"{kind} shared"] = float(ds[f"reference_{name}"])
-            row[f"{kind} chosen"] = (float(ds[name].values[chosen]) if chosen >= 0
-                                     else row[f"{kind} shared"])
-    table = pd.DataFrame([{"quantity": q, "unit": u, **values}
-                          for (q, u), values in rows.items()])
-    order = ["quantity", "unit", "shared"] + [f"{t} {w}" for t in TYPE_ORDER
-                                              for w in ("shared", "chosen")]
-    return table[[c for c in order if c in table.columns]]
-
-
 def seed_table(fronts):
     """Each type's searches: evaluations, time, feasible front, hypervolume, seeds' agreement.
 
@@ -147,25 +72,146 @@ def seed_table(fronts):
     return pd.DataFrame(rows)
 
 
-def efficiency_text(fronts):
-    """The mesh efficiencies in one sentence: shared and chosen, per type (Markdown)."""
-    parts = []
-    for kind, ds in study_fronts(fronts).items():
-        if "efficiency" not in ds:
-            continue
-        chosen = int(ds.attrs["chosen"])
-        shared = float(ds["reference_efficiency"])
-        if chosen < 0:  # no feasible design below the shared one: the shared ease-off stands
-            parts.append(f"{kind} {shared:.2f} % (it keeps the shared ease-off)")
-            continue
-        best = float(ds["efficiency"].values[chosen])
-        parts.append(f"{kind} {shared:.2f} % with the shared ease-off, {best:.2f} % with its "
-                     f"own")
-    if not parts:
-        return ""
-    from lsbg.optimise.friction import FRICTION_LAWS
+def read_releases(paths):
+    """``{gear type: release}`` of the releases' files (lsbg release), in type order."""
+    import xarray as xr
 
-    law = next(iter(fronts.values())).attrs.get("friction_law", "")
-    return (f"**Mesh efficiency** (a comparison the paper did not make; sliding friction of "
-            f"the loaded TCA's line loads, {FRICTION_LAWS.get(law, law)}): "
-            + "; ".join(parts) + ".")
+    from lsbg.files import as_path_list
+
+    releases = {}
+    for path in as_path_list(paths):
+        ds = xr.load_dataset(path)
+        releases[gear_type(ds)] = ds
+    return {kind: releases[kind] for kind in TYPE_ORDER if kind in releases}
+
+
+def _best_candidate(ds):
+    """The FE-evaluated candidate of least score (-1 for none)."""
+    score = ds["score"].values
+    return int(np.nanargmin(score)) if np.any(np.isfinite(score)) else -1
+
+
+def release_words(releases):
+    """How each type's ease-off was released, in words (Markdown, no full stop)."""
+    first = next(iter(releases.values()))
+    criteria = ", ".join(first.attrs["release_criteria"].split()).replace("_", " ")
+    kept = [kind for kind, ds in releases.items() if ds.attrs["chosen"] < 0]
+    text = (f"the release rule (under the FE loaded TCA at converged positions no worse than "
+            f"the shared design in {criteria} within "
+            f"{100 * first.attrs['release_tolerance']:g} % and better in one; the least "
+            f"weighted sum in engineering units among the released)")
+    if kept:
+        text += f"; {' and '.join(kept)}: none released, the shared ease-off stays"
+    return text
+
+
+def release_table(releases):
+    """The shared (practice) design, the best candidate under FE and the released one.
+
+    Parameters
+    ----------
+    releases : dict
+        :func:`read_releases`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per ease-off coefficient [µm] and per figure under each model
+        (``model``: uniform bed or FE, both at converged positions; the pattern's
+        movement from the unloaded TCA); per type the columns ``shared``, ``best
+        candidate`` (the least weighted sum under FE, released or not) and
+        ``released`` (the shared design's values where none is).
+    """
+    from lsbg.optimise.objectives import QUANTITIES
+    from lsbg.optimise.verdict import CONVERGED_QUANTITIES, FE_QUANTITIES
+
+    rows = {}
+
+    def put(key, kind, shared, best, released):
+        row = rows.setdefault(key, {})
+        row[f"{kind} shared"], row[f"{kind} best candidate"] = shared, best
+        row[f"{kind} released"] = released
+
+    for kind, ds in releases.items():
+        k, best = int(ds.attrs["chosen"]), _best_candidate(ds)
+
+        def of(name, index):
+            return float(ds[name].values[index]) if index >= 0 else np.nan
+
+        for name in COEFFICIENTS:
+            # (a coefficient left out of the shared design's section is 0)
+            shared = float(ds.attrs.get(f"reference_flank_modification_{name}_um", 0.0))
+            put(("ease-off", name.replace("_", " "), "µm"), kind, shared, of(name, best),
+                of(name, k) if k >= 0 else shared)
+        for model, names, words in (("uniform", CONVERGED_QUANTITIES, "uniform bed"),
+                                    ("fe", tuple(FE_QUANTITIES), "FE")):
+            for name in names:
+                unit = (QUANTITIES if model == "uniform" else FE_QUANTITIES)[name][0]
+                shared = float(ds[f"reference_{model}_{name}"])
+                put((words, name.replace("_", " "), unit), kind, shared,
+                    of(f"{model}_{name}", best), of(f"{model}_{name}", k) if k >= 0 else shared)
+        shared = float(ds["reference_verdict_pattern_movement"])
+        put(("unloaded TCA", "pattern movement", "mm"), kind, shared,
+            of("verdict_pattern_movement", best),
+            of("verdict_pattern_movement", k) if k >= 0 else shared)
+    table = pd.DataFrame([{"model": m, "quantity": q, "unit": u, **values}
+                          for (m, q, u), values in rows.items()])
+    order = ["model", "quantity", "unit"] + [f"{t} {w}" for t in TYPE_ORDER for w in (
+        "shared", "best candidate", "released")]
+    return table[[c for c in order if c in table.columns]]
+
+
+def release_text(releases):
+    """Each type's release in one paragraph (Markdown): what was released or kept, the
+    converged positions, the ranks under the alternative rules and each seed's answer."""
+    parts = []
+    for kind, ds in releases.items():
+        a, k = ds.attrs, int(ds.attrs["chosen"])
+        criteria = a["release_criteria"].split()
+        where = (f"Uniform bed at {a['uniform_positions']} positions, FE at "
+                 f"{a['fe_aligned_positions']} aligned and {a['fe_corners_positions']} at the "
+                 f"corners (each the least whose doubling changes every figure by less than "
+                 f"{100 * a['release_convergence']:g} %"
+                 + ("" if a["uniform_converged"] and a["fe_aligned_converged"]
+                    and a["fe_corners_converged"] else "; not reached within "
+                    f"{a['release_largest_positions']} positions") + ")")
+        shared = ", ".join(f"{n.replace('_', ' ')} {float(ds[f'reference_fe_{n}']):.4g} "
+                           f"{ds[f'reference_fe_{n}'].attrs['units'].replace('urad', 'µrad')}"
+                           for n in criteria)
+        seeds = a["front_seeds"].split()
+        answers = ["shared kept" if a[f"seed{s}_chosen"] < 0 else
+                   f"candidate {a[f'seed{s}_chosen']}" for s in seeds]
+        seed_words = ", ".join(f"seed {s}: {w}" for s, w in zip(seeds, answers))
+        if k < 0:
+            best = _best_candidate(ds)
+            worse = "" if best < 0 else " (its best candidate under FE: " + ", ".join(
+                f"{n.replace('_', ' ')} {float(ds[f'fe_{n}'].values[best]):.4g}"
+                for n in criteria) + ")"
+            parts.append(f"**{kind}**: none of its {a['fe_candidates_evaluated']} candidates "
+                         f"evaluated under FE is no worse than the shared design "
+                         f"({shared}){worse}: **the shared ease-off stays**. Each front "
+                         f"alone: {seed_words}. {where}.")
+            continue
+        mine = ", ".join(f"{n.replace('_', ' ')} {float(ds[f'fe_{n}'].values[k]):.4g}"
+                         for n in criteria)
+        ranks = ", ".join(f"{a[f'rank_under_{r}']} under the {r} rule" for r in
+                          ("lexicographic", "knee") if f"rank_under_{r}" in a)
+        parts.append(f"**{kind}**: released (seed {int(ds['front_seed'].values[k])}), under FE "
+                     f"{mine} against the shared design's {shared}; of "
+                     f"{a['released_candidates']} released it ranks {ranks}; each front "
+                     f"alone: {seed_words}; its FE figures change by "
+                     f"{100 * a['chosen_fe_change']:.2g} % at twice the positions. {where}.")
+    return "\n\n".join(parts)
+
+
+def release_efficiency_text(releases):
+    """The mesh efficiencies of the shared and the released designs (Markdown), at
+    converged positions on the uniform bed."""
+    parts = []
+    for kind, ds in releases.items():
+        k, shared = int(ds.attrs["chosen"]), 100 - float(ds["reference_uniform_mesh_loss"])
+        parts.append(f"{kind} {shared:.2f} % (it keeps the shared ease-off)" if k < 0 else
+                     f"{kind} {shared:.2f} % with the shared ease-off, "
+                     f"{100 - float(ds['uniform_mesh_loss'].values[k]):.2f} % with its own")
+    return ("**Mesh efficiency** (sliding friction of the loaded TCA's line loads on the "
+            "uniform bed, at converged positions): " + "; ".join(parts) + ".") if parts else ""

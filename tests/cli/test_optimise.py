@@ -58,3 +58,33 @@ def test_a_tiny_run_writes_its_front(geometry, tmp_path, capsys):
         assert ds.attrs["history"].startswith("lsbg ")  # the command line as typed
         chosen = ds.attrs["chosen"]
     assert (chosen >= 0) == any(line.startswith("lsbg optimise: chosen (knee") for line in lines)
+
+
+@pytest.mark.parametrize("setting, message", [
+    ("optimise.release.criteria=[mesh_loss]",
+     "optimise.release.criteria[0]: 'mesh_loss' is not one of"),
+    ("optimise.release.largest_positions=32",
+     "optimise.release.largest_positions = 32: at least twice optimise.phases = 24"),
+])
+def test_release_bad_input_is_one_line_and_nothing_is_written(geometry, tmp_path, capsys,
+                                                              setting, message):
+    out, overlay = tmp_path / "release.nc", tmp_path / "best.yaml"
+    argv = ["release", "--geometry", str(geometry), "--front", str(tmp_path / "front.nc"),
+            "--compliance-file", str(tmp_path / "compliance.nc"), "--out", str(out),
+            "--overlay-out", str(overlay), "--set", setting]
+    assert cli.main(argv) == 2
+    error = capsys.readouterr().err
+    assert error.startswith(f"lsbg release: error: {message}") and error.count("\n") == 1
+    assert not out.exists() and not overlay.exists()
+
+
+def test_release_refuses_the_fronts_of_another_trace(geometry, tmp_path, capsys):
+    front = tmp_path / "front.nc"
+    xr.Dataset(attrs={"design_trace": "logarithmic"}).to_netcdf(front)
+    argv = ["release", "--geometry", str(geometry), "--front", str(front),
+            "--compliance-file", str(tmp_path / "compliance.nc"),
+            "--out", str(tmp_path / "release.nc"), "--overlay-out", str(tmp_path / "best.yaml")]
+    assert cli.main(argv) == 2
+    assert capsys.readouterr().err.startswith(
+        "lsbg release: error: --front: fronts of logarithmic, not of the geometry's circular")
+    assert not (tmp_path / "compliance.nc").exists()  # refused before the FE compliance

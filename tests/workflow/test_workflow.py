@@ -444,8 +444,8 @@ _AGGREGATES = ["combine", "summary", "rating_sweep", "report_paper", "report_swe
 _PRACTICE_POINT = [f"practice_{step}" for step in (
     "geometry", "compliance", "fe_ltca", "fe_envelope", "contact_state", "run", "rating")] * 2
 _LOAD_CURVES = ["load_curve"] * 4
-#: Each type's ease-off searched (two seeds) and its chosen design point's jobs.
-_OPTIMISE = ["optimise"] * 2 + ["optimise_second_seed"] * 2
+#: Each type's ease-off searched (two seeds) and released, and its design point's jobs.
+_OPTIMISE = ["optimise"] * 2 + ["optimise_second_seed"] * 2 + ["optimise_release"] * 2
 _BEST = [f"best_{step}" for step in (
     "fe_ltca", "fe_envelope", "contact_state", "run", "rating")] * 2
 #: What the overlay's change reruns: the practice design and everything made from it.
