@@ -375,7 +375,7 @@ class Study:
     @property
     def optimise_releases(self):
         """Each trace's release (lsbg release; none without the optimisation)."""
-        return [self.optimise_release(t) for t in PAPER_TRACES] if self.optimise else []
+        return [self.optimise_release(t) for t in self.practice_traces] if self.optimise else []
 
     def best_file(self, kind, trace):
         """A file of the practice design point with each type's chosen ease-off: ``kind``
