@@ -429,7 +429,7 @@ def test_notebooks_declare_the_interface_parameters():
                   "optimise_front_files", "optimise_release_files", "best_run_files",
                   "best_vh_files", "best_rating_files", "best_fe_ltca_files"},
         "sweep": {"sweep_file", "summary_file", "speed_curve_file", "steady_state_after_s",
-                  "vh_files", "rating_sweep_file", "parameter_sweep_files"},
+                  "vh_files", "rating_sweep_file", "parameter_sweep_files", "cutter_files"},
         "verification": {"convergence_files", "geometry_dirs", "runs", "mesh_files",
                          "steady_state_after_s", "checks_files"},
     }

@@ -205,7 +205,7 @@ CASE_ERRORS = {
         "--out {root}/vh.nc", "= 4: must be an odd whole number >= 3"),
     "a bare mapping of design keys": (
         "geometry --config {bare_design} --out {root}/g",
-        "module_mm: unknown key (known: contact, design,"),
+        "module_mm: unknown key (known: contact, cutter_sweep, design,"),
     "a configuration file with a key twice": (
         "simulate --geometry {geo} --config {duplicated} --out {out}",
         "line 3: key 'contact.slices' again (first at line 2)"),

@@ -163,7 +163,7 @@ def test_design_file_and_overrides(tmp_path, capsys):
     bare = tmp_path / "bare.yaml"
     bare.write_text("trace: circular\nspiral_angle_deg: 30\n")
     assert cli.main(["geometry", "--config", str(bare), "--out", str(tmp_path / "bad")]) == 2
-    assert "spiral_angle_deg: unknown key (known: contact, design," in capsys.readouterr().err
+    assert "spiral_angle_deg: unknown key (known: contact, cutter_sweep, design," in capsys.readouterr().err
     with pytest.raises(SystemExit) as exit_:
         cli.main(["geometry", "--design", str(design_file), "--out", str(tmp_path / "bad")])
     assert exit_.value.code == 2

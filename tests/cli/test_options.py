@@ -44,6 +44,9 @@ COMMANDS = {
     "practice": "--out {root}/practice.yaml",
     "load-curve": "--geometry {geo} --compliance-file {root}/c.nc --out {out}",
     "optimise": "--geometry {geo} --out {out}",
+    "release": "--geometry {geo} --front {text} --compliance-file {root}/c.nc --out {out} "
+               "--overlay-out {root}/best.yaml",
+    "cutter-point": "--roles nominal --radius-mm 76.2 --out {out}",
     "kernels": "--out {root}/kernels.json",
 }
 
