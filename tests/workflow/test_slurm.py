@@ -71,7 +71,10 @@ NOT_RUN_HERE = ("results/practice", "results/best", "results/optimise", "results
 #: submitting Snakemake runs their jobs itself, not as SLURM jobs of two Snakemake starts
 #: each (docs/scaling.md).
 LOCAL_RULES = {"checks", "combine", "fe_ltca", "fe_sensitivity", "paper_ltca", "rating",
-               "rating_sweep", "summary"}
+               "rating_sweep", "summary",
+               # the cutter sweep's points without an FE compliance of their own (the
+               # LSBG's FE is the tooth stage's; the test config's one nominal cutter)
+               "cutter_lsbg", "cutter_face_milled_r95_25"}
 #: Suffixes of lsbg's temporaries (lsbg.files.TEMPORARY_SUFFIXES).
 PARTIAL = (".part", ".tmp", ".old")
 

@@ -98,11 +98,14 @@ def test_priorities_follow_the_studys_rule_graph(tmp_path):
         waiting = [priorities[b] for a, b in edges if a == rule and b != "all"]
         own = round(10 * job_order.JOB_SECONDS.get(rule, 0.0))
         assert abs(priority - own - max(waiting, default=0)) <= 1, (rule, priority, waiting)
-    # the paper point's geometry opens the longest chain (every paper job waits for it);
+    # the longest chain starts first: the highest priority is a rule that waits for none
+    # (the practice design's, since its chain holds the searches and their release; the
+    # paper point's geometry opens the paper jobs' chain, before any of them);
     # the kernels' job opens the sweep's, before the sweep's jobs
+    first = max(priorities, key=priorities.get)
+    assert not any(b == first for _, b in edges), (first, priorities)
     assert priorities["paper_geometry"] > max(
-        priorities[r] for r in priorities if r not in ("paper_geometry", "sweep_points",
-                                                       "kernels"))
+        priorities[b] for a, b in edges if a == "paper_geometry" and b != "all")
     assert priorities["kernels"] > priorities["sweep_points"]
 
 
@@ -402,12 +405,13 @@ def test_a_changed_setting_reruns_only_the_runs_that_use_it(study, tmp_path):
     _paper_line = (["paper_ltca"] * 2 + ["fe_ltca"] * 2 + ["sensitivity"] * 2
                    + ["convergence_line"] * 2 + ["contact_state"] * 2 + ["rating"] * 2
                    + ["fe_sensitivity"] * 2 + _CHECKS + _AGGREGATES)
-    assert rules_of(jobs) == sorted(_paper_line + _PRACTICE_LINE), output
+    assert rules_of(jobs) == sorted(_paper_line + _PRACTICE_LINE + _CUTTER), output
     # The flanks: every line-model job and the contact state, not the point model; the
     # practice design (its overlay carries the flanks with its tip reliefs) anew.
     extra = write_yaml(tmp_path / "flanks.yaml", {"flank_modification": {"bias_um": 2}})
     jobs, output = dry_run(study, extra)
-    assert rules_of(jobs) == sorted(_paper_line + _PRACTICE_ALL + ["load_curve"] * 2), output
+    assert rules_of(jobs) == sorted(_paper_line + _PRACTICE_ALL + ["load_curve"] * 2 + _CUTTER), \
+        output
     # The contact state's own settings: its jobs and what reads them.
     extra = write_yaml(tmp_path / "tca.yaml", {"tca": {"positions": 50}})
     jobs, output = dry_run(study, extra)
@@ -415,7 +419,7 @@ def test_a_changed_setting_reruns_only_the_runs_that_use_it(study, tmp_path):
     assert rules_of(jobs) == sorted(["contact_state"] * 2 + ["practice_contact_state"] * 2
                                     + ["best_contact_state"] * 2
                                     + ["combine", "summary", "rating_sweep", "report_paper",
-                                       "report_sweep", "all"]), output
+                                       "report_sweep", "all"] + _CUTTER), output
     # Statistics settings rerun the statistics, not the simulations; the steady state
     # the convergence tables and the rating's K_v too
     extra = write_yaml(tmp_path / "stats.yaml", {"statistics": {"subgroup_size": 4}})
@@ -460,10 +464,15 @@ _EVERYTHING = (["paper_geometry"] * 2 + ["paper_ltca"] * 2 + ["sensitivity"] * 2
                + _CONVERGENCE + ["contact_state"] * 2 + ["tooth_compliance"] * 2
                + ["fe_ltca"] * 2 + ["fe_sensitivity"] * 2 + ["rating"] * 2 + _CHECKS
                + _AGGREGATES + _PRACTICE_POINT + _LOAD_CURVES + _OPTIMISE + _BEST)
+#: The cutter-radius sweep's points of the test study: the LSBG (reading the FE loaded TCA
+#: of the tooth stage) and the SBG at its three cutters (each pair built in memory).
+_CUTTER_SBG = [f"cutter_face_milled_r{r}" for r in ("76_2", "95_25", "127_581")]
+_CUTTER = ["cutter_lsbg"] + _CUTTER_SBG
 #: The loaded TCA's jobs: the commands that reach lsbg.tca.loaded and what reads them.
 #: The practice and best points' jobs that the sensitivity cases do not reach: the runs
 #: and the searches (the chosen design is unchanged, so its runs are too).
-_NO_CASES = ("practice_run", "best_run", "optimise", "optimise_second_seed", "load_curve")
+_NO_CASES = ("practice_run", "best_run", "optimise", "optimise_second_seed", "optimise_release",
+             "load_curve")
 _LOADED_TCA = (["paper_ltca"] * 2 + ["fe_ltca"] * 2 + ["fe_sensitivity"] * 2
                + ["contact_state"] * 2 + ["sensitivity"] * 2 + ["rating"] * 2 + _CHECKS
                + _AGGREGATES)
@@ -477,20 +486,22 @@ CODE_CHANGES = {
     # loaded TCAs (the line model's, the FE one, the V-H maps'), not the runs or the FE
     # compliance; the sensitivity runs and the rating read the FE loaded TCA
     # (the search reads the loaded TCA's stage, so it and its choice's jobs rerun)
-    "lsbg/tca/loaded.py": _LOADED_TCA + [r for r in _PRACTICE_LINE if r != "practice_run"],
+    "lsbg/tca/loaded.py": _LOADED_TCA + [r for r in _PRACTICE_LINE if r != "practice_run"]
+                          + _CUTTER,
     # the V-H map: the contact state's jobs alone, and the aggregates that read them
     "lsbg/tca/vh_map.py": ["contact_state"] * 2 + ["practice_contact_state"] * 2
-                          + _OPTIMISE + _BEST  # (the search imports lsbg.tca)
+                          + _OPTIMISE + _BEST + _CUTTER  # (the search imports lsbg.tca)
                           + ["combine", "summary", "rating_sweep", "report_paper",
                              "report_sweep", "all"],
     # (the cases reach the contact state's and the loaded TCA's commands, lsbg ltca
     # --case, and the rating reads the cases' runs)
     "lsbg/experiments/sensitivity.py": _LOADED_TCA + [
-        r for r in _PRACTICE_LINE if r not in _NO_CASES],
+        r for r in _PRACTICE_LINE if r not in _NO_CASES] + ["cutter_lsbg"],
     # every run at the paper's point reads its geometry; the convergence tables write
     # every engine's run there; the FE segment is lofted through the STEP solid's
     # sections (lsbg.solid.step, lsbg.solid.solids)
-    "lsbg/solid/solids.py": _EVERYTHING,
+    # (the cutter sweep's SBG points build their pairs in memory, without lsbg.solid)
+    "lsbg/solid/solids.py": _EVERYTHING + ["cutter_lsbg"],
     "lsbg/notebooks/sweep.ipynb": ["report_sweep", "all"],
 }
 
