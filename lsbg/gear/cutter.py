@@ -116,7 +116,9 @@ def matched_cutter_radius(design, trace="circular", member=2):
     """The cutter radius of the SBG whose trace curves as the LSBG's at the mean point [m].
 
     Solves :func:`trace_curvature_radius` (member's pitch cone, mean point) of the SBG of
-    ``trace`` = :func:`lsbg_curvature_radius` for the cutter radius.
+    ``trace`` = :func:`lsbg_curvature_radius` for the cutter radius; for ``face_milled``
+    (the cutter circle in the crown gear's pitch plane) that radius is R_m / sin(beta_m)
+    itself, returned without the solve.
 
     Parameters
     ----------
@@ -136,11 +138,17 @@ def matched_cutter_radius(design, trace="circular", member=2):
     lsbg.gear.design.DesignError
         Naming ``cutter_radius`` if no cutter radius in R_m sin(beta_m) .. 20 R_e gives it.
     """
+    target = lsbg_curvature_radius(design)
+    if trace == "face_milled":
+        # the cutter circle lies in the pitch cone's development: its own radius is the
+        # trace's curvature radius there (the solve below agrees to 1e-9, the tests show)
+        _sbg(design, trace, target)  # DesignError if it cannot span the face
+        return target
+
     from scipy.optimize import brentq
 
     from lsbg.gear.geometry import GearPair
 
-    target = lsbg_curvature_radius(design)
 
     def excess(radius):
         try:

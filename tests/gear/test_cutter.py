@@ -71,8 +71,12 @@ def test_face_milled_matched_cutter_is_r_over_sin_beta():
     """ISO 23509's cutter circle lies in the crown gear's pitch plane, the pitch cone's
     development: its curvature-matched cutter is R_m / sin(beta_m) itself."""
     design = paper()
-    assert cutter.matched_cutter_radius(design, "face_milled") == pytest.approx(
-        cutter.lsbg_curvature_radius(design), rel=1e-5)
+    radius = cutter.matched_cutter_radius(design, "face_milled")
+    assert radius == cutter.lsbg_curvature_radius(design)
+    # measured on the built flank, that cutter's trace curves as the LSBG's
+    sbg = GearPair(design.replace(trace="face_milled", cutter_radius=radius))
+    assert cutter.trace_curvature_radius(sbg) == pytest.approx(radius, rel=1e-7)
+    assert cutter.trace_curvature_radius(sbg, member=1) == pytest.approx(radius, rel=1e-7)
 
 
 def test_the_nominal_radii_that_fit_the_paper_pair():
