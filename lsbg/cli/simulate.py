@@ -103,7 +103,7 @@ def add_sensitivity_parser(subparsers):
                     "compliance=fe / compliance=uniform (the line model on the tooth's FE "
                     "stiffness, from --fe-ltca, or on the uniform bed), displacement=envelope "
                     "(one case per corner of the displacement envelope: misalignment_map.axes "
-                    "at +-its range).")
+                    "at +-its range), pinion_speed (FACTOR scales the pinion's speed).")
     add_run_options(parser)
     add_config_options(parser, (*RUN_SECTIONS, "misalignment_map"))
     add_case_options(parser, "dynamics", out=False)
@@ -115,18 +115,24 @@ def add_sensitivity_parser(subparsers):
 def run_sensitivity(args):
     """Handler of ``lsbg sensitivity``: a line per case."""
     from lsbg.cli.cases import sensitivity_cases
+    from lsbg.experiments.sensitivity import case_simulation, parse_case
 
     if not args.case:
         raise CommandError("--case: at least one case (e.g. --case crowning=0.5)")
     settings = simulation_of(args.settings, args.engine)
     flanks_of(args.settings)  # checks the flank sections before any work
-    cases = [(name, params, flanks,
-              slice_stiffness_of(args.fe_ltca, params, args.geometry, settings.load_torque), path)
-             for name, params, flanks, path
-             in sensitivity_cases(args, "dynamics", args.out, "--out", model="line")]
+    cases = []
+    for name, params, flanks, path in sensitivity_cases(args, "dynamics", args.out, "--out",
+                                                        model="line"):
+        # an operating case (the pinion's speed) runs with its own simulation section
+        simulation = case_simulation(*parse_case(name), args.settings["simulation"])
+        own = simulation_of({**args.settings, "simulation": simulation}, args.engine)
+        cases.append((name, own, params, flanks,
+                      slice_stiffness_of(args.fe_ltca, params, args.geometry, own.load_torque),
+                      path))
     lines = []
-    for name, params, flanks, slices, path in cases:
-        written = simulate_to(path, args.geometry, settings, params, flanks, slices, f"case {name}")
+    for name, own, params, flanks, slices, path in cases:
+        written = simulate_to(path, args.geometry, own, params, flanks, slices, f"case {name}")
         lines.append(f"{name} {written}")
     return lines
 

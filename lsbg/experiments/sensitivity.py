@@ -17,10 +17,14 @@ every case.
   study under ``compliance: fe``, ``[uniform]`` on the uniform bed), and
   ``displacement: [envelope]`` becomes one case per corner of the assembly's
   displacement envelope (``misalignment_map.axes`` at +-``range``, added to the
-  ``misalignment`` section), named ``displaced_E+0.1_P-0.1``.
+  ``misalignment`` section), named ``displaced_E+0.1_P-0.1``;
+* an **operating** case runs the pair at another operating point: ``pinion_speed:
+  [0.25, 1.5]`` multiplies the pinion's speed (the ``simulation`` section's); its
+  stability is a cell of claim 1, but the rating (claim 3) stays at the study's
+  speed, so it rates no case of this kind (:func:`rated_cases`).
 
 Which stages a case reaches (:data:`CASE_STAGES`): every case reruns the
-dynamics; crowning and the line stiffness also change the V-H map (the
+dynamics (an operating case only the dynamics); crowning and the line stiffness also change the V-H map (the
 contact state), crowning also the FE loaded TCA (the teeth's stresses).
 """
 
@@ -28,15 +32,18 @@ from __future__ import annotations
 
 from lsbg.files import number_label
 
-__all__ = ["SENSITIVITY_KEYS", "FLANK_KEYS", "SENSITIVITY_SWITCHES", "CASE_STAGES",
-           "case_name", "parse_case", "scaled_contact", "case_label", "study_cases",
-           "case_sections", "stage_cases"]
+__all__ = ["SENSITIVITY_KEYS", "FLANK_KEYS", "SENSITIVITY_SWITCHES", "OPERATING_KEYS",
+           "CASE_STAGES", "case_name", "parse_case", "scaled_contact", "case_label",
+           "study_cases", "case_sections", "case_simulation", "stage_cases", "rated_cases"]
 
 #: Contact keys (paper units) a case may scale.
 SENSITIVITY_KEYS = ("mesh_damping_ratio", "line_stiffness_N_per_mm_um", "slices")
 
 #: Scale keys of the flanks -> the flank_modification keys the factor multiplies.
 FLANK_KEYS = {"crowning": ("lengthwise_crowning_um", "profile_crowning_um", "bias_um")}
+
+#: Scale keys of the operating point -> the ``simulation`` key the factor multiplies.
+OPERATING_KEYS = {"pinion_speed": "pinion_speed_deg_s"}
 
 #: Word-valued keys a case may switch -> their values.
 SENSITIVITY_SWITCHES = {"compliance": ("uniform", "fe"), "displacement": ("envelope",)}
@@ -48,7 +55,8 @@ CASE_STAGES = {"mesh_damping_ratio": ("dynamics",),
                "slices": ("dynamics",),
                "compliance": ("dynamics",),
                "crowning": ("dynamics", "contact_state", "fe_ltca"),
-               "displacement": ("dynamics",)}
+               "displacement": ("dynamics",),
+               "pinion_speed": ("dynamics",)}
 
 #: A corner case's name starts so; its value is the corner's label.
 _DISPLACED = "displaced"
@@ -56,7 +64,7 @@ _DISPLACED = "displaced"
 #: Words of the keys and values in the reports.
 _LABELS = {"mesh_damping_ratio": "damping ratio", "line_stiffness_N_per_mm_um": "line stiffness",
            "slices": "slices", "compliance": "compliance", "fe": "FE", "uniform": "uniform",
-           "crowning": "crowning"}
+           "crowning": "crowning", "pinion_speed": "pinion speed"}
 
 
 def case_name(key, factor):
@@ -66,7 +74,7 @@ def case_name(key, factor):
     Parameters
     ----------
     key : str
-        One of :data:`SENSITIVITY_KEYS`, :data:`FLANK_KEYS` or
+        One of :data:`SENSITIVITY_KEYS`, :data:`FLANK_KEYS`, :data:`OPERATING_KEYS` or
         :data:`SENSITIVITY_SWITCHES`.
     factor : float or str
         [-]; a switch's value; for ``displacement`` a corner's label
@@ -119,9 +127,10 @@ def parse_case(name):
         value = float(factor)
     except ValueError:
         value = None
-    if not sep or key not in (*SENSITIVITY_KEYS, *FLANK_KEYS) or value is None:
+    scales = (*SENSITIVITY_KEYS, *FLANK_KEYS, *OPERATING_KEYS)
+    if not sep or key not in scales or value is None:
         raise ValueError(f"case {name!r}: must be KEY_xFACTOR with KEY one of "
-                         f"{', '.join((*SENSITIVITY_KEYS, *FLANK_KEYS))}, "
+                         f"{', '.join(scales)}, "
                          f"{', '.join(f'{k}_{v}' for k, vs in SENSITIVITY_SWITCHES.items() for v in vs if k != 'displacement')}"
                          f" or {_DISPLACED}_CORNER")
     return key, value
@@ -160,6 +169,9 @@ def scaled_contact(contact, key, factor):
     """
     if key in FLANK_KEYS or key == "displacement":
         return {}
+    if key in OPERATING_KEYS:
+        _check_factor(key, factor)
+        return {}
     if key in SENSITIVITY_SWITCHES:
         values = SENSITIVITY_SWITCHES[key]
         if factor not in values:
@@ -167,7 +179,7 @@ def scaled_contact(contact, key, factor):
         return {key: factor}
     if key not in SENSITIVITY_KEYS:
         raise ValueError(f"sensitivity key {key!r}: must be one of "
-                         f"{', '.join((*SENSITIVITY_KEYS, *FLANK_KEYS, *SENSITIVITY_SWITCHES))}")
+                         f"{', '.join((*SENSITIVITY_KEYS, *FLANK_KEYS, *OPERATING_KEYS, *SENSITIVITY_SWITCHES))}")
     _check_factor(key, factor)
     value = contact[key] * factor
     return {key: int(round(value)) if key == "slices" else value}
@@ -229,6 +241,47 @@ def stage_cases(cases, stage):
         ``"dynamics"``, ``"contact_state"`` or ``"fe_ltca"``.
     """
     return {name: kv for name, kv in cases.items() if stage in CASE_STAGES[kv[0]]}
+
+
+def rated_cases(cases):
+    """The cases of :func:`study_cases` whose run's dynamic factor the rating takes: all but
+    the operating cases (the rating holds at the study's own operating point).
+
+    Parameters
+    ----------
+    cases : iterable of str or dict
+        Case names (a dict: its keys).
+
+    Returns
+    -------
+    list of str
+        In the given order.
+    """
+    return [name for name in cases if parse_case(name)[0] not in OPERATING_KEYS]
+
+
+def case_simulation(key, value, simulation):
+    """The ``simulation`` section of a case (paper units): the operating cases' own.
+
+    Parameters
+    ----------
+    key : str
+        A case's key (:func:`parse_case`).
+    value : float or str
+        Its factor, switch value or corner label.
+    simulation : dict
+        The study's ``simulation`` section.
+
+    Returns
+    -------
+    dict
+        A new dictionary; the given one is left alone.
+    """
+    if key in OPERATING_KEYS:
+        _check_factor(key, value)
+        name = OPERATING_KEYS[key]
+        return {**simulation, name: simulation[name] * value}
+    return dict(simulation)
 
 
 def case_sections(key, value, contact, modification, misalignment):

@@ -270,6 +270,13 @@ class Study:
         traces = PAPER_TRACES if trace is None else (trace,)
         return [self.sensitivity_run(t, case) for case in self.sensitivity for t in traces]
 
+    @property
+    def rated_cases(self):
+        """The sensitivity cases whose run's K_v the rating takes (not another speed's)."""
+        from lsbg.experiments.sensitivity import rated_cases
+
+        return rated_cases(self.sensitivity)
+
     # --------------------------------------------------------- verification
     def convergence_engines(self, model):
         """Engines of a model's convergence table: the sweep engine and the model's

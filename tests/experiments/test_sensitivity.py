@@ -33,7 +33,28 @@ def test_a_case_reaches_only_the_stages_it_changes():
     assert list(stage_cases(cases, "contact_state")) == list(stage_cases(cases, "fe_ltca"))
     assert list(stage_cases(cases, "dynamics")) == list(cases)
     assert set(CASE_STAGES) == {"mesh_damping_ratio", "line_stiffness_N_per_mm_um", "slices",
-                                "compliance", "crowning", "displacement"}
+                                "compliance", "crowning", "displacement", "pinion_speed"}
+
+
+def test_a_speed_case_runs_at_its_own_speed_and_is_not_rated():
+    """The pinion-speed case reaches the dynamics alone, with its own simulation section; the
+    rating (at the study's speed) takes every case but it."""
+    from lsbg.experiments.sensitivity import case_simulation, rated_cases
+
+    cases = study_cases({**SECTION, "pinion_speed": [0.25, 1.5]})
+    assert "pinion_speed_x0.25" in cases and parse_case("pinion_speed_x1.5") == ("pinion_speed",
+                                                                                   1.5)
+    assert case_label("pinion_speed_x0.25") == "pinion speed ×0.25"
+    assert list(stage_cases(cases, "dynamics")) == list(cases)
+    assert "pinion_speed_x1.5" not in stage_cases(cases, "contact_state")
+    assert rated_cases(cases) == [c for c in cases if not c.startswith("pinion_speed")]
+    simulation = {"pinion_speed_deg_s": 7703.0, "load_torque_N_m": 1964.99}
+    assert case_simulation("pinion_speed", 1.5, simulation) == {
+        "pinion_speed_deg_s": pytest.approx(11554.5), "load_torque_N_m": 1964.99}
+    assert case_simulation("crowning", 2, simulation) == simulation
+    assert simulation["pinion_speed_deg_s"] == 7703.0  # untouched
+    with pytest.raises(ValueError, match="sensitivity.pinion_speed factor 0"):
+        study_cases({"pinion_speed": [0]})
 
 
 def test_crowning_scales_the_ease_off_and_a_corner_adds_to_the_assembly():

@@ -4,7 +4,8 @@
 # and writes the stresses, safety factors and rated torques of both members beside
 # the largest contact pressure and root stresses of the FE loaded TCA, aligned and
 # at each corner of the assembly's displacement envelope (rule fe_sensitivity,
-# tooth.smk), and rated again with the K_v of each sensitivity case's run
+# tooth.smk), and rated again with the K_v of each sensitivity case's run at the
+# study's speed
 # (results/rating/*.nc).
 # The paper report compares them (its service-life section).
 
@@ -19,13 +20,15 @@ rule rating:
         fe_ltca=lambda w: [STUDY.fe_ltca(w.trace, w.spiral)],
         fe_envelope=FILES["fe_envelope"],
         # K_v of each sensitivity case's run: the standard's cells of the life claim
-        case_runs=lambda w: STUDY.sensitivity_runs(w.trace) if STUDY.rating_run(w.trace) else [],
+        # (the cases at another pinion speed are not rated: the rating holds at the study's)
+        case_runs=lambda w: [STUDY.sensitivity_run(w.trace, case) for case in STUDY.rated_cases]
+        if STUDY.rating_run(w.trace) else [],
         sources=sources("rate"),
     output:
         out=FILES["rating"],
     params:
         **command("rate", case_run=lambda w: [
-            f"{case}={STUDY.sensitivity_run(w.trace, case)}" for case in STUDY.sensitivity]
+            f"{case}={STUDY.sensitivity_run(w.trace, case)}" for case in STUDY.rated_cases]
             if STUDY.rating_run(w.trace) else []),
         rating=plan.canonical({k: config[k] for k in ("rating", "tooth")}),  # rerun triggers
         load=[config["simulation"][k] for k in ("load_torque_N_m", "pinion_speed_deg_s")],
