@@ -160,6 +160,8 @@ def run_dataset(record, model, settings, command=""):
         stiffness = contact.mean_torsional_stiffness() if contact.params.model == "line" \
             else float("nan")
         attrs.update(model.driveline.attrs(stiffness, contact.e1 / contact.e2))
+    if "driveline_mode3_hz" in attrs:  # the mesh mode of the linearised driveline
+        attrs["mesh_natural_frequency_hz"] = attrs["driveline_mode3_hz"]
     attrs.update({f"solver_{k}": v for k, v in settings.to_dict().items()})
     attrs.update(_library_versions())
     ds.attrs.update({k: (float(v) if isinstance(v, (np.floating, np.integer)) else v)

@@ -47,6 +47,7 @@ import numpy as np
 from numba import njit
 
 from lsbg.contact.kernels import mesh_forces, mesh_series
+from lsbg.dynamics.settings import BOUNDARIES  # noqa: F401  (exported by lsbg.dynamics)
 
 #: Key of the ``driveline`` section -> (default, rule): the rule "positive",
 #: "non-negative" or "ratio" (0 <= value < 1). SI units, named in the keys.
