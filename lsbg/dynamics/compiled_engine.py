@@ -80,23 +80,39 @@ PRESCRIBED, DRIVELINE = 0, 1
 
 
 @njit(cache=True)
-def _prescribed_rates(t, y, out, system, params, sides, table):
-    """(phi2', w2') of the gear under the prescribed pinion into ``out``; the deepest approach.
+def _prescribed_rates(t, y, out, row, system, params, sides, table):
+    """(phi2', w2') of the gear under the prescribed pinion into ``out[row]``; the deepest
+    approach.
 
     ``system``: the pinion's final speed [rad/s], its ramp time [s], the load
     on the gear [N m] and the gear's inertia [kg m^2].
     """
     phi1, w1 = pinion_state(t, system[0], system[1])
     torque, _, deepest, _, _, _ = mesh_forces(phi1, y[0], w1, y[1], params, sides, table)
-    out[0], out[1] = y[1], (torque - system[2]) / system[3]
+    out[row, 0], out[row, 1] = y[1], (torque - system[2]) / system[3]
     return deepest
 
 
 @njit(cache=True)
-def _rates(kind, t, y, out, system, params, sides, table):
+def _rates(kind, t, y, out, row, system, params, sides, table):
+    # (a row index, not a row view: a view costs reference counting at every call)
     if kind == PRESCRIBED:
-        return _prescribed_rates(t, y, out, system, params, sides, table)
-    return driveline_rates(t, y, out, system, params, sides, table)
+        return _prescribed_rates(t, y, out, row, system, params, sides, table)
+    return driveline_rates(t, y, out, row, system, params, sides, table)
+
+
+@njit(cache=True)
+def _combine(weights, row, count, k, y, step, d, out):
+    """out = y + step * sum over the first ``count`` stages of weights[row, j] k[j]
+    (d: scratch)."""
+    n = y.size
+    d[:] = 0.0
+    for j in range(count):
+        w = weights[row, j]
+        for i in range(n):
+            d[i] += w * k[j, i]
+    for i in range(n):
+        out[i] = y[i] + step * d[i]
 
 
 @njit(cache=True)
@@ -147,11 +163,14 @@ def integrate(kind, times, y0, system, params, sides, table, a, b, c, e, e3, ble
     y = y0.copy()
     y_stage = np.empty(n)
     y_new = np.empty(n)
+    d = np.empty(n)
+    d3 = np.empty(n)
+    weights = b.reshape((1, stages))
     states = np.full((times.size, n), np.nan)
     where = np.zeros(4)
     t = times[0]
     states[0] = y
-    deepest = _rates(kind, t, y, k[0], system, params, sides, table)
+    deepest = _rates(kind, t, y, k, 0, system, params, sides, table)
     f = k[0].copy()
     evaluations = 1
     steps = 0
@@ -167,33 +186,30 @@ def integrate(kind, times, y0, system, params, sides, table, a, b, c, e, e3, ble
                     return states, STEP_TOO_SMALL, where, steps, evaluations
                 step = h if t + h < t_end else t_end - t
                 steps += 1
-                k[0] = f
+                for i in range(n):  # (element loops: an array assignment may copy)
+                    k[0, i] = f[i]
+                # (each state's sums over the stages in the stages' order, as scipy's)
                 for s in range(1, stages):
-                    for i in range(n):
-                        d = 0.0
-                        for j in range(s):
-                            d += a[s, j] * k[j, i]
-                        y_stage[i] = y[i] + step * d
-                    _rates(kind, t + c[s] * step, y_stage, k[s], system, params, sides, table)
-                for i in range(n):
-                    d = 0.0
-                    for j in range(stages):
-                        d += b[j] * k[j, i]
-                    y_new[i] = y[i] + step * d
-                deepest_new = _rates(kind, t + step, y_new, k[stages], system, params, sides,
+                    _combine(a, s, s, k, y, step, d, y_stage)
+                    _rates(kind, t + c[s] * step, y_stage, k, s, system, params, sides, table)
+                _combine(weights, 0, stages, k, y, step, d, y_new)
+                deepest_new = _rates(kind, t + step, y_new, k, stages, system, params, sides,
                                      table)
                 evaluations += stages
                 # Error norm (scipy's RMS norm; DOP853's blend of its 5th- and
                 # 3rd-order estimates).
+                d[:] = 0.0
+                d3[:] = 0.0
+                for j in range(stages + 1):
+                    ej, e3j = e[j], e3[j]
+                    for i in range(n):
+                        d[i] += ej * k[j, i]
+                        d3[i] += e3j * k[j, i]
                 e5 = e3n = 0.0
                 for i in range(n):
                     scale = atol[i] + rtol * max(abs(y[i]), abs(y_new[i]))
-                    e5_i = e3_i = 0.0
-                    for j in range(stages + 1):
-                        e5_i += e[j] * k[j, i]
-                        e3_i += e3[j] * k[j, i]
-                    e5 += (e5_i / scale) ** 2
-                    e3n += (e3_i / scale) ** 2
+                    e5 += (d[i] / scale) ** 2
+                    e3n += (d3[i] / scale) ** 2
                 if blended:
                     error = 0.0 if e5 == 0.0 and e3n == 0.0 else \
                         step * e5 / math.sqrt((e5 + 0.01 * e3n) * float(n))
@@ -215,15 +231,17 @@ def integrate(kind, times, y0, system, params, sides, table, a, b, c, e, e3, ble
                 h = step * max(_MIN_FACTOR, _SAFETY * error ** error_exponent)
                 rejected = True
             t = t_end if step == t_end - t else t + step
-            y[:] = y_new
-            f[:] = k[stages]
+            for i in range(n):
+                y[i] = y_new[i]
+                f[i] = k[stages, i]
             deepest = deepest_new
             w = y[speed_index]
             if not (math.isfinite(w) and math.isfinite(deepest)) or deepest > depth_limit \
                     or abs(w) > speed_limit:
                 where[0], where[1], where[2], where[3] = t, w, deepest, step
                 return states, BLOW_UP, where, steps, evaluations
-        states[r] = y
+        for i in range(n):
+            states[r, i] = y[i]
     return states, OK, where, steps, evaluations
 
 

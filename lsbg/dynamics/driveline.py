@@ -330,7 +330,7 @@ def driveline_values(section):
 
 # ---------------------------------------------------------------- the equations
 @njit(cache=True)
-def driveline_rates(t, y, out, system, params, sides, table):
+def driveline_rates(t, y, out, row, system, params, sides, table):
     """Time derivative of a driveline run's state (compiled; both engines' equations).
 
     J1 phi1'' = k_p (phi_d - phi1) + c_p (W - omega1) + T1_mesh,
@@ -345,8 +345,9 @@ def driveline_rates(t, y, out, system, params, sides, table):
         Time [s].
     y : numpy.ndarray, shape (6,)
         phi1, phi2, phi_v [rad], omega1, omega2, omega_v [rad/s].
-    out : numpy.ndarray, shape (6,)
-        Filled with dy/dt.
+    out : numpy.ndarray, shape (m, 6)
+        Its row ``row`` filled with dy/dt.
+    row : int
     system : numpy.ndarray
         :meth:`Driveline.system`.
     params, sides, table : numpy.ndarray
@@ -362,10 +363,10 @@ def driveline_rates(t, y, out, system, params, sides, table):
     gear, pinion, deepest, _, _, _ = mesh_forces(y[0], y[1], y[3], y[4], params, sides, table)
     shaft = system[Y_KP] * (drive - y[0]) + system[Y_CP] * (speed - y[3])
     half = system[Y_KH] * (y[1] - y[2]) + system[Y_CH] * (y[4] - y[5])
-    out[0], out[1], out[2] = y[3], y[4], y[5]
-    out[3] = (shaft + pinion) / system[Y_J1]
-    out[4] = (gear - half) / system[Y_J2]
-    out[5] = (half - system[Y_LOAD]) / system[Y_JV]
+    out[row, 0], out[row, 1], out[row, 2] = y[3], y[4], y[5]
+    out[row, 3] = (shaft + pinion) / system[Y_J1]
+    out[row, 4] = (gear - half) / system[Y_J2]
+    out[row, 5] = (half - system[Y_LOAD]) / system[Y_JV]
     return deepest
 
 

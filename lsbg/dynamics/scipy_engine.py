@@ -59,12 +59,14 @@ def run_scipy(model, settings: SimulationSettings):
     _, times, _ = settings.record_grid()
     if settings.boundary == "driveline":
         y0, system = model.driveline_problem(settings)
-        rates = kernels.compiled_entry(driveline_rates, 0.0, y0, np.empty(STATES), system, *arrays)
+        rates = kernels.compiled_entry(driveline_rates, 0.0, y0, np.empty((1, STATES)), 0,
+                                       system, *arrays)
 
         def rhs(t, y):
-            out = np.empty(STATES)
-            checked(t, y[4], rates(t, np.ascontiguousarray(y, dtype=float), out, system, *arrays))
-            return out
+            out = np.empty((1, STATES))
+            checked(t, y[4], rates(t, np.ascontiguousarray(y, dtype=float), out, 0, system,
+                                   *arrays))
+            return out[0]
 
         atol = [settings.atol_angle] * 3 + [settings.atol_speed] * 3
         states = _solve(rhs, y0, times, settings, atol)

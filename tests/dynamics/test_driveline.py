@@ -139,14 +139,14 @@ def test_the_equations_linearise_to_the_stiffness_matrix(model):
         base[0] = k * contact.pitch / (phases * contact.e1)  # pinion through one base pitch
         base[1] += base[0] * contact.e1 / contact.e2
         base[3:] = 0.0  # at rest: no damping or friction in the difference
-        out_plus, out_minus = np.empty(6), np.empty(6)
+        out_plus, out_minus = np.empty((1, 6)), np.empty((1, 6))
         for j in range(3):
             plus, minus = base.copy(), base.copy()
             plus[j] += step
             minus[j] -= step
-            driveline_rates(0.0, plus, out_plus, system, *contact.arrays)
-            driveline_rates(0.0, minus, out_minus, system, *contact.arrays)
-            jacobian[:, j] += (out_plus[3:] - out_minus[3:]) / (2 * step) / phases
+            driveline_rates(0.0, plus, out_plus, 0, system, *contact.arrays)
+            driveline_rates(0.0, minus, out_minus, 0, system, *contact.arrays)
+            jacobian[:, j] += (out_plus[0, 3:] - out_minus[0, 3:]) / (2 * step) / phases
     expected = -np.linalg.solve(mass, stiffness)
     # shaft terms exact; the mesh's mean over 64 phases within 1 % of the closed-form mean
     np.testing.assert_allclose(jacobian, expected, rtol=0.01, atol=1e-6 * np.abs(expected).max())
