@@ -95,7 +95,8 @@ class MeshingModel:
         Axial moment of inertia of the gear about its axis [kg m^2].
     pinion_inertia : float
         Axial moment of inertia of the pinion [kg m^2] (PyBullet engine only:
-        the other engines prescribe the pinion's motion).
+        the other engines prescribe the pinion's motion, or take the
+        driveline's pinion, its solid and its shaft and flange).
     urdf : str or pathlib.Path, optional
         URDF of the assembled pair, for the PyBullet engine.
     driveline : lsbg.dynamics.driveline.Driveline, optional

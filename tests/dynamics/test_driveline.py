@@ -218,3 +218,29 @@ def test_the_prescribed_pinion_is_bit_for_bit_as_before(model, engine, contact_m
         assert np.array_equal(getattr(record.full_rate, name),
                               old[f"{contact_model}_{engine}_{name}"]), name
     assert record.steps == int(old[f"{contact_model}_{engine}_steps"])
+
+
+# --------------------------------------------------------------- lsbg simulate
+def test_lsbg_simulate_runs_the_configured_boundary(model, tmp_path, capsys):
+    from lsbg import cli
+    from lsbg.dynamics.dataset import open_run
+
+    geometry = str(Path(model.urdf).parent)
+    short = ["--set", "contact.model=line", "--set", "simulation.duration_s=0.02",
+             "--set", "simulation.samples=10", "--set", "simulation.ramp_time_s=0.01",
+             "--set", "simulation.full_rate_after_s=0.01", "--engine", "compiled"]
+    runs = {}
+    for boundary in ("prescribed_pinion", "driveline"):
+        out = tmp_path / f"{boundary}.nc"
+        assert cli.main(["simulate", "--geometry", geometry, *short,
+                         "--set", f"simulation.boundary={boundary}",
+                         "--set", "driveline.vehicle_mass_kg=3000", "--out", str(out)]) == 0
+        runs[boundary] = open_run(out)
+    held = runs["driveline"]
+    assert held.attrs["solver_boundary"] == "driveline"
+    assert held.attrs["driveline_vehicle_inertia_kg_m2"] == pytest.approx(3000 * 0.35**2)
+    assert held.attrs["mesh_natural_frequency_hz"] == held.attrs["driveline_mode3_hz"]
+    assert "driveline_mode1_hz" not in runs["prescribed_pinion"].attrs
+    # the driveline's pinion moves with the mesh; the prescribed one does not
+    assert held.pinion_speed.values[-1] != runs["prescribed_pinion"].pinion_speed.values[-1]
+    assert "driveline" in capsys.readouterr().out
