@@ -79,7 +79,7 @@ def tableau(method):
 PRESCRIBED, DRIVELINE = 0, 1
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _prescribed_rates(t, y, out, row, system, params, sides, table):
     """(phi2', w2') of the gear under the prescribed pinion into ``out[row]``; the deepest
     approach.
@@ -93,7 +93,7 @@ def _prescribed_rates(t, y, out, row, system, params, sides, table):
     return deepest
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _rates(kind, t, y, out, row, system, params, sides, table):
     # (a row index, not a row view: a view costs reference counting at every call)
     if kind == PRESCRIBED:
@@ -101,7 +101,7 @@ def _rates(kind, t, y, out, row, system, params, sides, table):
     return driveline_rates(t, y, out, row, system, params, sides, table)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _combine(weights, row, count, k, y, step, d, out):
     """out = y + step * sum over the first ``count`` stages of weights[row, j] k[j]
     (d: scratch)."""
