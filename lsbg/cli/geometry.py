@@ -71,8 +71,8 @@ def add_points_parser(subparsers):
                     "templates with the field {spiral} (the angle as in the workflow's file "
                     "names, e.g. 37.5). Every design and setting is checked before any file is "
                     "written; each file is written atomically.")
-    add_config_options(parser, ("design", "simulation", "contact", "flank_modification",
-                                "misalignment", "tca", "tooth"))
+    add_config_options(parser, ("design", "simulation", "driveline", "contact",
+                                "flank_modification", "misalignment", "tca", "tooth"))
     parser.add_argument("--spiral-angles", type=float, nargs="+", metavar="DEG",
                         help="spiral angles of the design points [deg] (default: "
                              "design.spiral_angle_deg)")
@@ -178,7 +178,8 @@ def run_points(args):
         for model in runs:
             try:
                 ds = simulate(point["geometry"], simulation, params[model], command=command,
-                              flanks=flanks, slice_stiffness=slices if model == "line" else None)
+                              flanks=flanks, slice_stiffness=slices if model == "line" else None,
+                              driveline=settings.get("driveline"))
             except SimulationError as err:
                 raise SimulationError(f"{design.trace}, {math.degrees(design.spiral_angle):g} "
                                       f"deg, {model} model: {err}") from None

@@ -282,6 +282,15 @@ def simulation_of(settings, engine):
     return checked(lambda: SimulationSettings.from_config(settings["simulation"], engine=engine))
 
 
+def driveline_of(settings):
+    """The ``driveline`` section (:mod:`lsbg.dynamics.driveline`), its keys checked."""
+    from lsbg.dynamics.driveline import driveline_values
+
+    section = dict(settings.get("driveline", {}))
+    checked(lambda: driveline_values(section))
+    return section
+
+
 def load_torque_of(settings):
     """The load on the gear [N m] of the ``simulation`` section, checked."""
     return simulation_of(settings, "compiled").load_torque

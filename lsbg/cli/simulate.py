@@ -4,14 +4,14 @@ from __future__ import annotations
 
 from lsbg.cli.options import (CommandError, add_case_options, add_config_options,
                               add_engine_option, add_fe_ltca_option, add_geometry_input,
-                              add_output, check_output, command_line, contact_of, flanks_of,
-                              parse_pairs, simulation_of, slice_stiffness_of)
+                              add_output, check_output, command_line, contact_of, driveline_of,
+                              flanks_of, parse_pairs, simulation_of, slice_stiffness_of)
 
 __all__ = ["add_simulate_parser", "add_sensitivity_parser", "add_convergence_parser",
            "simulate_to"]
 
 #: The sections a run reads.
-RUN_SECTIONS = ("simulation", "contact", "flank_modification", "misalignment")
+RUN_SECTIONS = ("simulation", "driveline", "contact", "flank_modification", "misalignment")
 
 
 def add_run_options(parser, engine="pybullet"):
@@ -22,7 +22,7 @@ def add_run_options(parser, engine="pybullet"):
     add_fe_ltca_option(parser)
 
 
-def simulate_to(path, geometry, settings, params, flanks, slices, label=None):
+def simulate_to(path, geometry, settings, params, flanks, slices, label=None, driveline=None):
     """Simulate one run (:func:`lsbg.dynamics.simulate`) and write it to ``path``.
 
     Parameters
@@ -38,6 +38,9 @@ def simulate_to(path, geometry, settings, params, flanks, slices, label=None):
         The tooth's slice stiffness (:func:`slice_stiffness_of`).
     label : str, optional
         Put before the message of a blow-up (the case, the speed).
+    driveline : dict, optional
+        The ``driveline`` section (:func:`driveline_of`), read under the
+        driveline boundary.
 
     Returns
     -------
@@ -54,7 +57,7 @@ def simulate_to(path, geometry, settings, params, flanks, slices, label=None):
 
     try:
         ds = simulate(geometry, settings, params, command=command_line(), flanks=flanks,
-                      slice_stiffness=slices)
+                      slice_stiffness=slices, driveline=driveline)
     except SimulationError as err:
         if label is None:
             raise
@@ -69,7 +72,8 @@ def add_simulate_parser(subparsers):
         "simulate", help="simulate the meshing of one design point",
         description="Simulate the meshing of the pair in --geometry (paper §3: pinion speed "
                     "ramped to 7703 deg/s, gear loaded with 1964.99 N m; the 'simulation' and "
-                    "'contact' sections) and write the time series to --out (NetCDF, "
+                    "'contact' sections; under simulation.boundary=driveline the torsional "
+                    "driveline of the 'driveline' section around the mesh) and write the time series to --out (NetCDF, "
                     "CF-1.11). A blow-up (NaN, penetration beyond d, runaway speed) stops the "
                     "run with exit code 3 and writes nothing.")
     add_run_options(parser)
@@ -84,8 +88,10 @@ def run_simulate(args):
     params = contact_of(args.settings)
     flanks = flanks_of(args.settings)
     slices = slice_stiffness_of(args.fe_ltca, params, args.geometry, settings.load_torque)
-    written = simulate_to(args.out, args.geometry, settings, params, flanks, slices)
-    return f"{settings.engine} engine, {params.model} model {written}"
+    written = simulate_to(args.out, args.geometry, settings, params, flanks, slices,
+                          driveline=driveline_of(args.settings))
+    boundary = "" if settings.boundary == "prescribed_pinion" else ", driveline"
+    return f"{settings.engine} engine, {params.model} model{boundary} {written}"
 
 
 # ------------------------------------------------------------ sensitivity
@@ -131,8 +137,10 @@ def run_sensitivity(args):
                       slice_stiffness_of(args.fe_ltca, params, args.geometry, own.load_torque),
                       path))
     lines = []
+    driveline = driveline_of(args.settings)
     for name, own, params, flanks, slices, path in cases:
-        written = simulate_to(path, args.geometry, own, params, flanks, slices, f"case {name}")
+        written = simulate_to(path, args.geometry, own, params, flanks, slices, f"case {name}",
+                              driveline)
         lines.append(f"{name} {written}")
     return lines
 
@@ -174,7 +182,8 @@ def run_convergence(args):
     for path in outputs.values():
         check_output(path, "--default-run")
     slices = slice_stiffness_of(args.fe_ltca, params, args.geometry, settings.load_torque)
-    model = load_model(args.geometry, params, flanks_of(args.settings), slices)
+    model = load_model(args.geometry, params, flanks_of(args.settings), slices,
+                       driveline_of(args.settings) if settings.boundary == "driveline" else None)
     try:
         known = open_runs(args.known)
     except (OSError, ValueError) as err:

@@ -5,7 +5,8 @@ from __future__ import annotations
 import math
 
 from lsbg.cli.options import (CommandError, add_config_options, add_output, checked,
-                              contact_of, flanks_of, simulation_of, slice_stiffness_of)
+                              contact_of, driveline_of, flanks_of, simulation_of,
+                              slice_stiffness_of)
 from lsbg.cli.simulate import RUN_SECTIONS, add_run_options, simulate_to
 
 __all__ = ["add_mesh_mode_parser", "add_speed_run_parser", "add_speed_curve_parser"]
@@ -98,7 +99,7 @@ def run_speed_run(args):
     slices = slice_stiffness_of(args.fe_ltca, params, args.geometry, settings.load_torque)
     speed = math.degrees(base.pinion_speed)
     written = simulate_to(args.out, args.geometry, settings, params, flanks_of(args.settings),
-                          slices, f"{speed:g} deg/s")
+                          slices, f"{speed:g} deg/s", driveline_of(args.settings))
     return f"{speed:g} deg/s, {settings.duration:.3g} s simulated {written}"
 
 

@@ -32,8 +32,8 @@ def add_sweep_run_parser(subparsers):
                     "positions.")
     parser.add_argument("--geometry", required=True, metavar="DIR",
                         help="geometry directory of the design point (lsbg geometry)")
-    add_config_options(parser, ("design", "contact", "simulation", "flank_modification",
-                                "misalignment", "tca"))
+    add_config_options(parser, ("design", "contact", "simulation", "driveline",
+                                "flank_modification", "misalignment", "tca"))
     add_engine_option(parser, default="compiled")
     parser.add_argument("--sweep", required=True, metavar="NAME",
                         help="the sweep's name, recorded in every run")
@@ -120,7 +120,8 @@ def run_sweep_run(args):
                 write_geometry(design.replace(trace=base.trace, spiral_angle=base.spiral_angle),
                                geometry)
             try:
-                ds = simulate(geometry, settings, params, command=command_line(), flanks=flanks)
+                ds = simulate(geometry, settings, params, command=command_line(), flanks=flanks,
+                              driveline=args.settings.get("driveline"))
             except SimulationError as err:
                 raise SimulationError(f"{out}: {err}") from None
             static = checked(lambda: contact_figures(geometry, settings.load_torque, params,

@@ -13,7 +13,7 @@ import re
 
 from lsbg.config import section_values
 
-__all__ = ["settings_message", "engine_problems", "contact_problems"]
+__all__ = ["settings_message", "engine_problems", "driveline_problems", "contact_problems"]
 
 #: lsbg's message of a ``simulation`` or ``contact`` setting: the user's key
 #: and value, then lsbg's field name, SI value and rule
@@ -115,4 +115,27 @@ def contact_problems(config):
     except ArithmeticError as error:  # numbers beyond what the unit conversions survive
         return [f"{section_values(config, 'contact')}: lsbg cannot compute this "
                 f"contact law ({type(error).__name__}: {error})"]
+    return []
+
+
+def driveline_problems(config):
+    """The ``driveline`` section as :func:`lsbg.dynamics.driveline.driveline_values` reads it.
+
+    Parameters
+    ----------
+    config : dict
+        The configuration: its ``driveline`` section (checked whatever the boundary,
+        so that switching to it later does not find a bad key).
+
+    Returns
+    -------
+    list of str
+        At most one line (``driveline.tyre_radius_m = 0: must be a positive number``).
+    """
+    from lsbg.dynamics.driveline import driveline_values
+
+    try:
+        driveline_values(config.get("driveline", {}))
+    except ValueError as error:
+        return [str(error)]
     return []

@@ -1,9 +1,11 @@
 """The compiled engine: an embedded Runge-Kutta loop compiled with numba.
 
-The system has one degree of freedom, the gear angle: the pinion follows its
-prescribed motion, so J2 phi2'' = T_contact - T_load with the contact torque
-of the compiled kernels (:mod:`lsbg.contact.kernels`). This engine integrates
-that equation with an explicit embedded Runge-Kutta pair under adaptive step
+Under the prescribed pinion (the paper's boundary) the system has one degree
+of freedom, the gear angle: J2 phi2'' = T_contact - T_load with the contact
+torque of the compiled kernels (:mod:`lsbg.contact.kernels`). Under the
+driveline boundary it has three, pinion, gear and vehicle
+(:func:`lsbg.dynamics.driveline.driveline_rates`). This engine integrates
+either with an explicit embedded Runge-Kutta pair under adaptive step
 control, entirely in compiled code: no Python call per step.
 
 The method is Dormand-Prince 8(5,3) (``"DOP853"``, the default) or 5(4)
@@ -31,6 +33,7 @@ import numpy as np
 from numba import njit
 
 from lsbg.contact.kernels import mesh_forces
+from lsbg.dynamics.driveline import driveline_rates
 from lsbg.dynamics.settings import SimulationError, SimulationSettings, pinion_state
 
 # Step-size control (Hairer's, and scipy's, constants).
@@ -71,47 +74,82 @@ def tableau(method):
     return (*arrays, method == "DOP853", -1.0 / (solver.error_estimator_order + 1))
 
 
-@njit(cache=True)
-def _derivative(t, phi2, w2, speed, ramp_time, load, inertia, params, sides, table):
-    """(phi2', w2', deepest approach) of the gear under the prescribed pinion."""
-    phi1, w1 = pinion_state(t, speed, ramp_time)
-    torque, _, deepest, _, _, _ = mesh_forces(phi1, phi2, w1, w2, params, sides, table)
-    return w2, (torque - load) / inertia, deepest
+#: Systems :func:`integrate` knows (``kind``): the prescribed pinion's gear
+#: (2 states) and the driveline (:func:`lsbg.dynamics.driveline.driveline_rates`, 6 states).
+PRESCRIBED, DRIVELINE = 0, 1
+
+
+@njit(cache=True, inline="always")
+def _prescribed_rates(t, y, out, row, system, params, sides, table):
+    """(phi2', w2') of the gear under the prescribed pinion into ``out[row]``; the deepest
+    approach.
+
+    ``system``: the pinion's final speed [rad/s], its ramp time [s], the load
+    on the gear [N m] and the gear's inertia [kg m^2].
+    """
+    phi1, w1 = pinion_state(t, system[0], system[1])
+    torque, _, deepest, _, _, _ = mesh_forces(phi1, y[0], w1, y[1], params, sides, table)
+    out[row, 0], out[row, 1] = y[1], (torque - system[2]) / system[3]
+    return deepest
+
+
+@njit(cache=True, inline="always")
+def _rates(kind, t, y, out, row, system, params, sides, table):
+    # (a row index, not a row view: a view costs reference counting at every call)
+    if kind == PRESCRIBED:
+        return _prescribed_rates(t, y, out, row, system, params, sides, table)
+    return driveline_rates(t, y, out, row, system, params, sides, table)
+
+
+@njit(cache=True, inline="always")
+def _combine(weights, row, count, k, y, step, d, out):
+    """out = y + step * sum over the first ``count`` stages of weights[row, j] k[j]
+    (d: scratch)."""
+    n = y.size
+    d[:] = 0.0
+    for j in range(count):
+        w = weights[row, j]
+        for i in range(n):
+            d[i] += w * k[j, i]
+    for i in range(n):
+        out[i] = y[i] + step * d[i]
 
 
 @njit(cache=True)
-def integrate(times, phi2_0, w2_0, speed, ramp_time, load, inertia, params, sides, table,
-              a, b, c, e, e3, blended, error_exponent, rtol, atol_angle, atol_speed, max_step,
-              depth_limit, speed_limit):
-    """Integrate the gear's motion and return its state at ``times``.
+def integrate(kind, times, y0, system, params, sides, table, a, b, c, e, e3, blended,
+              error_exponent, rtol, atol, max_step, depth_limit, speed_limit, speed_index):
+    """Integrate a system's state and return it at ``times``.
 
     Parameters
     ----------
+    kind : int
+        :data:`PRESCRIBED` or :data:`DRIVELINE`.
     times : numpy.ndarray
         Increasing record instants, the first the initial time [s].
-    phi2_0, w2_0 : float
-        Initial gear rotation [rad] and speed [rad/s].
-    speed, ramp_time : float
-        The pinion's final speed [rad/s] and ramp duration [s].
-    load, inertia : float
-        Load torque on the gear [N m] and its axial inertia [kg m^2].
+    y0 : numpy.ndarray
+        Initial state: rotations [rad], then speeds [rad/s].
+    system : numpy.ndarray
+        The system's parameters (:func:`_prescribed_rates`,
+        :meth:`lsbg.dynamics.driveline.Driveline.system`).
     params, sides, table : numpy.ndarray
         The contact model (:class:`lsbg.contact.MeshContact`).
     a, b, c, e, e3, blended, error_exponent
         The tableau (:func:`tableau`).
     rtol : float
         Relative tolerance [-].
-    atol_angle, atol_speed : float
-        Absolute tolerances [rad, rad/s].
+    atol : numpy.ndarray
+        Absolute tolerance of each state [rad, rad/s].
     max_step : float
         Largest step [s].
     depth_limit, speed_limit : float
         Penetration [m] and gear speed [rad/s] beyond which the run stops.
+    speed_index : int
+        The gear speed's index in the state.
 
     Returns
     -------
-    states : numpy.ndarray, shape (len(times), 2)
-        Gear rotation and speed at ``times`` (rows after a failure are NaN).
+    states : numpy.ndarray, shape (len(times), len(y0))
+        The state at ``times`` (rows after a failure are NaN).
     status : int
         :data:`OK`, :data:`BLOW_UP` or :data:`STEP_TOO_SMALL`.
     where : numpy.ndarray, shape (4,)
@@ -120,14 +158,20 @@ def integrate(times, phi2_0, w2_0, speed, ramp_time, load, inertia, params, side
         Steps tried (accepted and rejected) and right-hand side evaluations.
     """
     stages = b.size
-    k_phi = np.empty(stages + 1)
-    k_w = np.empty(stages + 1)
-    states = np.full((times.size, 2), np.nan)
+    n = y0.size
+    k = np.empty((stages + 1, n))
+    y = y0.copy()
+    y_stage = np.empty(n)
+    y_new = np.empty(n)
+    d = np.empty(n)
+    d3 = np.empty(n)
+    weights = b.reshape((1, stages))
+    states = np.full((times.size, n), np.nan)
     where = np.zeros(4)
-    t, phi, w = times[0], phi2_0, w2_0
-    states[0, 0], states[0, 1] = phi, w
-    f_phi, f_w, deepest = _derivative(t, phi, w, speed, ramp_time, load, inertia, params, sides,
-                                      table)
+    t = times[0]
+    states[0] = y
+    deepest = _rates(kind, t, y, k, 0, system, params, sides, table)
+    f = k[0].copy()
     evaluations = 1
     steps = 0
     h = min(max_step, 1e-7)
@@ -138,48 +182,42 @@ def integrate(times, phi2_0, w2_0, speed, ramp_time, load, inertia, params, side
             rejected = False
             while True:
                 if h < min_step:
-                    where[0], where[1], where[2], where[3] = t, w, deepest, h
+                    where[0], where[1], where[2], where[3] = t, y[speed_index], deepest, h
                     return states, STEP_TOO_SMALL, where, steps, evaluations
                 step = h if t + h < t_end else t_end - t
                 steps += 1
-                k_phi[0], k_w[0] = f_phi, f_w
+                for i in range(n):  # (element loops: an array assignment may copy)
+                    k[0, i] = f[i]
+                # (each state's sums over the stages in the stages' order, as scipy's)
                 for s in range(1, stages):
-                    d_phi = 0.0
-                    d_w = 0.0
-                    for j in range(s):
-                        d_phi += a[s, j] * k_phi[j]
-                        d_w += a[s, j] * k_w[j]
-                    k_phi[s], k_w[s], _ = _derivative(t + c[s] * step, phi + step * d_phi,
-                                                      w + step * d_w, speed, ramp_time, load,
-                                                      inertia, params, sides, table)
-                d_phi = 0.0
-                d_w = 0.0
-                for j in range(stages):
-                    d_phi += b[j] * k_phi[j]
-                    d_w += b[j] * k_w[j]
-                phi_new, w_new = phi + step * d_phi, w + step * d_w
-                k_phi[stages], k_w[stages], deepest_new = _derivative(
-                    t + step, phi_new, w_new, speed, ramp_time, load, inertia, params, sides, table)
+                    _combine(a, s, s, k, y, step, d, y_stage)
+                    _rates(kind, t + c[s] * step, y_stage, k, s, system, params, sides, table)
+                _combine(weights, 0, stages, k, y, step, d, y_new)
+                deepest_new = _rates(kind, t + step, y_new, k, stages, system, params, sides,
+                                     table)
                 evaluations += stages
-                # Error norm (scipy's RK45 norm; DOP853's blend of its 5th- and
+                # Error norm (scipy's RMS norm; DOP853's blend of its 5th- and
                 # 3rd-order estimates).
-                scale_phi = atol_angle + rtol * max(abs(phi), abs(phi_new))
-                scale_w = atol_speed + rtol * max(abs(w), abs(w_new))
-                e5_phi = e3_phi = e5_w = e3_w = 0.0
+                d[:] = 0.0
+                d3[:] = 0.0
                 for j in range(stages + 1):
-                    e5_phi += e[j] * k_phi[j]
-                    e5_w += e[j] * k_w[j]
-                    e3_phi += e3[j] * k_phi[j]
-                    e3_w += e3[j] * k_w[j]
-                e5 = (e5_phi / scale_phi) ** 2 + (e5_w / scale_w) ** 2
+                    ej, e3j = e[j], e3[j]
+                    for i in range(n):
+                        d[i] += ej * k[j, i]
+                        d3[i] += e3j * k[j, i]
+                e5 = e3n = 0.0
+                for i in range(n):
+                    scale = atol[i] + rtol * max(abs(y[i]), abs(y_new[i]))
+                    e5 += (d[i] / scale) ** 2
+                    e3n += (d3[i] / scale) ** 2
                 if blended:
-                    e3n = (e3_phi / scale_phi) ** 2 + (e3_w / scale_w) ** 2
                     error = 0.0 if e5 == 0.0 and e3n == 0.0 else \
-                        step * e5 / math.sqrt((e5 + 0.01 * e3n) * 2.0)
+                        step * e5 / math.sqrt((e5 + 0.01 * e3n) * float(n))
                 else:
-                    error = step * math.sqrt(e5 / 2.0)
+                    error = step * math.sqrt(e5 / float(n))
                 if not error == error:  # NaN: the state blew up inside the step
-                    where[0], where[1], where[2], where[3] = t + step, w_new, deepest_new, step
+                    where[0], where[1] = t + step, y_new[speed_index]
+                    where[2], where[3] = deepest_new, step
                     return states, BLOW_UP, where, steps, evaluations
                 if error < 1.0:
                     factor = _MAX_FACTOR if error == 0.0 else min(
@@ -193,13 +231,17 @@ def integrate(times, phi2_0, w2_0, speed, ramp_time, load, inertia, params, side
                 h = step * max(_MIN_FACTOR, _SAFETY * error ** error_exponent)
                 rejected = True
             t = t_end if step == t_end - t else t + step
-            phi, w = phi_new, w_new
-            f_phi, f_w, deepest = k_phi[stages], k_w[stages], deepest_new
+            for i in range(n):
+                y[i] = y_new[i]
+                f[i] = k[stages, i]
+            deepest = deepest_new
+            w = y[speed_index]
             if not (math.isfinite(w) and math.isfinite(deepest)) or deepest > depth_limit \
                     or abs(w) > speed_limit:
                 where[0], where[1], where[2], where[3] = t, w, deepest, step
                 return states, BLOW_UP, where, steps, evaluations
-        states[r, 0], states[r, 1] = phi, w
+        for i in range(n):
+            states[r, i] = y[i]
     return states, OK, where, steps, evaluations
 
 
@@ -233,13 +275,20 @@ def run_compiled(model, settings: SimulationSettings):
         On a blow-up or a step size below what double precision resolves.
     """
     _, times, _ = settings.record_grid()
+    angle, speed = settings.atol_angle, settings.atol_speed
+    if settings.boundary == "driveline":
+        y0, system = model.driveline_problem(settings)
+        kind, atol, index = DRIVELINE, np.array([angle] * 3 + [speed] * 3), 4
+    else:
+        y0 = np.array([model.initial_gear_angle(settings), 0.0])
+        system = np.array([settings.pinion_speed, settings.ramp_time, settings.load_torque,
+                           model.gear_inertia])
+        kind, atol, index = PRESCRIBED, np.array([angle, speed]), 1
     start = time.monotonic()
     states, status, where, steps, _ = integrate(
-        times, model.initial_gear_angle(settings), 0.0, settings.pinion_speed,
-        settings.ramp_time, settings.load_torque, model.gear_inertia, *model.contact.arrays,
-        *tableau(settings.compiled_method), settings.rtol, settings.atol_angle,
-        settings.atol_speed, settings.duration / settings.samples, model.penetration_limit,
-        model.speed_limit(settings))
+        kind, times, y0, system, *model.contact.arrays, *tableau(settings.compiled_method),
+        settings.rtol, atol, settings.duration / settings.samples, model.penetration_limit,
+        model.speed_limit(settings), index)
     wall = time.monotonic() - start
     if status == STEP_TOO_SMALL:
         raise SimulationError(f"t = {where[0]:.9f} s: the compiled engine's step fell to "
@@ -249,6 +298,11 @@ def run_compiled(model, settings: SimulationSettings):
         model.check_state(where[0], where[1], where[2], settings)
         raise SimulationError(f"t = {where[0]:.9f} s: non-finite error estimate (gear speed "
                               f"{where[1]!r} rad/s)")
-    pinion = pinion_states(times, settings.pinion_speed, settings.ramp_time)
-    return model.record(settings, times, pinion[:, 0], states[:, 0], pinion[:, 1], states[:, 1],
+    if kind == DRIVELINE:
+        pinion = states[:, [0, 3]]
+        gear = states[:, [1, 4]]
+    else:
+        pinion = pinion_states(times, settings.pinion_speed, settings.ramp_time)
+        gear = states
+    return model.record(settings, times, pinion[:, 0], gear[:, 0], pinion[:, 1], gear[:, 1],
                         wall, steps)

@@ -153,8 +153,15 @@ def run_dataset(record, model, settings, command=""):
                       for k, v in model.contact.slice_stiffness.attrs.items()})
     if model.contact.params.model == "line":
         attrs.update(contact_line_damping_N_s_per_m2=model.contact.damping_coefficient,
-                     mesh_natural_frequency_hz=model.contact.natural_frequency(model.gear_inertia),
+                     mesh_natural_frequency_hz=model.contact.natural_frequency(model.contact.gear_inertia),
                      mean_mesh_stiffness_N_per_m=model.contact.mean_mesh_stiffness())
+    if model.driveline is not None and settings.boundary == "driveline":
+        contact = model.contact
+        stiffness = contact.mean_torsional_stiffness() if contact.params.model == "line" \
+            else float("nan")
+        attrs.update(model.driveline.attrs(stiffness, contact.e1 / contact.e2))
+    if "driveline_mode3_hz" in attrs:  # the mesh mode of the linearised driveline
+        attrs["mesh_natural_frequency_hz"] = attrs["driveline_mode3_hz"]
     attrs.update({f"solver_{k}": v for k, v in settings.to_dict().items()})
     attrs.update(_library_versions())
     ds.attrs.update({k: (float(v) if isinstance(v, (np.floating, np.integer)) else v)

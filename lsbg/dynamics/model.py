@@ -95,25 +95,58 @@ class MeshingModel:
         Axial moment of inertia of the gear about its axis [kg m^2].
     pinion_inertia : float
         Axial moment of inertia of the pinion [kg m^2] (PyBullet engine only:
-        the other engines prescribe the pinion's motion).
+        the other engines prescribe the pinion's motion, or take the
+        driveline's pinion, its solid and its shaft and flange).
     urdf : str or pathlib.Path, optional
         URDF of the assembled pair, for the PyBullet engine.
+    driveline : lsbg.dynamics.driveline.Driveline, optional
+        The torsional driveline of runs under ``boundary = "driveline"``; the
+        line contact's ``gear_inertia`` is then its two-inertia mesh mode's
+        (:meth:`~lsbg.dynamics.driveline.Driveline.mesh_mode_inertia`).
     """
 
-    def __init__(self, contact: MeshContact, gear_inertia: float, pinion_inertia: float, urdf=None):
+    def __init__(self, contact: MeshContact, gear_inertia: float, pinion_inertia: float, urdf=None,
+                 driveline=None):
         if not gear_inertia > 0:
             raise ValueError(f"gear_inertia = {gear_inertia!r}: must be positive [kg m^2]")
         if not pinion_inertia > 0:
             raise ValueError(f"pinion_inertia = {pinion_inertia!r}: must be positive [kg m^2]")
-        if contact.params.model == "line" and contact.gear_inertia != gear_inertia:
-            raise ValueError(f"gear_inertia = {gear_inertia!r}: the line contact's damping was "
-                             f"set for a gear inertia of {contact.gear_inertia!r} kg m^2")
         self.contact = contact
+        self.driveline = driveline
         self.pair = contact.pair
         self.gear_inertia = float(gear_inertia)
         self.pinion_inertia = float(pinion_inertia)
         self.urdf = urdf
+        mode_inertia = self.gear_inertia if driveline is None else \
+            driveline.mesh_mode_inertia(contact.e1 / contact.e2)
+        if contact.params.model == "line" and contact.gear_inertia != mode_inertia:
+            raise ValueError(f"gear_inertia = {mode_inertia!r}: the line contact's damping was "
+                             f"set for a gear inertia of {contact.gear_inertia!r} kg m^2")
         self.ratio = self.pair.design.pinion_teeth / self.pair.design.gear_teeth
+
+    def driveline_problem(self, settings):
+        """A driveline run's initial state and its equations' parameters.
+
+        Returns
+        -------
+        y0 : numpy.ndarray, shape (6,)
+            :func:`lsbg.dynamics.driveline.initial_state`.
+        system : numpy.ndarray
+            :meth:`lsbg.dynamics.driveline.Driveline.system`.
+
+        Raises
+        ------
+        ValueError
+            If the model has no driveline.
+        """
+        from lsbg.dynamics.driveline import initial_state
+
+        if self.driveline is None:
+            raise ValueError("boundary = 'driveline': the model was loaded without a driveline")
+        y0, offset = initial_state(self.driveline, self.contact, settings.pinion_speed,
+                                   settings.load_torque)
+        return y0, self.driveline.system(settings.pinion_speed, offset,
+                                         self.contact.e1 / self.contact.e2, settings.load_torque)
 
     @property
     def penetration_limit(self):
@@ -233,6 +266,8 @@ class MeshingModel:
     # -------------------------------------------------------------- engines
     def run(self, settings: SimulationSettings) -> RunRecord:
         """Integrate with the engine named in ``settings``."""
+        if settings.boundary == "driveline" and self.driveline is None:
+            raise ValueError("boundary = 'driveline': the model was loaded without a driveline")
         if settings.engine == "scipy":
             from lsbg.dynamics.scipy_engine import run_scipy
 
@@ -247,7 +282,7 @@ class MeshingModel:
 
 
 def load_model(geometry_dir, contact_params=None, flanks=None,
-               slice_stiffness=None) -> MeshingModel:
+               slice_stiffness=None, driveline=None) -> MeshingModel:
     """The meshing model of a geometry directory written by ``lsbg geometry``.
 
     Parameters
@@ -265,6 +300,9 @@ def load_model(geometry_dir, contact_params=None, flanks=None,
         The tooth's own stiffness per slice (from the loaded TCA with the FE
         compliance of this design point and these flanks); required by, and
         only allowed with, the line model under ``compliance = "fe"``.
+    driveline : dict, optional
+        The ``driveline`` section (:meth:`lsbg.dynamics.driveline.Driveline.from_config`,
+        on this point's solids): the model of runs under the driveline boundary.
 
     Returns
     -------
@@ -294,14 +332,23 @@ def load_model(geometry_dir, contact_params=None, flanks=None,
     if slice_stiffness is not None and not own:
         raise ValueError("a slice stiffness (the tooth's compliance) was given, but the contact "
                          "is not the line model with compliance = 'fe'")
-    contact = MeshContact(pair, contact_params, gear_inertia=gear_inertia, separation=separation,
+    pinion_inertia = record["axial_inertia_pinion_kg_m2"]
+    mode_inertia = gear_inertia
+    if driveline is not None:
+        from lsbg.dynamics.driveline import Driveline
+
+        driveline = Driveline.from_config(driveline, pinion_inertia, gear_inertia)
+        # rho = e1 / e2 as MeshContact computes it
+        e1, e2 = (math.sin(pair.design.base_cone_angle(m)) for m in (1, 2))
+        mode_inertia = driveline.mesh_mode_inertia(e1 / e2)
+    contact = MeshContact(pair, contact_params, gear_inertia=mode_inertia, separation=separation,
                           slice_stiffness=slice_stiffness)
-    return MeshingModel(contact, gear_inertia,
-                        record["axial_inertia_pinion_kg_m2"], urdf=geometry_dir / FILE_NAMES["urdf"])
+    return MeshingModel(contact, gear_inertia, pinion_inertia,
+                        urdf=geometry_dir / FILE_NAMES["urdf"], driveline=driveline)
 
 
 def simulate(geometry_dir, settings: SimulationSettings, contact_params=None, command="",
-             flanks=None, slice_stiffness=None):
+             flanks=None, slice_stiffness=None, driveline=None):
     """Run one meshing simulation and return its CF dataset.
 
     Parameters
@@ -316,6 +363,9 @@ def simulate(geometry_dir, settings: SimulationSettings, contact_params=None, co
         As :func:`load_model`.
     slice_stiffness : lsbg.contact.slices.SliceStiffness, optional
         As :func:`load_model`.
+    driveline : dict, optional
+        The ``driveline`` section, read under ``settings.boundary = "driveline"``
+        (its defaults if None); ignored under the prescribed pinion.
 
     Returns
     -------
@@ -329,9 +379,10 @@ def simulate(geometry_dir, settings: SimulationSettings, contact_params=None, co
     """
     from lsbg.dynamics.dataset import run_dataset
 
-    model = load_model(geometry_dir, contact_params, flanks, slice_stiffness)
-    log.info("%s engine, %s model, %s trace, spiral angle %.4g deg: %.4g s simulated",
-             settings.engine, model.contact.params.model, model.pair.design.trace,
+    section = (driveline or {}) if settings.boundary == "driveline" else None
+    model = load_model(geometry_dir, contact_params, flanks, slice_stiffness, section)
+    log.info("%s boundary, %s engine, %s model, %s trace, spiral angle %.4g deg: %.4g s simulated",
+             settings.boundary, settings.engine, model.contact.params.model, model.pair.design.trace,
              math.degrees(model.pair.design.spiral_angle), settings.duration)
     record = model.run(settings)
     log.info("done: %d steps in %.1f s wall", record.steps, record.wall_time)

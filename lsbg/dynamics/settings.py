@@ -26,6 +26,9 @@ from numba import njit
 
 from lsbg.contact.law import step_scalar
 
+#: Boundaries of a meshing run (``simulation.boundary``; :mod:`lsbg.dynamics.driveline`).
+BOUNDARIES = ("prescribed_pinion", "driveline")
+
 #: Integrators: the multibody engine, scipy's LSODA (or another solve_ivp
 #: method), and the compiled embedded Runge-Kutta loop (:mod:`lsbg.dynamics.compiled_engine`).
 ENGINES = ("pybullet", "scipy", "compiled")
@@ -81,6 +84,11 @@ class SimulationSettings:
         minus it) stops the run [-].
     progress_interval : float
         Wall time between progress reports in the log [s].
+    boundary : {"prescribed_pinion", "driveline"}
+        The paper's pinion on its prescribed speed (the gear the only
+        inertia), or the torsional driveline of :mod:`lsbg.dynamics.driveline`
+        (its drive end at ``pinion_speed`` from the start; ``ramp_time`` is
+        not used).
     """
 
     engine: str = "pybullet"
@@ -99,6 +107,7 @@ class SimulationSettings:
     full_rate_after: float | None = None
     runaway_factor: float = 2.0
     progress_interval: float = 5.0
+    boundary: str = "prescribed_pinion"
 
     def __post_init__(self):
         def fail(name, why):
@@ -110,6 +119,11 @@ class SimulationSettings:
             fail("method", f"must be one of {SCIPY_METHODS}")
         if self.compiled_method not in COMPILED_METHODS:
             fail("compiled_method", f"must be one of {COMPILED_METHODS}")
+        if self.boundary not in BOUNDARIES:
+            fail("boundary", f"must be one of {BOUNDARIES}")
+        if self.boundary == "driveline" and self.engine == "pybullet":
+            fail("boundary", "the pybullet engine runs the prescribed pinion only (its URDF "
+                             "holds the pair, not the driveline): use the compiled or scipy engine")
         for name in ("duration", "pinion_speed", "time_step", "rtol", "atol_angle",
                      "atol_speed", "progress_interval", "full_rate"):
             value = getattr(self, name)
@@ -236,6 +250,7 @@ class SimulationSettings:
             "atol_speed_rad_s": self.atol_speed, "method": self.method,
             "compiled_method": self.compiled_method, "full_rate_hz": self.full_rate,
             "full_rate_after_s": self.full_rate_start, "runaway_factor": self.runaway_factor,
+            "boundary": self.boundary,
         }
 
 
@@ -257,6 +272,7 @@ SIMULATION_CONFIG_KEYS = {
     "engine": ("engine", None),
     "full_rate_hz": ("full_rate", float),
     "full_rate_after_s": ("full_rate_after", float),
+    "boundary": ("boundary", None),
 }
 
 

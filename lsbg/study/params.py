@@ -29,8 +29,8 @@ CONTACT_STATE_SECTIONS = (*FLANK_SECTIONS, "tca", "misalignment_map")
 #: Sections of the configuration that lsbg's commands read from results/config.yaml:
 #: every section a command of the workflow names (tests/study/test_plan.py checks it
 #: against the commands' parsers; a missing one runs that command on its defaults).
-STUDY_SECTIONS = ("design", "simulation", "contact", *CONTACT_STATE_SECTIONS, "statistics",
-                  "tooth", "rating", "practice", "optimise", "limits")
+STUDY_SECTIONS = ("design", "simulation", "driveline", "contact", *CONTACT_STATE_SECTIONS,
+                  "statistics", "tooth", "rating", "practice", "optimise", "limits")
 
 
 #: Simulation keys that only some engines read.
@@ -94,10 +94,16 @@ def simulation_params(config, engine, model):
     command applies them; the point model keeps the conjugate flanks), so
     that every rule whose trigger holds them (the loaded TCA's too) reruns on
     a change of the contact state; under ``compliance: fe`` also the ``tooth``
-    section (the FE compliance it runs on).
+    section (the FE compliance it runs on). The boundary only where it is the
+    driveline, with the ``driveline`` section (the prescribed pinion's runs keep
+    the trigger they had before the boundary was a setting).
     """
     simulation = {k: v for k, v in config["simulation"].items()
                   if engine in ENGINE_ONLY_KEYS.get(k, (engine,))}
+    if simulation.get("boundary", "prescribed_pinion") == "prescribed_pinion":
+        simulation.pop("boundary", None)
+    else:
+        simulation["driveline"] = config.get("driveline", {})
     others = {key for name, keys in MODEL_ONLY_KEYS.items() if name != model for key in keys}
     contact = {k: v for k, v in config["contact"].items() if k not in others and k != "model"}
     if model == "line":

@@ -61,6 +61,7 @@ GOOD = {
     # (a value as YAML reads it, as it would stand in a config file: 30 is an int)
     "design": ("spiral_angle_deg", "30", 30),
     "simulation": ("time_step_s", "2e-6", 2e-6),
+    "driveline": ("tyre_radius_m", "0.36", 0.36),
     "contact": ("model", "line", "line"),
     "flank_modification": ("lengthwise_crowning_um", "25.5", 25.5),
     "misalignment": ("pinion_axial_P_mm", "0.05", 0.05),

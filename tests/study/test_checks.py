@@ -228,6 +228,8 @@ BEYOND_SCHEMA = {
     # engines, contact, sensitivity, speed sweep
     "paper engine not run": ({"engines": {"sweep": "compiled", "reference": {"point": ["scipy"]},
                                           "paper": "pybullet"}}, "engines.paper = 'pybullet'"),
+    "driveline under the pybullet engine": ({"simulation": {"boundary": "driveline"}},
+                                            "simulation.boundary = 'driveline': the pybullet"),
     "friction velocity below stiction": ({"contact": {"friction_velocity_mm_s": 0.05}},
                                          "contact.stiction_velocity_mm_s = 0.1"),
     "sensitivity that halves the slices below 2": (
