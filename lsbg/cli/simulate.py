@@ -73,8 +73,8 @@ def add_simulate_parser(subparsers):
         description="Simulate the meshing of the pair in --geometry (paper §3: pinion speed "
                     "ramped to 7703 deg/s, gear loaded with 1964.99 N m; the 'simulation' and "
                     "'contact' sections; under simulation.boundary=driveline the torsional "
-                    "driveline of the 'driveline' section around the mesh) and write the time series to --out (NetCDF, "
-                    "CF-1.11). A blow-up (NaN, penetration beyond d, runaway speed) stops the "
+                    "driveline of the 'driveline' section around the mesh) and write the time "
+                    "series to --out (NetCDF, CF-1.11). A blow-up (NaN, penetration beyond d, runaway speed) stops the "
                     "run with exit code 3 and writes nothing.")
     add_run_options(parser)
     add_config_options(parser, RUN_SECTIONS)

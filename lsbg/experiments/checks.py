@@ -10,7 +10,7 @@ from __future__ import annotations
 from lsbg.experiments.sensitivity import case_name, scaled_contact
 from lsbg.files import label_clashes
 
-__all__ = ["case_name_problems", "sensitivity_problems"]
+__all__ = ["case_name_problems", "sensitivity_problems", "operating_problems"]
 
 
 def case_name_problems(config):
@@ -63,4 +63,47 @@ def sensitivity_problems(config):
             except ValueError as error:
                 problems.append(f"sensitivity.{key}[{k}] = {factor!r}: gives "
                                 f"{settings_message(error, {**config, 'contact': scaled})}")
+    return problems
+
+
+def operating_problems(config):
+    """Each operating or boundary case's simulation settings, as its run will read them.
+
+    A ``pinion_speed`` case scales, a ``boundary`` case switches the ``simulation``
+    section (:func:`lsbg.experiments.sensitivity.case_simulation`); the case runs on the
+    sweep's engine (``engines.sweep``), and its section must differ from the study's.
+
+    Parameters
+    ----------
+    config : dict
+        The configuration: its ``sensitivity``, ``simulation`` and ``engines`` sections.
+
+    Returns
+    -------
+    list of str
+        ``sensitivity.KEY[k] = value: <the problem>``.
+    """
+    from lsbg.dynamics import SimulationSettings
+    from lsbg.dynamics.checks import settings_message
+    from lsbg.experiments.sensitivity import OPERATING_KEYS, SIMULATION_SWITCHES, case_simulation
+
+    problems = []
+    engine = config["engines"]["sweep"]
+    for key in (*OPERATING_KEYS, *SIMULATION_SWITCHES):
+        for k, value in enumerate(config["sensitivity"].get(key, [])):
+            where = f"sensitivity.{key}[{k}] = {value!r}"
+            try:
+                simulation = case_simulation(key, value, config["simulation"])
+            except ValueError as error:
+                problems.append(f"{where}: {error}")
+                continue
+            if simulation == config["simulation"]:
+                problems.append(f"{where}: the study's own setting (simulation.{key}); a "
+                                f"case must change it")
+                continue
+            try:
+                SimulationSettings.from_config(simulation, engine=engine)
+            except ValueError as error:
+                message = settings_message(error, {**config, "simulation": simulation})
+                problems.append(f"{where}: gives {message} (engines.sweep {engine!r})")
     return problems

@@ -21,7 +21,11 @@ every case.
 * an **operating** case runs the pair at another operating point: ``pinion_speed:
   [0.25, 1.5]`` multiplies the pinion's speed (the ``simulation`` section's); its
   stability is a cell of claim 1, but the rating (claim 3) stays at the study's
-  speed, so it rates no case of this kind (:func:`rated_cases`).
+  speed, so it rates no case of this kind (:func:`rated_cases`);
+* a **boundary** case switches the run's boundary (``simulation.boundary``):
+  ``boundary: [driveline]`` runs the mesh inside the torsional driveline
+  (:mod:`lsbg.dynamics.driveline`) instead of the paper's prescribed pinion speed, at
+  the study's speed (its K_v is rated).
 
 Which stages a case reaches (:data:`CASE_STAGES`): every case reruns the
 dynamics (an operating case only the dynamics); crowning and the line stiffness also change the V-H map (the
@@ -33,7 +37,7 @@ from __future__ import annotations
 from lsbg.files import number_label
 
 __all__ = ["SENSITIVITY_KEYS", "FLANK_KEYS", "SENSITIVITY_SWITCHES", "OPERATING_KEYS",
-           "CASE_STAGES", "case_name", "parse_case", "scaled_contact", "case_label",
+           "CASE_STAGES", "SIMULATION_SWITCHES", "case_name", "parse_case", "scaled_contact", "case_label",
            "study_cases", "case_sections", "case_simulation", "stage_cases", "rated_cases"]
 
 #: Contact keys (paper units) a case may scale.
@@ -46,7 +50,11 @@ FLANK_KEYS = {"crowning": ("lengthwise_crowning_um", "profile_crowning_um", "bia
 OPERATING_KEYS = {"pinion_speed": "pinion_speed_deg_s"}
 
 #: Word-valued keys a case may switch -> their values.
-SENSITIVITY_SWITCHES = {"compliance": ("uniform", "fe"), "displacement": ("envelope",)}
+SENSITIVITY_SWITCHES = {"compliance": ("uniform", "fe"), "displacement": ("envelope",),
+                        "boundary": ("prescribed_pinion", "driveline")}
+
+#: Switches of the ``simulation`` section (the others switch the contact's).
+SIMULATION_SWITCHES = ("boundary",)
 
 #: The stages a case's key reaches: "dynamics" (the line-model runs),
 #: "contact_state" (the V-H map), "fe_ltca" (the FE loaded TCA).
@@ -56,7 +64,8 @@ CASE_STAGES = {"mesh_damping_ratio": ("dynamics",),
                "compliance": ("dynamics",),
                "crowning": ("dynamics", "contact_state", "fe_ltca"),
                "displacement": ("dynamics",),
-               "pinion_speed": ("dynamics",)}
+               "pinion_speed": ("dynamics",),
+               "boundary": ("dynamics",)}
 
 #: A corner case's name starts so; its value is the corner's label.
 _DISPLACED = "displaced"
@@ -64,7 +73,9 @@ _DISPLACED = "displaced"
 #: Words of the keys and values in the reports.
 _LABELS = {"mesh_damping_ratio": "damping ratio", "line_stiffness_N_per_mm_um": "line stiffness",
            "slices": "slices", "compliance": "compliance", "fe": "FE", "uniform": "uniform",
-           "crowning": "crowning", "pinion_speed": "pinion speed"}
+           "crowning": "crowning", "pinion_speed": "pinion speed",
+           "boundary": "boundary", "driveline": "torsional driveline",
+           "prescribed_pinion": "prescribed pinion speed"}
 
 
 def case_name(key, factor):
@@ -171,6 +182,11 @@ def scaled_contact(contact, key, factor):
         return {}
     if key in OPERATING_KEYS:
         _check_factor(key, factor)
+        return {}
+    if key in SIMULATION_SWITCHES:
+        if factor not in SENSITIVITY_SWITCHES[key]:
+            raise ValueError(f"sensitivity.{key} value {factor!r}: must be one of "
+                             f"{SENSITIVITY_SWITCHES[key]}")
         return {}
     if key in SENSITIVITY_SWITCHES:
         values = SENSITIVITY_SWITCHES[key]
@@ -281,6 +297,9 @@ def case_simulation(key, value, simulation):
         _check_factor(key, value)
         name = OPERATING_KEYS[key]
         return {**simulation, name: simulation[name] * value}
+    if key in SIMULATION_SWITCHES:
+        scaled_contact({}, key, value)  # the value checked
+        return {**simulation, key: value}
     return dict(simulation)
 
 

@@ -30,7 +30,8 @@ configuration that returns its problem lines):
    engine's simulation settings (:func:`lsbg.dynamics.checks.engine_problems`),
    the driveline (:func:`lsbg.dynamics.checks.driveline_problems`), the
    contact law (:func:`lsbg.dynamics.checks.contact_problems`), the
-   sensitivity cases (:func:`lsbg.experiments.checks.sensitivity_problems`)
+   sensitivity cases (:func:`lsbg.experiments.checks.sensitivity_problems`, their
+   speeds and boundaries :func:`lsbg.experiments.checks.operating_problems`)
    and the speed sweep (:func:`lsbg.study.resources.speed_sweep_problems`);
 5. the statistics (:func:`lsbg.stats.checks.statistics_problems`): steady
    state <= chart window start < window end <= duration, and enough samples
@@ -313,10 +314,11 @@ def _name_problems(config):
 def _settings_problems(config):
     """The engines, simulation, contact, sensitivity and speed sweep as lsbg reads them."""
     from lsbg.dynamics.checks import contact_problems, driveline_problems, engine_problems
-    from lsbg.experiments.checks import sensitivity_problems
+    from lsbg.experiments.checks import operating_problems, sensitivity_problems
 
     problems = (engine_problems(config, engines_run(config)) + driveline_problems(config)
-                + contact_problems(config) + sensitivity_problems(config))
+                + contact_problems(config) + sensitivity_problems(config)
+                + operating_problems(config))
     if config.get("speed_sweep"):
         problems += speed_sweep_problems(config)
     return problems

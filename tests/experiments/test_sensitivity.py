@@ -33,7 +33,8 @@ def test_a_case_reaches_only_the_stages_it_changes():
     assert list(stage_cases(cases, "contact_state")) == list(stage_cases(cases, "fe_ltca"))
     assert list(stage_cases(cases, "dynamics")) == list(cases)
     assert set(CASE_STAGES) == {"mesh_damping_ratio", "line_stiffness_N_per_mm_um", "slices",
-                                "compliance", "crowning", "displacement", "pinion_speed"}
+                                "compliance", "crowning", "displacement", "pinion_speed",
+                                "boundary"}
 
 
 def test_a_speed_case_runs_at_its_own_speed_and_is_not_rated():
@@ -55,6 +56,24 @@ def test_a_speed_case_runs_at_its_own_speed_and_is_not_rated():
     assert simulation["pinion_speed_deg_s"] == 7703.0  # untouched
     with pytest.raises(ValueError, match="sensitivity.pinion_speed factor 0"):
         study_cases({"pinion_speed": [0]})
+
+
+def test_a_boundary_case_switches_the_simulation_and_is_rated():
+    from lsbg.experiments.sensitivity import case_simulation, rated_cases
+
+    cases = study_cases({"boundary": ["driveline"], "mesh_damping_ratio": [2]})
+    assert list(cases) == ["boundary_driveline", "mesh_damping_ratio_x2"]
+    assert parse_case("boundary_driveline") == ("boundary", "driveline")
+    assert case_label("boundary_driveline") == "boundary: torsional driveline"
+    assert rated_cases(cases) == list(cases)
+    assert list(stage_cases(cases, "contact_state")) == []
+    simulation = {"boundary": "prescribed_pinion", "pinion_speed_deg_s": 7703.0}
+    assert case_simulation("boundary", "driveline", simulation) == {
+        "boundary": "driveline", "pinion_speed_deg_s": 7703.0}
+    c, m, a = case_sections("boundary", "driveline", {"slices": 20}, MODIFICATION, {})
+    assert (c, m, a) == ({"slices": 20}, MODIFICATION, {})
+    with pytest.raises(ValueError, match="sensitivity.boundary value 'free'"):
+        study_cases({"boundary": ["free"]})
 
 
 def test_crowning_scales_the_ease_off_and_a_corner_adds_to_the_assembly():

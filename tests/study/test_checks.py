@@ -230,6 +230,14 @@ BEYOND_SCHEMA = {
                                           "paper": "pybullet"}}, "engines.paper = 'pybullet'"),
     "driveline under the pybullet engine": ({"simulation": {"boundary": "driveline"}},
                                             "simulation.boundary = 'driveline': the pybullet"),
+    "a driveline case on the pybullet sweep engine": (
+        {"engines": {"sweep": "pybullet", "reference": {"point": ["pybullet"], "line": ["scipy"]}}},
+        "sensitivity.boundary[0] = 'driveline': gives simulation.boundary = 'driveline'"),
+    "a boundary case that is the study's own": (
+        {"sensitivity": {"boundary": ["prescribed_pinion"]}},
+        "sensitivity.boundary[0] = 'prescribed_pinion': the study's own setting"),
+    "a speed case of factor 1": ({"sensitivity": {"pinion_speed": [1]}},
+                                 "sensitivity.pinion_speed[0] = 1: the study's own setting"),
     "friction velocity below stiction": ({"contact": {"friction_velocity_mm_s": 0.05}},
                                          "contact.stiction_velocity_mm_s = 0.1"),
     "sensitivity that halves the slices below 2": (

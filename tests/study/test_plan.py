@@ -106,10 +106,10 @@ def test_every_run_and_file_of_the_default_study_is_planned_once(default):
     assert re.fullmatch(study.wildcards["trace"], "face_milled")
     # the sensitivity cases: every case's run; the V-H maps and FE loaded TCAs of the
     # cases that reach them (crowning and line stiffness; crowning)
-    assert len(study.sensitivity_runs()) == 2 * len(study.sensitivity) == 2 * 15
+    assert len(study.sensitivity_runs()) == 2 * len(study.sensitivity) == 2 * 16
     # the rating takes every case's K_v but the two at other pinion speeds
     assert study.rated_cases == [c for c in study.sensitivity if "pinion_speed" not in c]
-    assert len(study.rated_cases) == 13
+    assert len(study.rated_cases) == 14 and "boundary_driveline" in study.rated_cases
     assert {f.rsplit("_beta35_", 1)[1] for f in study.vh_cases()} == {
         f"{case}.nc" for case in ("crowning_x0", "crowning_x0.5", "crowning_x2",
                                   "line_stiffness_N_per_mm_um_x0.5",
