@@ -112,8 +112,12 @@ def add_speed_curve_parser(subparsers):
                     "dynamic transmission error, dynamic factor and gear-speed fluctuation per "
                     "trace and pinion speed, the transmission-error spectra on one frequency "
                     "grid, the natural frequency of each trace's mesh mode and the speeds at "
-                    "which the mesh frequency meets it (NetCDF, CF-1.11).")
+                    "which the mesh frequency meets it (NetCDF, CF-1.11). The runs share one "
+                    "boundary (simulation.boundary).")
     parser.add_argument("--runs", nargs="+", required=True, metavar="RUN.nc", help="run files")
+    parser.add_argument("--orders", type=int, default=3, metavar="K",
+                        help="mesh harmonics 1..K whose resonance speeds (k f_mesh = f_n) the "
+                             "curve gives (default: 3)")
     add_output(parser, metavar="CURVE.nc")
     parser.set_defaults(handler=run_speed_curve)
 
@@ -126,8 +130,11 @@ def run_speed_curve(args):
     from lsbg.files import write_dataset
     from lsbg.experiments.speed import speed_curve
 
+    if args.orders < 3:
+        raise CommandError(f"--orders {args.orders}: must be at least 3 (the curve's table "
+                           f"gives f_n, f_n/2 and f_n/3)")
     try:
-        curve = speed_curve(open_runs(args.runs))
+        curve = speed_curve(open_runs(args.runs), orders=args.orders)
     except (OSError, ValueError) as err:
         raise CommandError(f"--runs: {err}") from None
     write_dataset(curve, args.out)
@@ -138,7 +145,8 @@ def run_speed_curve(args):
         ratio = curve["mesh_frequency"].values / natural
         peak = curve["dynamic_factor"].sel(trace=trace)
         at = float(speeds[int(np.argmax(peak.values))])
-        lines.append(f"{trace}: f_n {natural:.4g} Hz; {speeds.size} speeds "
+        lines.append(f"{trace}, {curve.attrs['solver_boundary']}: f_n {natural:.4g} Hz; "
+                     f"{speeds.size} speeds "
                      f"{speeds.min():.5g}-{speeds.max():.5g} deg/s (f_mesh/f_n "
                      f"{ratio.min():.3g}-{ratio.max():.3g}); peak dynamic factor "
                      f"{float(peak.max()):.4g} at {at:.5g} deg/s")

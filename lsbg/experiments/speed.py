@@ -207,7 +207,7 @@ def _binned_peak(frequency, amplitude, edges):
     return out
 
 
-def speed_curve(runs, max_frequency=None, bins=300):
+def speed_curve(runs, max_frequency=None, bins=300, orders=3):
     """The dynamic-factor curve of a set of speed-sweep runs.
 
     Parameters
@@ -221,6 +221,8 @@ def speed_curve(runs, max_frequency=None, bins=300):
     bins : int
         Frequency bins of the spectrum map [-] (each holds the peak amplitude
         of the run's spectrum inside it, so narrow lines stay visible).
+    orders : int
+        The mesh harmonics 1..orders whose resonance speeds are given [-].
 
     Returns
     -------
@@ -234,17 +236,18 @@ def speed_curve(runs, max_frequency=None, bins=300):
     ------
     ValueError
         If the runs are empty, mix contact models or spiral angles, lack the
-        mesh mode's natural frequency, or the traces differ in their speeds.
+        mesh mode's natural frequency, mix boundaries, or the traces differ in their
+        speeds.
     """
     import xarray as xr
 
     runs = list(runs)
     if not runs:
         raise ValueError("runs: no speed-sweep runs given")
-    for key in ("contact_model", "design_spiral_angle_deg"):
-        found = sorted({str(ds.attrs[key]) for ds in runs})
+    for key in ("contact_model", "design_spiral_angle_deg", "solver_boundary"):
+        found = sorted({str(ds.attrs.get(key, "prescribed_pinion")) for ds in runs})
         if len(found) > 1:
-            raise ValueError(f"runs: mixed {key} {found}; a curve is one model at one angle")
+            raise ValueError(f"runs: mixed {key} {found}; a curve is one model at one angle under one boundary")
     missing = [ds.encoding.get("source", "?") for ds in runs
                if "mesh_natural_frequency_hz" not in ds.attrs]
     if missing:
@@ -270,7 +273,7 @@ def speed_curve(runs, max_frequency=None, bins=300):
     top = max_frequency or max(3 * natural.max(), 1.2 * mesh.max())
     edges = np.linspace(0.0, top, bins + 1)
     teeth = int(runs[0].attrs["design_pinion_teeth"])
-    orders = np.array([1, 2, 3])
+    orders = np.arange(1, int(orders) + 1)
     data = {
         "mesh_frequency": (("pinion_speed",), mesh,
                            {"units": "Hz", "long_name": "tooth-mesh frequency"}),
@@ -303,6 +306,7 @@ def speed_curve(runs, max_frequency=None, bins=300):
                "contact_model": str(first["contact_model"]),
                "design_spiral_angle_deg": float(first["design_spiral_angle_deg"]),
                "solver_engine": str(first["solver_engine"]),
+               "solver_boundary": str(first.get("solver_boundary", "prescribed_pinion")),
                "solver_load_torque_N_m": float(first["solver_load_torque_N_m"]),
                "design_pinion_teeth": teeth},
     )

@@ -21,15 +21,27 @@ ORDER_STYLES = {1: "--", 2: ":", 3: "-."}
 
 
 def _mark_resonances(ax, curve, label=True):
+    """Vertical lines at the resonance speeds inside the curve's speed range: orders 1-3
+    in their own styles, the higher ones thin and dotted (labelled once per trace)."""
+    speeds = curve["pinion_speed"].values
+    low, high = speeds.min(), speeds.max()
     for trace in curve["trace"].values:
+        name = TRACE_LABELS.get(str(trace), trace)
+        higher = True
         for order in curve["order"].values:
             speed = float(curve["resonance_speed"].sel(trace=trace, order=order))
-            ax.axvline(speed, color=type_color(str(trace)), lw=0.8,
-                       ls=ORDER_STYLES.get(int(order), "--"),
-                       label=(f"{TRACE_LABELS.get(str(trace), trace)}: f_mesh = f_n/{int(order)}"
-                              if label and int(order) > 1 else
-                              f"{TRACE_LABELS.get(str(trace), trace)}: f_mesh = f_n"
-                              if label else None))
+            k = int(order)
+            if not low <= speed <= high and k > 1:
+                continue
+            if k in ORDER_STYLES:
+                text = f"{name}: f_mesh = f_n" if k == 1 else f"{name}: f_mesh = f_n/{k}"
+                ax.axvline(speed, color=type_color(str(trace)), lw=0.8, ls=ORDER_STYLES[k],
+                           label=text if label else None)
+            else:
+                ax.axvline(speed, color=type_color(str(trace)), lw=0.5, ls=(0, (1, 3)),
+                           label=(f"{name}: f_mesh = f_n/k, k > 3" if label and higher
+                                  else None))
+                higher = False
 
 
 def plot_speed_curve(curve):
@@ -47,7 +59,9 @@ def plot_speed_curve(curve):
         where the mesh frequency meets the natural frequency (dashed) and its
         half (dotted) and third (dash-dotted), per trace; the top axis in
         mesh frequency over the natural frequency of the first trace; the
-        legend above the panels.
+        legend above the panels. Resonance speeds (k f_mesh = f_n) are drawn for the
+        curve's orders within its speed range (order 1 always): 1-3 in their own
+        styles, higher orders thin and dotted.
     """
     fig, axes = new_figure(len(CURVE_PANELS), 1, width=7.0, height=2.4, sharex=True)
     speeds = curve["pinion_speed"].values

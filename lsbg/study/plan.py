@@ -322,11 +322,25 @@ class Study:
 
 
     @property
-    def speed_runs(self):
+    def speed_boundaries(self):
+        """The boundaries of the speed sweep, a curve each."""
+        return list(self.speed_sweep.get("boundaries", ["prescribed_pinion"]))
+
+    def speed_runs(self, boundary=None):
+        """The speed sweep's runs (of one boundary)."""
         if not self.speed_sweep:
             return []
-        return [_format(FILES["speed_run"], trace=t, spiral=self.speed_spiral, speed=v)
-                for t in self.speed_traces for v in self.speeds]
+        boundaries = self.speed_boundaries if boundary is None else [boundary]
+        return [_format(FILES["speed_run"], trace=t, spiral=self.speed_spiral, speed=v,
+                        boundary=b)
+                for b in boundaries for t in self.speed_traces for v in self.speeds]
+
+    @property
+    def speed_curves(self):
+        """The speed sweep's curves, one per boundary."""
+        if not self.speed_sweep:
+            return []
+        return [_format(FILES["speed_curve"], boundary=b) for b in self.speed_boundaries]
 
     # ------------------------------------------------------ practice design
     @property
@@ -415,7 +429,7 @@ class Study:
     @property
     def targets(self):
         """What ``rule all`` asks for."""
-        extra = [FILES["speed_curve"]] if self.speed_sweep else []
+        extra = self.speed_curves
         return [*self.reports.values(), FILES["sweep"], FILES["summary"], *self.tca_files,
                 *self.vh_maps, *self.vh_cases(), *self.tooth_files, *self.fe_cases(),
                 *self.rating_files, *self.sweep_files, *extra,
@@ -455,6 +469,7 @@ class Study:
             "model": "|".join(CONTACT_MODELS),
             "case": "|".join(map(re.escape, self.sensitivity)) or "none",
             "speed": r"\d+(\.\d+)?",
+            "boundary": "prescribed_pinion|driveline",
             "design_set": "|".join(DESIGN_SETS),
             "seed": r"\d+",
         }

@@ -230,3 +230,37 @@ def test_spectrum_map_has_no_holes_where_the_bins_are_finer_than_the_spectrum():
     below = edges[:-1] <= frequency[-1]
     assert np.all(np.isfinite(binned[below])) and np.all(np.isnan(binned[~below]))
     assert np.nanmax(binned) == pytest.approx(1.0)
+
+
+def test_a_driveline_curve_is_its_own_and_marks_higher_orders(curve_file, geometry, tmp_path,
+                                                              capsys):
+    """Under the torsional driveline a speed run records its boundary; a curve takes the
+    runs of one boundary only, its natural frequency the linearised driveline's mesh mode,
+    and gives the resonance speeds of as many mesh harmonics as asked."""
+    runs = []
+    for trace, path in geometry.items():
+        for omega in (40000, 80000):
+            out = tmp_path / f"{trace}_driveline_w{omega}.nc"
+            assert speed_run(path, omega, out, "--set", "simulation.boundary=driveline") == 0
+            runs.append(out)
+    out = tmp_path / "curve.nc"
+    assert cli.main(["speed-curve", "--runs", *map(str, runs), "--orders", "12",
+                     "--out", str(out)]) == 0
+    assert "logarithmic, driveline: f_n" in capsys.readouterr().out
+    with xr.open_dataset(out) as curve, xr.open_dataset(runs[0]) as run, \
+            xr.open_dataset(curve_file) as prescribed:
+        assert curve.attrs["solver_boundary"] == "driveline"
+        assert prescribed.attrs["solver_boundary"] == "prescribed_pinion"
+        assert list(curve["order"].values) == list(range(1, 13))
+        trace = run.attrs["design_trace"]
+        natural = float(curve["natural_frequency"].sel(trace=trace))
+        assert natural == pytest.approx(run.attrs["driveline_mode3_hz"], rel=1e-12)
+        np.testing.assert_allclose(curve["resonance_speed"].sel(trace=trace).values,
+                                   [natural * 360 / (k * 9) for k in range(1, 13)], rtol=1e-12)
+    mixed = [xr.open_dataset(runs[0]).load(),
+             xr.open_dataset(sorted(curve_file.parent.glob("*_w*.nc"))[0]).load()]
+    with pytest.raises(ValueError, match="mixed solver_boundary"):
+        speed.speed_curve(mixed)
+    assert cli.main(["speed-curve", "--runs", *map(str, runs), "--orders", "2",
+                     "--out", str(tmp_path / "never.nc")]) != 0
+    assert "--orders 2: must be at least 3" in capsys.readouterr().err

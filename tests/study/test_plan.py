@@ -73,7 +73,8 @@ def test_every_run_and_file_of_the_default_study_is_planned_once(default):
     assert study.targets == [*study.reports.values(), plan.FILES["sweep"],
                              plan.FILES["summary"], *study.tca_files, *study.vh_maps,
                              *study.vh_cases(), *study.tooth_files, *study.fe_cases(),
-                             *study.rating_files, *study.practice_files("rating"),
+                             *study.rating_files, *study.speed_curves,
+                             *study.practice_files("rating"),
                              *study.practice_files("vh_map"), *study.load_curves,
                              *study.optimise_fronts, *study.best_files("rating"),
                              *study.best_files("vh_map"),
@@ -209,8 +210,14 @@ def test_sensitivity_and_speed_sweep_runs_are_named_by_case_and_speed():
     assert len(study.speeds) == len(set(study.speeds)) == grid["count"]
     assert float(study.speeds[0]) == pytest.approx(grid["start"])
     assert float(study.speeds[-1]) == pytest.approx(grid["stop"])
-    assert len(study.speed_runs) == 2 * grid["count"]
-    assert plan.FILES["speed_curve"] in study.targets
+    # both traces under both boundaries, a curve per boundary
+    assert study.speed_boundaries == ["prescribed_pinion", "driveline"]
+    assert len(study.speed_runs()) == len(set(study.speed_runs())) == 2 * 2 * grid["count"]
+    assert len(study.speed_runs("driveline")) == 2 * grid["count"]
+    assert all("_driveline_w" in run for run in study.speed_runs("driveline"))
+    assert study.speed_curves == ["results/speed_curve_prescribed_pinion.nc",
+                                  "results/speed_curve_driveline.nc"]
+    assert set(study.speed_curves) <= set(study.targets)
     cases = study.sensitivity_runs()
     # every entry one case, but an envelope: one case per corner of the V-H envelope
     corners = 2 ** len(config["misalignment_map"]["axes"])
@@ -253,7 +260,7 @@ def test_study_config_is_written_only_when_it_changes(default, tmp_path):
     path = tmp_path / "results" / "config.yaml"
     plan.write_study_config(path, default)
     written = yaml.safe_load(path.read_text(encoding="utf-8"))
-    assert set(written) == set(plan.STUDY_SECTIONS)
+    assert set(written) == {*plan.STUDY_SECTIONS, "speed_sweep"}  # (the default sweeps speeds)
     assert written["design"]["module_mm"] == default["design"]["module_mm"]
     # the contact state, as lsbg's commands read it
     assert written["flank_modification"] == default["flank_modification"]

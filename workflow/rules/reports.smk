@@ -62,7 +62,7 @@ rule report_sweep:
         notebook=repo_path(NOTEBOOKS / "sweep.ipynb"),
         sweep_file=FILES["sweep"],
         summary_file=FILES["summary"],
-        speed_curve_file=[FILES["speed_curve"]] if STUDY.speed_sweep else [],
+        speed_curve_file=STUDY.speed_curves,
         vh_files=STUDY.vh_maps,
         rating_sweep_file=RATING_SWEEP,
         parameter_sweep_files=[FILES["sweep_dataset"].format(name=s.name) for s in STUDY.sweeps],
