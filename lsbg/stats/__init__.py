@@ -61,7 +61,7 @@ _EXPORTS = {
                   "normal_probability"),
     "control": ("ControlChartConstants", "control_chart_constants", "XbarRChart",
                 "xbar_r_chart", "xbar_r_ylims"),
-    "bootstrap": ("autocorrelation", "integrated_autocorrelation_time", "effective_sample_size",
+    "bootstrap": ("OVER_WINDOWS", "autocorrelation", "integrated_autocorrelation_time", "effective_sample_size",
                   "StdRatioCI", "std_ratio_ci", "StdCI", "std_ci"),
     "comparison": ("TheoryComparison", "compare_to_theory", "BrownForsythe", "brown_forsythe",
                    "FluctuationComparison", "compare_fluctuation"),
