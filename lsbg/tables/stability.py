@@ -27,8 +27,8 @@ import pandas as pd
 from lsbg.aggregate.runs import QUANTITY_LABELS, run_band_split
 from lsbg.stats.bands import BAND_LABELS, HARMONIC_BANDS, deciding_band
 
-__all__ = ["BAND_RESOLUTION", "band_table", "band_text", "band_finding", "cells_range",
-           "cells_text"]
+__all__ = ["BAND_RESOLUTION", "EMPTY_BAND", "band_table", "band_text", "band_finding",
+           "cells_range", "cells_text"]
 
 #: Band ratios within this of 1 are a tie: the ratio of one run's windows varies
 #: by about ±1 %, so a smaller difference is not resolved by a run [-].
@@ -37,9 +37,15 @@ BAND_RESOLUTION = 0.02
 _MODE = "mode"
 
 
-def _calmer(ratio):
-    if not np.isfinite(ratio) or abs(ratio - 1.0) <= BAND_RESOLUTION:
-        return "tie" if np.isfinite(ratio) else "—"
+#: A band holding less than this share of both types' variance ranks nothing [-].
+EMPTY_BAND = 1e-3
+
+
+def _calmer(ratio, shares=(1.0, 1.0)):
+    if not np.isfinite(ratio) or max(shares) < EMPTY_BAND:
+        return "—"
+    if abs(ratio - 1.0) <= BAND_RESOLUTION:
+        return "tie"
     return "LSBG" if ratio > 1.0 else "SBG"
 
 
@@ -66,8 +72,9 @@ def band_table(pairs, start=0.2, quantities=("gear_speed", "tangential_force")):
         of the band's part of the variance], ``ratio``, ``share_SBG``,
         ``share_LSBG`` (of each type's total variance), ``difference_share`` (the
         band's var(SBG) − var(LSBG) over the total's; the harmonic bands' add up to
-        1), ``calmer`` (ties within :data:`BAND_RESOLUTION`) and ``decides`` (the
-        band of :func:`lsbg.stats.bands.deciding_band`).
+        1), ``calmer`` (ties within :data:`BAND_RESOLUTION`; "—" for a band holding
+        less than :data:`EMPTY_BAND` of both variances) and ``decides`` (the band of
+        :func:`lsbg.stats.bands.deciding_band`).
     """
     rows = []
     for pair, runs in pairs.items():
@@ -83,15 +90,15 @@ def band_table(pairs, start=0.2, quantities=("gear_speed", "tangential_force")):
                            else math.nan if band == _MODE else s.variance[band])
                        for t, s in split.items()}
                 ratio = (math.sqrt(var["SBG"] / var["LSBG"]) if var["LSBG"] > 0 else math.nan)
+                shares = {t: var[t] / split[t].total for t in split}
                 rows.append({
                     "pair": pair, "quantity": quantity, "band": band,
                     "std_SBG": math.sqrt(var["SBG"]), "std_LSBG": math.sqrt(var["LSBG"]),
-                    "ratio": ratio,
-                    "share_SBG": var["SBG"] / split["SBG"].total,
-                    "share_LSBG": var["LSBG"] / split["LSBG"].total,
+                    "ratio": ratio, "share_SBG": shares["SBG"], "share_LSBG": shares["LSBG"],
                     "difference_share": ((var["SBG"] - var["LSBG"]) / difference
                                          if band in HARMONIC_BANDS and difference else math.nan),
-                    "calmer": _calmer(ratio), "decides": band == deciding})
+                    "calmer": _calmer(ratio, tuple(shares.values())),
+                    "decides": band == deciding})
     return pd.DataFrame(rows, columns=["pair", "quantity", "band", "std_SBG", "std_LSBG", "ratio",
                                        "share_SBG", "share_LSBG", "difference_share", "calmer",
                                        "decides"])

@@ -38,6 +38,7 @@ def test_the_ratio_per_band_and_the_band_that_decides():
     assert speed.loc["8 and up", "ratio"] == pytest.approx(2.0, rel=1e-3)
     assert speed.loc["total", "ratio"] == pytest.approx(np.sqrt(2.32), rel=1e-3)
     assert list(speed.loc[["1-3", "8 and up", "total"], "calmer"]) == ["SBG", "LSBG", "LSBG"]
+    assert speed.loc["below 1", "calmer"] == "—"    # a band of no variance ranks nothing
     assert speed["decides"].sum() == 1 and speed.loc["8 and up", "decides"]
     harmonic = speed.loc[["below 1", "1-3", "4-7", "8 and up"]]
     assert harmonic["difference_share"].sum() == pytest.approx(1.0, rel=1e-9)
