@@ -268,12 +268,9 @@ def run_band_split(ds, quantity, start=0.2, modes=None):
 
     Parameters
     ----------
-    ds : xarray.Dataset
-        Run dataset with a full-rate record.
-    quantity : str
-        One of :data:`FULL_RATE_OF`.
-    start : float
-        Start of the steady state [s].
+    ds, quantity, start
+        The run, the quantity and the start of its steady state [s], as
+        :func:`full_rate_series` takes them.
     modes : sequence of float, optional
         Mode frequencies [Hz]; default :func:`run_modes`.
 
