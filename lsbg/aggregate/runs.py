@@ -27,7 +27,7 @@ __all__ = [
     "QUANTITIES", "QUANTITY_LABELS", "THEORY_ATTRIBUTES", "FULL_RATE_OF", "TYPE_ORDER",
     "open_pair", "select_runs", "gear_type", "run_spiral_angle", "run_source", "steady",
     "quantity_label", "datasets_by_key", "runs_by_type", "full_rate_series", "open_mesh",
-    "records_by_type", "run_theory"
+    "records_by_type", "run_theory", "run_mesh_frequency", "run_modes", "run_band_split"
 ]
 
 
@@ -245,6 +245,44 @@ def full_rate_series(ds, quantity, start=0.2):
     if per_outer_radius:
         values = values / (float(ds.attrs["design_pitch_diameter_gear_mm"]) / 2e3)
     return values
+
+
+def run_mesh_frequency(ds):
+    """The run's tooth-mesh frequency [Hz], from its pinion speed and teeth."""
+    from lsbg.stats.spectra import mesh_frequency
+
+    return float(mesh_frequency(float(ds.attrs["solver_pinion_speed_deg_s"]),
+                                int(ds.attrs["design_pinion_teeth"])))
+
+
+def run_modes(ds):
+    """The natural frequencies [Hz] a run records: its mesh mode's
+    (``mesh_natural_frequency_hz``, the line model's gear on the mean mesh stiffness), or
+    none (a point-model run)."""
+    value = ds.attrs.get("mesh_natural_frequency_hz")
+    return () if value is None else (float(value),)
+
+
+def run_band_split(ds, quantity, start=0.2, modes=None):
+    """A quantity's full-rate variance by mesh-harmonic band (:func:`lsbg.stats.bands.band_split`).
+
+    Parameters
+    ----------
+    ds, quantity, start
+        The run, the quantity and the start of its steady state [s], as
+        :func:`full_rate_series` takes them.
+    modes : sequence of float, optional
+        Mode frequencies [Hz]; default :func:`run_modes`.
+
+    Returns
+    -------
+    lsbg.stats.bands.BandSplit
+        [unit of the quantity, squared].
+    """
+    from lsbg.stats.bands import band_split
+
+    return band_split(full_rate_series(ds, quantity, start), float(ds.attrs["solver_full_rate_hz"]),
+                      run_mesh_frequency(ds), run_modes(ds) if modes is None else modes)
 
 
 def open_mesh(path):

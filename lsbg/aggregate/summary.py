@@ -28,12 +28,12 @@ from lsbg.aggregate.combine import open_tca, open_vh_map
 from lsbg.dynamics.dataset import VARIABLES, open_run
 from lsbg.files import as_path_list
 from lsbg.aggregate.runs import (QUANTITIES, THEORY_ATTRIBUTES, full_rate_series, open_mesh,
-                                 run_spiral_angle)
+                                 run_band_split, run_spiral_angle)
 
 __all__ = [
     "SUMMARY_QUANTITIES", "SUMMARY_UNITS", "SUMMARY_COLUMNS", "STATISTICS_KEYS", "statistics_options",
-    "CONTACT_STATE_QUANTITIES", "quantity_summary", "mesh_summary", "tca_summary", "vh_summary",
-    "summary_table", "run_dynamic_factor"
+    "CONTACT_STATE_QUANTITIES", "BAND_COLUMNS", "quantity_summary", "band_columns",
+    "mesh_summary", "tca_summary", "vh_summary", "summary_table", "run_dynamic_factor"
 ]
 
 
@@ -63,9 +63,19 @@ SUMMARY_UNITS = {**{q: VARIABLES[q][0] for q in SUMMARY_QUANTITIES},
                     for axis, per in _AXIS_UNITS.items()}}
 
 
+#: The full-rate std by band (:mod:`lsbg.stats.bands`): column -> band of
+#: :data:`lsbg.stats.bands.HARMONIC_BANDS`, or ``"mode"`` (within one mesh frequency of
+#: the run's mesh mode, ``mesh_natural_frequency_hz``; overlaps the others). Each is the
+#: square root of the band's part of the variance over whole mesh periods, so the
+#: squares of the four harmonic bands add up to that variance (≈ ``full_rate_std``²).
+BAND_COLUMNS = {"full_rate_std_below_1": "below 1", "full_rate_std_1_3": "1-3",
+                "full_rate_std_4_7": "4-7", "full_rate_std_8_up": "8 and up",
+                "full_rate_std_mode": "mode"}
+
 #: Columns of :func:`summary_table`. Runs: the paper's §4 statistics of the
 #: output samples, then the full-rate ones (std, the spread of the sample
-#: std over sampling phases, the dynamic factor on the contact-torque row).
+#: std over sampling phases, the dynamic factor on the contact-torque row,
+#: the std by band of :data:`BAND_COLUMNS`).
 #: Loaded TCA (engine "ltca"): the static transmission error's peak to peak
 #: and mesh harmonics, and the mesh stiffness. Contact state (engine "tca"): the
 #: unloaded transmission error (mean, std, peak to peak) and the V-H map's
@@ -73,7 +83,8 @@ SUMMARY_UNITS = {**{q: VARIABLES[q][0] for q in SUMMARY_QUANTITIES},
 SUMMARY_COLUMNS = ("trace", "spiral_angle_deg", "contact_model", "engine", "run", "quantity",
                    "mean", "std", "ad_statistic", "ad_pvalue", "theory", "error_rate_percent",
                    "out_of_control", "full_rate_std", "sampling_std_min", "sampling_std_max",
-                   "dynamic_factor", "peak_to_peak", "harmonic_1", "harmonic_2", "harmonic_3")
+                   "dynamic_factor", "peak_to_peak", "harmonic_1", "harmonic_2", "harmonic_3",
+                   *BAND_COLUMNS)
 
 
 #: Keys of the study configuration's ``statistics`` section -> keyword of
@@ -162,7 +173,9 @@ def quantity_summary(ds, quantity, steady_state_after=0.2, window=(0.8, 1.0),
         100 |mean − theory| / theory, ``out_of_control``, the number of
         subgroups beyond the Xbar or R limits; from the full-rate record its
         std, the least and largest std of the output sampling over all
-        sampling phases, and (contact torque) the dynamic factor.
+        sampling phases, (contact torque) the dynamic factor and the full-rate std
+        by band (:data:`BAND_COLUMNS`; NaN in the mode's column for a run without
+        a mesh mode).
 
     Raises
     ------
@@ -206,7 +219,21 @@ def quantity_summary(ds, quantity, steady_state_after=0.2, window=(0.8, 1.0),
         "sampling_std_max": float(spread.max()),
         "dynamic_factor": (run_dynamic_factor(ds, steady_state_after)
                            if quantity == "contact_torque" else np.nan),
+        **band_columns(run_band_split(ds, quantity, steady_state_after)),
     }
+
+
+def band_columns(split) -> dict:
+    """The :data:`BAND_COLUMNS` of one band split [unit of the quantity].
+
+    Parameters
+    ----------
+    split : lsbg.stats.bands.BandSplit
+        Of a run's full-rate record (:func:`lsbg.aggregate.runs.run_band_split`).
+    """
+    mode = sum(split.mode_variance.values()) if split.mode_variance else np.nan
+    return {column: float(np.sqrt(mode if band == "mode" else split.variance[band]))
+            for column, band in BAND_COLUMNS.items()}
 
 
 def run_dynamic_factor(ds, steady_state_after=0.2):

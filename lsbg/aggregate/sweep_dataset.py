@@ -7,7 +7,8 @@ sweep of one key gets that key as a dimension, a product sweep its grid (one
 dimension per key), a list of combinations a ``point`` dimension with a
 coordinate per key. Statistics per run and quantity (:func:`lsbg.aggregate.summary.
 quantity_summary`): the mean, the std of the output samples, the full-rate std
-and, of the contact torque, the dynamic factor; per point, its quasi-static contact
+and its parts by mesh-harmonic band (:data:`lsbg.aggregate.summary.BAND_COLUMNS`) and,
+of the contact torque, the dynamic factor; per point, its quasi-static contact
 (:data:`lsbg.experiments.sweeps.CONTACT_FIGURES`: the loaded TCA's transmission error
 and the bearing pattern, recorded by ``lsbg sweep-run``). Every variable has ``units``
 (the runs' own, paper units) and a ``long_name`` ("transmission error, full-rate std");
@@ -19,13 +20,23 @@ from __future__ import annotations
 
 import pandas as pd
 
+from lsbg.aggregate.summary import BAND_COLUMNS
+
 __all__ = ["SWEEP_STATISTICS", "sweep_rows", "sweep_dataset", "sweep_long"]
 
 #: Statistics of each quantity stacked into the dataset: summary column -> name suffix.
-SWEEP_STATISTICS = {"mean": "mean", "std": "std", "full_rate_std": "full_rate_std"}
+#: The full-rate std by band (:data:`lsbg.aggregate.summary.BAND_COLUMNS`) stacks too.
+SWEEP_STATISTICS = {"mean": "mean", "std": "std", "full_rate_std": "full_rate_std",
+                    **{column: column for column in BAND_COLUMNS}}
 
 #: The words of a statistic in a variable's ``long_name``: name suffix -> words.
-_STATISTIC_WORDS = {"mean": "mean", "std": "std", "full_rate_std": "full-rate std"}
+_STATISTIC_WORDS = {"mean": "mean", "std": "std", "full_rate_std": "full-rate std",
+                    "full_rate_std_below_1": "full-rate std below the 1st mesh harmonic",
+                    "full_rate_std_1_3": "full-rate std in mesh harmonics 1-3",
+                    "full_rate_std_4_7": "full-rate std in mesh harmonics 4-7",
+                    "full_rate_std_8_up": "full-rate std in mesh harmonics 8 and up",
+                    "full_rate_std_mode": "full-rate std within one mesh frequency of the "
+                                          "mesh mode"}
 
 
 def _swept(ds):

@@ -32,7 +32,9 @@ stats.anderson_darling(x)``):
   block-bootstrap intervals of a standard deviation or of a ratio of two
   (its hot loop compiled in :mod:`lsbg.stats.kernels`);
 * :mod:`lsbg.stats.comparison`: the simulated means against theory and the
-  fluctuation of two gear types compared.
+  fluctuation of two gear types compared;
+* :mod:`lsbg.stats.bands`: the variance of a full-rate record split by mesh-harmonic
+  band and around the modes (Parseval), and which band decides a ratio.
 
 References
 ----------
@@ -59,10 +61,12 @@ _EXPORTS = {
                   "normal_probability"),
     "control": ("ControlChartConstants", "control_chart_constants", "XbarRChart",
                 "xbar_r_chart", "xbar_r_ylims"),
-    "bootstrap": ("autocorrelation", "integrated_autocorrelation_time", "effective_sample_size",
+    "bootstrap": ("OVER_WINDOWS", "autocorrelation", "integrated_autocorrelation_time", "effective_sample_size",
                   "StdRatioCI", "std_ratio_ci", "StdCI", "std_ci"),
     "comparison": ("TheoryComparison", "compare_to_theory", "BrownForsythe", "brown_forsythe",
                    "FluctuationComparison", "compare_fluctuation"),
+    "bands": ("HARMONIC_BANDS", "BAND_LABELS", "BandSplit", "band_split", "band_ratio",
+              "deciding_band"),
 }
 __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
 

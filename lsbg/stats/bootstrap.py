@@ -24,9 +24,15 @@ import numpy as np
 from lsbg.stats.samples import as_1d
 
 __all__ = [
-    "autocorrelation", "integrated_autocorrelation_time", "effective_sample_size",
+    "OVER_WINDOWS", "autocorrelation", "integrated_autocorrelation_time", "effective_sample_size",
     "StdRatioCI", "std_ratio_ci", "StdCI", "std_ci"
 ]
+
+
+#: What a block-bootstrap interval varies over, in the reports' words: the blocks
+#: (windows) of one run's record. It says how precisely one deterministic run measures
+#: its own std, not how the answer varies over designs or conditions.
+OVER_WINDOWS = "over windows of one run"
 
 
 def autocorrelation(values):

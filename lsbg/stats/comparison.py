@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 from scipy import stats as sps
 
-from lsbg.stats.bootstrap import StdRatioCI, effective_sample_size, std_ratio_ci
+from lsbg.stats.bootstrap import OVER_WINDOWS, StdRatioCI, effective_sample_size, std_ratio_ci
 from lsbg.stats.samples import as_1d, format_number
 
 __all__ = [
@@ -176,7 +176,7 @@ def compare_fluctuation(a, b, names=("SBG", "LSBG"), units="",
     conclusion = (
         f"{calm} fluctuates less than {rough}: standard deviation "
         f"{format_number(std[order[0]])}{unit} against {format_number(std[order[1]])}{unit}, "
-        f"a factor {factor:.3g} (block-bootstrap {pct} interval "
+        f"a factor {factor:.3g} (block-bootstrap {pct} interval {OVER_WINDOWS} "
         f"{lo:.3g}–{hi:.3g}, which {verdict}). "
         f"Brown–Forsythe p = {format_number(bf.pvalue, 2)}. Effective sample sizes "
         f"{ess[0]:.0f} of {x.size} ({names[0]}) and {ess[1]:.0f} of "

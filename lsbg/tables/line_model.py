@@ -259,14 +259,16 @@ def verdict(sensitivity, where="") -> str:
         if part["holds"].all():
             sentences.append(
                 f"**{label}**: the {baseline['calmer']} fluctuates less{where_text} in every one of the "
-                f"{len(part)} cells (std(SBG)/std(LSBG) {low:.3g}–{high:.3g}, each interval "
-                f"excluding 1): this ranking survives the model form.")
+                f"{len(part)} cells (std(SBG)/std(LSBG) {low:.3g}–{high:.3g} over the cells, "
+                f"each cell's interval over windows of its run excluding 1): this ranking "
+                f"survives the model form.")
         elif baseline["calmer"] == "neither":
             calmer = [f"{row.cell} ({row.calmer} calmer, {row.ratio:.3g})"
                       for row in part.itertuples() if row.calmer != "neither"]
             sentences.append(
                 f"**{label}**: in the baseline no type is significantly calmer (ratio "
-                f"{baseline['ratio']:.3g}, interval {baseline['ratio_low']:.3g}–"
+                f"{baseline['ratio']:.3g}, interval over windows of the run "
+                f"{baseline['ratio_low']:.3g}–"
                 f"{baseline['ratio_high']:.3g}), so no ranking is stated"
                 + (f"; a type is significantly calmer only in: {', '.join(calmer)}." if calmer
                    else "; no cell finds a significant difference."))
@@ -277,8 +279,8 @@ def verdict(sensitivity, where="") -> str:
                 for row in part.itertuples() if not row.holds)
             sentences.append(
                 f"**{label}**: the {baseline['calmer']} is calmer in the baseline (ratio "
-                f"{baseline['ratio']:.3g}), but the ranking does not survive the model form: it "
-                f"fails in {failing}.")
+                f"{baseline['ratio']:.3g}; {low:.3g}–{high:.3g} over the {len(part)} cells), but "
+                f"the ranking does not survive the model form: it fails in {failing}.")
     return " ".join(sentences)
 
 

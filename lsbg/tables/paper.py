@@ -387,7 +387,7 @@ def fluctuation_conclusion(comparisons, where="") -> str:
         sentences.append(
             f"In the **{label}**, the {calm} fluctuates less than the {other} by a factor "
             f"{factor:.3g} (standard deviation ratio; {100 * c.ci.confidence:g} % "
-            f"block-bootstrap interval {lo:.3g}–{hi:.3g}: {sure}).")
+            f"block-bootstrap interval {stats.OVER_WINDOWS} {lo:.3g}–{hi:.3g}: {sure}).")
         paper = [PAPER.get((name, quantity), {}).get("std") for name in c.names]
         if all(paper):
             sentences[-1] += (f" The paper's ratio std(SBG)/std(LSBG) is "

@@ -20,7 +20,8 @@ def test_summary_table_columns_and_values(runs, pybullet_runs, windows):
         "trace", "spiral_angle_deg", "contact_model", "engine", "run", "quantity", "mean", "std",
         "ad_statistic", "ad_pvalue", "theory", "error_rate_percent", "out_of_control",
         "full_rate_std", "sampling_std_min", "sampling_std_max", "dynamic_factor",
-        "peak_to_peak", "harmonic_1", "harmonic_2", "harmonic_3"]
+        "peak_to_peak", "harmonic_1", "harmonic_2", "harmonic_3", "full_rate_std_below_1",
+        "full_rate_std_1_3", "full_rate_std_4_7", "full_rate_std_8_up", "full_rate_std_mode"]
     assert len(table) == 3 * len(SUMMARY_QUANTITIES)
     with_theory = table[table.theory.notna()]
     assert set(table.quantity) - set(with_theory.quantity) == {"transmission_error"}
@@ -223,3 +224,26 @@ def test_the_design_and_the_load_that_vary_are_columns(runs, windows, tmp_path):
     rows = len(SUMMARY_QUANTITIES)
     assert table["design_face_width_mm"].tolist() == [25.0] * rows + [30.0] * rows
     assert table["load_torque_N_m"].tolist() == [1964.99] * rows + [1000.0] * rows
+
+
+def test_summary_table_splits_every_full_rate_std_by_band(runs, windows):
+    from lsbg.aggregate.runs import full_rate_series, run_band_split
+
+    table = summary_table([runs["sbg35_line"], runs["lsbg35"]], **windows)
+    harmonic = ["full_rate_std_below_1", "full_rate_std_1_3", "full_rate_std_4_7",
+                "full_rate_std_8_up"]
+    runs_rows = table[table.engine != "ltca"]
+    assert runs_rows[harmonic].notna().all().all()
+    with xr.open_dataset(runs["sbg35_line"]) as run:
+        for row in runs_rows[runs_rows.contact_model == "line"].itertuples():
+            split = run_band_split(run, row.quantity, windows["steady_state_after"])
+            # the squares add up to the variance over whole mesh periods, which is within
+            # a few per cent of the full record's (7 of 7.7 periods here)
+            parts = sum(getattr(row, c) ** 2 for c in harmonic)
+            assert parts == pytest.approx(split.total, rel=1e-9)
+            full = full_rate_series(run, row.quantity, windows["steady_state_after"])
+            assert math.sqrt(parts) == pytest.approx(full.std(ddof=1), rel=0.1)
+            # the line model's mesh mode lies near the 9th mesh harmonic
+            assert 0 < row.full_rate_std_mode <= math.sqrt(split.total) * (1 + 1e-12)
+    point = runs_rows[runs_rows.contact_model == "point"]
+    assert point.full_rate_std_mode.isna().all()   # a point-model run records no mesh mode

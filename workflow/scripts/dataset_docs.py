@@ -42,7 +42,11 @@ def main(results):
            "the same variables on longer axes. Open one with `lsbg.open_dataset(path)` or",
            "`xarray.open_dataset(path)`; docs/usage.md says what each file is for. A parameter",
            "sweep (`sweeps:`) adds `results/sweeps/{name}.nc`, the runs' variables on the swept",
-           "values. This page is made by `python workflow/scripts/dataset_docs.py results`.", ""]
+           "values, with each quantity's full-rate std by mesh-harmonic band",
+           "(`{quantity}_full_rate_std_1_3`, `_4_7`, `_8_up`, `_below_1`, `_mode`), as",
+           "`results/summary.csv` has them per run (docs/usage.md; docs/model.md, \"The",
+           "fluctuation by frequency band\"). This page is made by",
+           "`python workflow/scripts/dataset_docs.py results`.", ""]
     for pattern, example, what in KINDS:
         ds = xr.open_dataset(Path(results) / example)
         dims = ", ".join(f"{k} {n}" for k, n in ds.sizes.items())

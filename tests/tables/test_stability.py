@@ -1,0 +1,78 @@
+"""The stability answer by band and over the cells (lsbg.tables.stability)."""
+
+import numpy as np
+import pandas as pd
+import pytest
+import xarray as xr
+
+from lsbg.stats import spectra
+from lsbg.tables import stability
+
+RATE = 50_000.0
+MESH = float(spectra.mesh_frequency(7703.0, 9))
+
+
+def _run(amplitudes, mode=9.4 * MESH):
+    """A run's full-rate record from 0.2 s to 1 s: sinusoids at mesh harmonics."""
+    t = 0.2 + np.arange(40_001) / RATE
+    speed = 1873.7 + sum(a * np.sin(2 * np.pi * h * MESH * t) for h, a in amplitudes.items())
+    force = 3e4 + 10 * (speed - 1873.7)
+    attrs = {"solver_pinion_speed_deg_s": 7703.0, "design_pinion_teeth": 9,
+             "solver_full_rate_hz": RATE}
+    if mode is not None:
+        attrs["mesh_natural_frequency_hz"] = mode
+    return xr.Dataset({"gear_speed_full": ("time_full", speed),
+                       "tangential_force_full": ("time_full", force)},
+                      coords={"time_full": t}, attrs=attrs)
+
+
+def test_the_ratio_per_band_and_the_band_that_decides():
+    # the SBG calmer at harmonics 1-3 (0.8 against 1), rougher at the 9th (2 against 1):
+    # 8 and up carries the difference, and the SBG fluctuates more in total
+    pairs = {"best": {"SBG": _run({2: 0.8, 9: 2.0}), "LSBG": _run({2: 1.0, 9: 1.0})},
+             "half": {"SBG": _run({1: 1.0})}}
+    table = stability.band_table(pairs, start=0.2)
+    assert set(table["pair"]) == {"best"}           # a pair without both types is skipped
+    speed = table[table.quantity == "gear_speed"].set_index("band")
+    assert speed.loc["1-3", "ratio"] == pytest.approx(0.8, rel=1e-3)
+    assert speed.loc["8 and up", "ratio"] == pytest.approx(2.0, rel=1e-3)
+    assert speed.loc["total", "ratio"] == pytest.approx(np.sqrt(2.32), rel=1e-3)
+    assert list(speed.loc[["1-3", "8 and up", "total"], "calmer"]) == ["SBG", "LSBG", "LSBG"]
+    assert speed.loc["below 1", "calmer"] == "—"    # a band of no variance ranks nothing
+    assert speed["decides"].sum() == 1 and speed.loc["8 and up", "decides"]
+    harmonic = speed.loc[["below 1", "1-3", "4-7", "8 and up"]]
+    assert harmonic["difference_share"].sum() == pytest.approx(1.0, rel=1e-9)
+    assert (harmonic["std_SBG"] ** 2).sum() == pytest.approx(speed.loc["total", "std_SBG"] ** 2)
+    assert speed.loc["mode", "share_SBG"] == pytest.approx(2.0 / 2.32, rel=1e-3)
+    text = " ".join(stability.band_text(table))
+    assert "**mesh harmonics 8 and up** decides the total" in text
+    assert "0.8 at mesh harmonics 1–3 (the SBG calmer)" in text
+    assert "nan" not in text.lower()
+    finding = stability.band_finding(table)
+    assert finding.startswith("By mesh-harmonic band") and "decided at mesh harmonics 8" in finding
+
+
+def test_a_total_within_the_resolution_is_a_tie_and_no_band_decides_it():
+    pairs = {"p": {"SBG": _run({2: 1.0, 9: 1.0}, mode=None),
+                   "LSBG": _run({2: 1.0, 9: 1.005}, mode=None)}}
+    table = stability.band_table(pairs, start=0.2, quantities=("gear_speed",))
+    total = table.set_index("band").loc["total"]
+    assert total.calmer == "tie"
+    assert np.isnan(table.set_index("band").loc["mode", "ratio"])   # no mesh mode recorded
+    assert "the total is a tie" in stability.band_text(table)[0]
+    assert "nan" not in " ".join(stability.band_text(table)).lower()
+
+
+def test_the_interval_over_cells_is_the_least_and_largest_ratio():
+    cells = pd.DataFrame({"cell": ["a", "b", "c", "a", "b", "c"],
+                          "quantity": ["gear speed"] * 3 + ["force"] * 3,
+                          "ratio": [1.1, 1.3, 1.05, 0.9, 1.2, 1.0],
+                          "better": ["LSBG"] * 6})
+    spread = stability.cells_range(cells).set_index("quantity")
+    assert spread.loc["gear speed", ["ratio_least", "ratio_most"]].tolist() == [1.05, 1.3]
+    assert spread.loc["gear speed", "calmer"] == "LSBG"
+    assert spread.loc["force", "calmer"] == "neither" and spread.loc["force", "cells"] == 3
+    text = stability.cells_text({"published pair": cells})
+    assert "gear speed: 1.05–1.3 over its 3 cells (every cell's ratio above 1)" in text
+    assert "force: 0.9–1.2 over its 3 cells (the cells on both sides of 1)" in text
+    assert stability.cells_text({}) == ""
