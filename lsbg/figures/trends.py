@@ -321,10 +321,10 @@ def plot_cutter_sweep(table, figures):
     name = TRACE_NAMES.get(sbg["trace"].iloc[0], "SBG") if "trace" in sbg and len(sbg) else "SBG"
     for ax, (column, (unit, words)) in zip(axes[0], figures.items()):
         rows = sbg[sbg[column].notna()]
-        ax.plot(rows["cutter_radius_mm"], rows[column], "o-", ms=4, color=type_color("SBG"),
+        ax.plot(rows["cutter_radius_mm"], rows[column], "o-", ms=4, color=type_color(name),
                 label=name)
         ax.plot(design["cutter_radius_mm"], design[column], "o", ms=9, mfc="none",
-                color=type_color("SBG"), label=f"{name}: the design's cutter")
+                color=type_color(name), label=f"{name}: the design's cutter")
         for value in lsbg[column].dropna():
             ax.axhline(value, color=type_color("LSBG"), ls="--", label="LSBG")
         for radius in matched:
