@@ -332,7 +332,7 @@ def test_sweep_report(sweep_pages):
     # the three claims per angle; the standard rates the two types alike at 35°
     assert "ISO 10300 contact stress LSBG/SBG" in html
     assert "ISO 10300 pinion root stress: lives longer" in html
-    assert "the standard rates the two types alike at every angle" in html
+    assert "the standard rates the LSBG and each SBG (SBG, paper's arc) alike at every angle" in html
     assert "This study has no parameter sweeps" in html
     assert "std(SBG)/std(LSBG)" in html and "static TE peak to peak [µrad]" in html
     assert "natural frequency [Hz]" in html and "3 speeds" in html
@@ -341,6 +341,57 @@ def test_sweep_report(sweep_pages):
     attached = [t for t in embedded_csv(html).values()
                 if {"dynamic_factor", "gear_speed_sampled_std"} <= set(t.columns)]
     assert len(attached) == 1 and len(attached[0]) == 4   # 2 types x 2 contact models
+
+
+def test_sweep_report_with_both_sbgs_names_each_by_its_construction(study_files, tmp_path):
+    """A sweep with ISO 23509's SBG beside the paper's arc (workflow/config-sweep-face-milled.yaml):
+    every comparison sets the LSBG against each SBG, named by its construction."""
+    from lsbg.gear.design import TRACE_NAMES
+
+    root = tmp_path
+    geometry = root / "results" / "geometry" / "face_milled_beta35"
+    write_geometry(GearPairDesign(trace="face_milled"), geometry)
+    runs = [study_files["runs"][(t, m, "compiled")] for t in ("logarithmic", "circular")
+            for m in ("point", "line")]
+    for model, params in (("point", ContactParameters()), ("line", ContactParameters(model="line"))):
+        path = root / "results" / "runs" / f"face_milled_beta35_{model}_compiled.nc"
+        write_dataset(simulate(geometry, SHORT.replace(engine="compiled"), params), path)
+        runs.append(path)
+    mesh = root / "results" / "mesh" / "face_milled_beta35.nc"
+    write_dataset(ltca_for_geometry(geometry, 1964.99, phases=64), mesh)
+    vh = root / "results" / "vh" / "face_milled_beta35.nc"
+    assert cli.main(["misalignment-map", "--geometry", str(geometry),
+                     "--set", "flank_modification.lengthwise_crowning_um=25",
+                     "--set", "flank_modification.profile_crowning_um=5",
+                     "--set", "misalignment_map.steps=3", "--set", "misalignment_map.positions=24",
+                     "--set", "misalignment_map.load_torque_N_m=500", "--out", str(vh),
+                     "--tca-out", str(root / "results" / "tca" / "face_milled_beta35.nc")]) == 0
+    meshes = [*study_files["meshes"].values(), mesh]
+    sweep = root / "results" / "sweep.nc"
+    write_dataset(combine_runs(runs, meshes=meshes, vh_maps=[*study_files["vh"], vh]), sweep)
+    summary = root / "results" / "summary.csv"
+    summary_table(runs, steady_state_after=0.01, window=(0.01, 0.05), subgroup_size=5,
+                  meshes=meshes).to_csv(summary, index=False)
+    rating = root / "results" / "rating_sweep.nc"
+    assert cli.main(["rate-sweep", "--summary", str(summary), "--out", str(rating)]) == 0
+    out = root / "reports" / "sweep.html"
+    reports.render_report("sweep", out, {"sweep_file": sweep, "summary_file": summary,
+                                         "rating_sweep_file": rating, "steady_state_after_s": 0.01,
+                                         "vh_files": [*study_files["vh"], vh]}, cwd=root)
+    html = check_html(out, ["Spiral-angle sweep", "3. Which type", "7. The paper's three claims"],
+                      images=5, code_snippets=["tables.sweep_fluctuation_table"])
+    text = re.sub(r"<[^>]+>", " ", html).replace("&#x27;", "'").replace("&#39;", "'")
+    arc, iso = TRACE_NAMES["circular"], TRACE_NAMES["face_milled"]
+    for name in (arc, iso):
+        assert f"LSBG against the {name}" in text          # the finding, per SBG
+    # the ratio table and the claims table: one row per quantity (or angle) and SBG, named
+    named = [t for t in re.findall(r"<table.*?</table>", html, re.S)
+             if "ratio SBG/LSBG" in t or "contact state: pattern moves less" in t]
+    assert len(named) == 2
+    for table in named:
+        cells = [c.replace("&#x27;", "'").replace("&#39;", "'")
+                 for c in re.findall(r"<td[^>]*>(.*?)</td>", table)]
+        assert cells.count(arc) == cells.count(iso) >= 1
 
 
 def test_verification_report_via_cli_with_relative_paths(study_files, monkeypatch, capsys):

@@ -27,7 +27,8 @@ __all__ = [
     "QUANTITIES", "QUANTITY_LABELS", "THEORY_ATTRIBUTES", "FULL_RATE_OF", "TYPE_ORDER",
     "open_pair", "select_runs", "gear_type", "run_spiral_angle", "run_source", "steady",
     "quantity_label", "datasets_by_key", "runs_by_type", "full_rate_series", "open_mesh",
-    "records_by_type", "run_theory", "run_mesh_frequency", "run_modes", "run_band_split"
+    "records_by_type", "run_theory", "run_mesh_frequency", "run_modes", "run_band_split",
+    "pair_traces"
 ]
 
 
@@ -72,6 +73,37 @@ FULL_RATE_OF = {
 
 # Order of gear types in tables and figures: the paper's (a) SBG, (b) LSBG.
 TYPE_ORDER = ("SBG", "LSBG")
+
+
+def pair_traces(traces, sbg_trace=None):
+    """The traces of the pair compared as SBG and LSBG among a study's traces.
+
+    Parameters
+    ----------
+    traces : iterable of str
+        The traces a sweep or study holds (:data:`lsbg.gear.design.TRACES`).
+    sbg_trace : str, optional
+        The SBG to compare (``circular``: the paper's arc; ``face_milled``: ISO 23509's).
+        Default: the only SBG of ``traces``, or the paper's arc where they hold both
+        (the published pair).
+
+    Returns
+    -------
+    dict
+        ``{'SBG': trace, 'LSBG': 'logarithmic'}``, without a type ``traces`` lacks.
+
+    Raises
+    ------
+    ValueError
+        If ``sbg_trace`` is not an SBG of ``traces``.
+    """
+    traces = [str(t) for t in traces]
+    sbgs = [t for t in traces if TRACE_LABELS.get(t) == "SBG"]
+    if sbg_trace is not None and sbg_trace not in sbgs:
+        raise ValueError(f"sbg_trace {sbg_trace!r}: not an SBG of the traces {traces}")
+    chosen = sbg_trace or ("circular" if "circular" in sbgs else next(iter(sbgs), None))
+    pair = {"SBG": chosen, "LSBG": "logarithmic" if "logarithmic" in traces else None}
+    return {label: trace for label, trace in pair.items() if trace is not None}
 
 
 # ---------------------------------------------------------------- run files

@@ -219,14 +219,16 @@ def sweep_long(ds, variables):
     Returns
     -------
     pandas.DataFrame
-        ``gear_type``, ``spiral_angle_deg``, a column per swept key and per
-        variable; rows of points not run (a product's holes) left out.
+        ``gear_type`` (the trace's construction, :data:`lsbg.gear.design.TRACE_NAMES`:
+        "LSBG", "SBG, paper's arc", "SBG, ISO 23509 face-milled"), ``spiral_angle_deg``,
+        a column per swept key and per variable; rows of points not run (a product's
+        holes) left out.
     """
-    from lsbg.gear.design import TRACE_LABELS
+    from lsbg.gear.design import TRACE_NAMES
 
     keys = str(ds.attrs["sweep_keys"]).split()
     table = ds[list(variables)].to_dataframe().reset_index()
     table = table.dropna(subset=list(variables), how="all")
-    table.insert(0, "gear_type", table.pop("trace").map(lambda t: TRACE_LABELS.get(t, t)))
+    table.insert(0, "gear_type", table.pop("trace").map(lambda t: TRACE_NAMES.get(t, t)))
     table = table.rename(columns={"spiral_angle": "spiral_angle_deg"})
     return table[["gear_type", "spiral_angle_deg", *keys, *variables]]

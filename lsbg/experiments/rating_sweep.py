@@ -52,7 +52,7 @@ def rating_by_angle(config, summary, engine="compiled"):
     Returns
     -------
     pandas.DataFrame
-        Per gear type and spiral angle [deg]: ``K_v``, ``contact_stress``,
+        Per gear type, trace and spiral angle [deg]: ``K_v``, ``contact_stress``,
         ``root_stress_pinion``, ``root_stress_gear`` [MPa],
         ``contact_safety``, ``bending_safety_pinion``, ``bending_safety_gear``,
         ``rated_gear_torque_contact`` [N m].
@@ -77,7 +77,7 @@ def rating_by_angle(config, summary, engine="compiled"):
         rating, _, _ = rate_design(design, config.get("rating", {}), config.get("tooth", {}),
                                    load, speed, kv)
         ratio = design.gear_teeth / design.pinion_teeth
-        rows.append({"gear_type": TRACE_LABELS[trace], "spiral_angle": float(angle),
+        rows.append({"gear_type": TRACE_LABELS[trace], "trace": trace, "spiral_angle": float(angle),
                      "K_v": rating.factors["K_v"],
                      "contact_stress": rating.contact_stress / 1e6,
                      "root_stress_pinion": rating.root_stress[0] / 1e6,
@@ -86,7 +86,8 @@ def rating_by_angle(config, summary, engine="compiled"):
                      "bending_safety_pinion": rating.bending_safety[0],
                      "bending_safety_gear": rating.bending_safety[1],
                      "rated_gear_torque_contact": rating.rated_pinion_torque_contact * ratio})
-    return pd.DataFrame(rows, columns=["gear_type", "spiral_angle", *RATING_SWEEP_VARIABLES])
+    return pd.DataFrame(rows, columns=["gear_type", "trace", "spiral_angle",
+                                       *RATING_SWEEP_VARIABLES])
 
 
 def rating_sweep_dataset(table, engine, load, history=""):
@@ -106,17 +107,21 @@ def rating_sweep_dataset(table, engine, load, history=""):
     Returns
     -------
     xarray.Dataset
-        Over dimension ``point``: ``gear_type`` (SBG, LSBG), ``spiral_angle``
+        Over dimension ``point``: ``gear_type`` (SBG, LSBG), ``trace``, ``spiral_angle``
         [degree] and :data:`RATING_SWEEP_VARIABLES` with their units;
         CF-1.11 attributes.
     """
     import xarray as xr
 
     import lsbg
+    from lsbg.gear.design import TRACE_NAMES
 
     variables = {"gear_type": ("point", table["gear_type"].to_numpy(str),
-                               {"long_name": "gear type (SBG: circular, LSBG: logarithmic "
-                                             "tooth trace)"}),
+                               {"long_name": "gear type (SBG: circular or face_milled, LSBG: "
+                                             "logarithmic tooth trace)"}),
+                 "trace": ("point", table["trace"].to_numpy(str),
+                           {"long_name": "tooth trace (" + "; ".join(
+                               f"{t}: {n}" for t, n in TRACE_NAMES.items()) + ")"}),
                  "spiral_angle": ("point", table["spiral_angle"].to_numpy(float),
                                   {"units": "degree", "long_name": "mean spiral angle"})}
     variables.update({name: ("point", table[name].to_numpy(float),

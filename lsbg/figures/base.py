@@ -15,7 +15,7 @@ import textwrap
 import numpy as np
 from matplotlib.figure import Figure
 
-from lsbg.gear.design import TRACE_LABELS
+from lsbg.gear.design import TRACE_LABELS, TRACE_NAMES
 from lsbg.dynamics.dataset import VARIABLES
 from lsbg.tables.style import display_unit  # one unit spelling for tables and axes
 
@@ -25,12 +25,15 @@ MAX_WIDTH = 13.4
 #: Units of the run quantities as lsbg writes them, for tables that do not carry them.
 QUANTITY_UNITS = {name: unit for name, (unit, _) in VARIABLES.items()}
 
-#: One colour per gear type in every figure.
-TYPE_COLORS = {"SBG": "C0", "LSBG": "C1"}
+#: One colour per gear type in every figure; the SBGs named by their construction
+#: (:data:`lsbg.gear.design.TRACE_NAMES`) apart, the paper's arc in the SBG's colour.
+TYPE_COLORS = {"SBG": "C0", "LSBG": "C1", TRACE_NAMES["circular"]: "C0",
+               TRACE_NAMES["face_milled"]: "C2"}
 
 
 def type_color(label):
-    """The colour of a gear type ('SBG', 'LSBG') or a trace in every figure."""
+    """The colour of a gear type ('SBG', 'LSBG', or an SBG's name of
+    :data:`lsbg.gear.design.TRACE_NAMES`) or a trace in every figure."""
     return TYPE_COLORS.get(TRACE_LABELS.get(label, label), "C2")
 
 

@@ -7,6 +7,7 @@ import numpy as np
 from lsbg.figures.base import (QUANTITY_UNITS, axis_label, figure_legend, new_figure, type_color,
                                type_entries, wrap_categories)
 from lsbg.aggregate.runs import QUANTITY_LABELS, TYPE_ORDER
+from lsbg.gear.design import TRACE_NAMES
 
 
 def _angles(ax, values):
@@ -147,22 +148,28 @@ def plot_ratio_trends(ratios):
     Returns
     -------
     matplotlib.figure.Figure
-        Above 1: the LSBG fluctuates less; the legend above the axes.
+        Above 1: the LSBG fluctuates less; a colour per quantity, a line style per SBG
+        (its name, the ``sbg`` column, in the legend), the legend above the axes.
     """
-    fig, axes = new_figure(1, 1, width=7.5)
+    sbgs = list(dict.fromkeys(ratios["sbg"])) if "sbg" in ratios else [None]
+    fig, axes = new_figure(1, 1, width=7.5 if len(sbgs) == 1 else 9.5)
     ax = axes[0, 0]
     quantities = list(dict.fromkeys(ratios["quantity"]))
-    for k, quantity in enumerate(quantities):
-        part = ratios[ratios["quantity"] == quantity]
+    lines = [(j, sbg, k, quantity) for j, sbg in enumerate(sbgs)
+             for k, quantity in enumerate(quantities)]
+    for n, (j, sbg, k, quantity) in enumerate(lines):
+        part = ratios[(ratios["quantity"] == quantity)
+                      & ((ratios["sbg"] == sbg) if sbg is not None else True)]
         y = part["ratio"].to_numpy()
         err = np.vstack([y - part["ratio_low"], part["ratio_high"] - y])
-        ax.errorbar(part["spiral_angle_deg"] + 0.25 * (k - (len(quantities) - 1) / 2), y,
-                    yerr=err, fmt="o-", ms=4, capsize=3, color=f"C{k + 2}",
-                    label=QUANTITY_LABELS.get(quantity, quantity))
+        label = QUANTITY_LABELS.get(quantity, quantity)
+        ax.errorbar(part["spiral_angle_deg"] + 0.25 * (n - (len(lines) - 1) / 2), y,
+                    yerr=err, fmt=("o-", "s--", "^:")[j % 3], ms=4, capsize=3, color=f"C{k + 3}",
+                    label=label if sbg is None else f"{label}, {sbg}")
     ax.axhline(1.0, color="k", lw=0.8)
     ax.set_ylabel("std(SBG) / std(LSBG) [-]")
     ax.grid(True, alpha=0.3)
-    figure_legend(fig)
+    figure_legend(fig, ncols=None if len(sbgs) == 1 else 2)
     _angles(ax, ratios["spiral_angle_deg"])
     return fig
 
@@ -310,12 +317,14 @@ def plot_cutter_sweep(table, figures):
     roles = sbg["roles"].str.split()
     matched = sbg[roles.apply(lambda r: "matched" in r)]["cutter_radius_mm"]
     design = sbg[roles.apply(lambda r: "design" in r)]
+    # (the SBG by its construction where the table names its trace)
+    name = TRACE_NAMES.get(sbg["trace"].iloc[0], "SBG") if "trace" in sbg and len(sbg) else "SBG"
     for ax, (column, (unit, words)) in zip(axes[0], figures.items()):
         rows = sbg[sbg[column].notna()]
-        ax.plot(rows["cutter_radius_mm"], rows[column], "o-", ms=4, color=type_color("SBG"),
-                label="SBG")
+        ax.plot(rows["cutter_radius_mm"], rows[column], "o-", ms=4, color=type_color(name),
+                label=name)
         ax.plot(design["cutter_radius_mm"], design[column], "o", ms=9, mfc="none",
-                color=type_color("SBG"), label="SBG, the design's cutter")
+                color=type_color(name), label=f"{name}: the design's cutter")
         for value in lsbg[column].dropna():
             ax.axhline(value, color=type_color("LSBG"), ls="--", label="LSBG")
         for radius in matched:

@@ -4,9 +4,12 @@ A face-milled SBG's tooth trace is curved by its cutter; the LSBG's trace, a
 conical logarithmic spiral, has a lengthwise curvature of its own. This module
 compares the two at the mean point:
 
-* :data:`NOMINAL_CUTTER_RADII`: the nominal face-mill cutter radii (Gleason's
-  nominal cutter diameters 3.5 to 12 in; ISO 23509 Annex F sample 1 uses the
-  9-in cutter, r_c0 = 114.3 mm; lsbg's default SBG the 6-in one, 76.2 mm);
+* :data:`NOMINAL_CUTTER_RADII`: the nominal face-mill cutter radii (the inch series of
+  face-mill cutter diameters 3.5 to 12 in; ISO 23509 Annex F sample 1 uses the
+  9-in cutter, r_c0 = 114.3 mm; lsbg's default SBG the 6-in one, 76.2 mm). ISO 23509:2016
+  tabulates the standard cutter radii (its Table E.1, by cutting method and the wheel's
+  mean cone distance R_m2) [1]_; that table is not public, and this series is not checked
+  against it beyond the sample's 9-in cutter (tests/gear/test_iso23509.py);
 * :func:`trace_curvature_radius`: the radius of curvature of a member's tooth trace on
   its pitch cone, measured on the flank and taken in the cone's development (the
   generating crown gear's pitch plane, where a face-mill cutter's circle lies);
@@ -29,9 +32,23 @@ the design with that radius passes :class:`~lsbg.gear.design.GearPairDesign`'s o
 of the trace (the arc does not turn radial between toe and heel) and its flanks build,
 and (2) it lies in the usual range for the pair's size, ``usual_range`` times the outer
 cone distance R_e (the study's default 0.5-1.5: lsbg's 76.2-mm cutter is 0.89 R_e of the
-paper's pair, the ISO 23509 sample's 114.3-mm one 1.22 R_e of its pair).
+paper's pair, the ISO 23509 sample's 114.3-mm one 1.22 R_e of its pair). The criterion
+practice uses is the ratio of the cutter radius to the wheel's mean cone distance R_m
+(small- and large-cutter designs) [1]_; no public source found gives its bounds, so the
+range is lsbg's own, wide enough for both cutters named (1.04 R_m and 1.41 R_m) and the
+nominal series' neighbours, and configurable (``cutter_sweep.usual_range_outer_cone_distance``).
 
 All lengths in metres, angles in radians.
+
+References
+----------
+.. [1] FVA-Workbench documentation, "Cutter head radius" (rc0, attribute
+   cutter_radius_iso23509_2016): the cutter radius sets the lengthwise curvature; the
+   standard cutter radii are ISO 23509:2016's Table E.1, chosen by the cutting method and
+   the mean cone distance R_m2; the ratio of cutter radius to mean cone distance is the
+   criterion of small- and large-cutter designs.
+   https://adoc.fva-service.de/help/8.1/en/attr/PMID_19482.htm (also 9.2, 10.0:
+   PMID_19480).
 """
 
 from __future__ import annotations

@@ -89,6 +89,16 @@ class Study:
             return []
         return [s for s in self.spirals if not (s == self.paper_spiral and trace in PAPER_TRACES)]
 
+    def batch_groups(self):
+        """The sweep's batch jobs, ``[(rule suffix, traces, spiral labels)]``: the traces of
+        the paper's pair leave the paper's angle to its own jobs (suffix ``""``); any other
+        trace (ISO 23509's SBG) runs every angle of the sweep in its batch (suffix
+        ``"_all_angles"``). Groups without a trace or an angle are left out."""
+        groups = [("", [t for t in self.traces if t in PAPER_TRACES]),
+                  ("_all_angles", [t for t in self.traces if t not in PAPER_TRACES])]
+        return [(suffix, traces, self.batch_spirals(traces[0]))
+                for suffix, traces in groups if traces and self.batch_spirals(traces[0])]
+
     def geometry(self, trace, spiral):
         return _format(FILES["geometry"], trace=trace, spiral=spiral)
 

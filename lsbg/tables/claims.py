@@ -228,9 +228,11 @@ def contact_state_by_angle(sweep):
     -------
     pandas.DataFrame
         ``spiral_angle`` [deg], one column per gear type [mm] and ``better``
-        (ties within :data:`CONTACT_STATE_RESOLUTION`); empty without them.
+        (ties within :data:`CONTACT_STATE_RESOLUTION`); empty without them. Of a sweep
+        with both SBGs, the published pair's (:func:`lsbg.aggregate.runs.pair_traces`;
+        select the traces for another).
     """
-    from lsbg.gear.design import TRACE_LABELS
+    from lsbg.aggregate.runs import pair_traces
 
     axes = sorted({name.rsplit("_", 1)[1] for name in sweep.data_vars
                    if name.startswith("pattern_shift_lengthwise_per_0_1_")})
@@ -241,8 +243,8 @@ def contact_state_by_angle(sweep):
     rows = []
     for angle in total["spiral_angle"].values:
         row = {"spiral_angle": float(angle)}
-        for trace in total["trace"].values:
-            row[TRACE_LABELS[str(trace)]] = float(total.sel(trace=trace, spiral_angle=angle))
+        for label, trace in pair_traces(total["trace"].values).items():
+            row[label] = float(total.sel(trace=trace, spiral_angle=angle))
         row["better"] = better_type(row.get("SBG", np.nan), row.get("LSBG", np.nan),
                                 CONTACT_STATE_RESOLUTION)
         rows.append(row)

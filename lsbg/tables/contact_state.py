@@ -164,13 +164,13 @@ def sensitivity_by_angle(maps):
     Returns
     -------
     pandas.DataFrame
-        Columns ``gear_type``, ``spiral_angle`` [deg], ``axis``, ``quantity``
+        Columns ``gear_type``, ``trace``, ``spiral_angle`` [deg], ``axis``, ``quantity``
         (a key of :data:`SENSITIVITIES`), ``value`` (per 0.1 mm or deg), and
         rows of ``quantity`` "pattern_movement" (:func:`pattern_movement`).
     """
     rows = []
     for ds in maps:
-        base = {"gear_type": gear_type(ds),
+        base = {"gear_type": gear_type(ds), "trace": str(ds.attrs["design_trace"]),
                 "spiral_angle": float(ds.attrs["design_spiral_angle_deg"])}
         for axis in _axes(ds):
             for name in SENSITIVITIES:

@@ -28,8 +28,8 @@ from scipy import stats as sps
 
 from lsbg import stats
 from lsbg.stats import spectra
-from lsbg.gear.design import TRACE_LABELS
-from lsbg.aggregate.runs import QUANTITY_LABELS, TYPE_ORDER, full_rate_series, steady
+from lsbg.gear.design import TRACE_NAMES
+from lsbg.aggregate.runs import QUANTITY_LABELS, TYPE_ORDER, full_rate_series, pair_traces, steady
 
 #: Quantities compared under the line model (full-rate variables exist for them).
 VERDICT_QUANTITIES = ("gear_speed", "tangential_force", "transmission_error")
@@ -302,7 +302,9 @@ def sweep_fluctuation_table(sweep, start=0.2, quantities=VERDICT_QUANTITIES, con
     Returns
     -------
     pandas.DataFrame
-        Per (contact model, gear type, spiral angle): for each quantity the
+        Per (contact model, gear type, spiral angle): ``gear_type`` names the trace's
+        construction (:data:`lsbg.gear.design.TRACE_NAMES`: "SBG, paper's arc", "SBG,
+        ISO 23509 face-milled"), ``trace`` the trace; for each quantity the
         full-rate std with its interval (``<q>_std``, ``_low``, ``_high``) and
         the std of the output samples (``<q>_sampled_std``); the dynamic
         factor; and, where the sweep has loaded TCAs, their figures.
@@ -317,8 +319,9 @@ def sweep_fluctuation_table(sweep, start=0.2, quantities=VERDICT_QUANTITIES, con
                 point = sweep.sel(contact_model=model, trace=trace, spiral_angle=angle)
                 if not np.isfinite(point["gear_speed"].values).all():
                     continue
-                row = {"contact_model": str(model), "gear_type": TRACE_LABELS.get(str(trace)),
-                       "spiral_angle_deg": float(angle)}
+                row = {"contact_model": str(model),
+                       "gear_type": TRACE_NAMES.get(str(trace), str(trace)),
+                       "trace": str(trace), "spiral_angle_deg": float(angle)}
                 for quantity in quantities:
                     full = point[f"{quantity}_full"].values[keep_full]
                     ci = stats.std_ci(full, confidence=confidence, n_boot=n_boot, seed=seed)
@@ -339,7 +342,7 @@ def sweep_fluctuation_table(sweep, start=0.2, quantities=VERDICT_QUANTITIES, con
 
 
 def sweep_ratio_table(sweep, contact_model="line", quantities=VERDICT_QUANTITIES, start=0.2,
-                      full_rate=True, **options) -> pd.DataFrame:
+                      full_rate=True, sbg_trace=None, **options) -> pd.DataFrame:
     """std(SBG)/std(LSBG) with its interval at every spiral angle of a sweep.
 
     Parameters
@@ -347,6 +350,9 @@ def sweep_ratio_table(sweep, contact_model="line", quantities=VERDICT_QUANTITIES
     sweep : xarray.Dataset
         From :func:`lsbg.aggregate.combine.combine_runs`.
     contact_model : str
+    sbg_trace : str, optional
+        The SBG compared (:func:`lsbg.aggregate.runs.pair_traces`: by default the sweep's
+        only SBG, or the paper's arc where it holds both).
     quantities : sequence of str
     start : float
         Start of the steady state [s].
@@ -358,11 +364,13 @@ def sweep_ratio_table(sweep, contact_model="line", quantities=VERDICT_QUANTITIES
     Returns
     -------
     pandas.DataFrame
-        Per spiral angle with both types and quantity: ``ratio``,
-        ``ratio_low``, ``ratio_high`` and ``calmer``.
+        Per spiral angle with both types and quantity: ``sbg`` (the SBG's name,
+        :data:`lsbg.gear.design.TRACE_NAMES`), ``ratio``, ``ratio_low``, ``ratio_high``
+        and ``calmer``.
     """
     model = sweep.sel(contact_model=contact_model)
-    types = {TRACE_LABELS.get(str(t), str(t)): str(t) for t in model["trace"].values}
+    types = pair_traces(model["trace"].values, sbg_trace)
+    sbg = TRACE_NAMES.get(types.get("SBG"), "SBG")
     rows = []
     for angle in model["spiral_angle"].values:
         point = {t: model.sel(trace=trace, spiral_angle=angle) for t, trace in types.items()}
@@ -370,9 +378,9 @@ def sweep_ratio_table(sweep, contact_model="line", quantities=VERDICT_QUANTITIES
             continue
         for quantity in quantities:
             result = compare_fluctuation(point, quantity, start, full_rate, **options)
-            rows.append({"spiral_angle_deg": float(angle), "quantity": quantity,
+            rows.append({"spiral_angle_deg": float(angle), "quantity": quantity, "sbg": sbg,
                          **{k: result[k] for k in ("ratio", "ratio_low", "ratio_high", "calmer")}})
-    return pd.DataFrame(rows, columns=["spiral_angle_deg", "quantity", "ratio", "ratio_low",
+    return pd.DataFrame(rows, columns=["spiral_angle_deg", "quantity", "sbg", "ratio", "ratio_low",
                                        "ratio_high", "calmer"])
 
 
@@ -420,21 +428,23 @@ def calmer_by_angle(ratios, grid=None) -> pd.DataFrame:
     Returns
     -------
     pandas.DataFrame
-        Per quantity: ``LSBG``, ``SBG`` and ``neither``: the spiral angles
+        Per quantity (and SBG, where ``ratios`` has an ``sbg`` column: one row per SBG
+        compared, ``sbg`` its name): ``LSBG``, ``SBG`` and ``neither``: the spiral angles
         where that type has the significantly smaller fluctuation (its 95 %
         interval of std(SBG)/std(LSBG) excluding 1), as :func:`angle_ranges`
         text, and ``angles``: how many spiral angles were compared.
     """
     rows = []
     everything = list(grid) if grid is not None else list(ratios["spiral_angle_deg"])
-    for quantity, part in ratios.groupby("quantity", sort=False):
-        row = {"quantity": quantity}
+    keys = ["quantity"] + (["sbg"] if "sbg" in ratios.columns else [])
+    for key, part in ratios.groupby(keys, sort=False):
+        row = dict(zip(keys, key))
         for calmer in ("LSBG", "SBG", "neither"):
             chosen = part.loc[part.calmer == calmer, "spiral_angle_deg"]
             row[calmer] = angle_ranges(chosen, everything) or "none"
         row["angles"] = int(part["spiral_angle_deg"].nunique())
         rows.append(row)
-    return pd.DataFrame(rows, columns=["quantity", "LSBG", "SBG", "neither", "angles"])
+    return pd.DataFrame(rows, columns=[*keys, "LSBG", "SBG", "neither", "angles"])
 
 
 def trend_table(table, columns, along="spiral_angle_deg", by=()) -> pd.DataFrame:
@@ -541,7 +551,7 @@ def speed_curve_table(curve) -> pd.DataFrame:
     speeds = curve["pinion_speed"].values
     rows = []
     for trace in curve["trace"].values:
-        row = {"gear_type": TRACE_LABELS.get(str(trace), str(trace)),
+        row = {"gear_type": TRACE_NAMES.get(str(trace), str(trace)),
                "natural_frequency_hz": float(curve["natural_frequency"].sel(trace=trace))}
         for order, suffix in ((1, ""), (2, "_half"), (3, "_third")):
             row[f"resonance_speed{suffix}_deg_s"] = float(

@@ -241,8 +241,8 @@ def read_rating_sweep(path) -> pd.DataFrame:
     Returns
     -------
     pandas.DataFrame
-        Per gear type and spiral angle [deg], as
-        :func:`lsbg.experiments.rating_sweep.rating_by_angle` gives it:
+        Per gear type (and ``trace``, which tells the SBGs apart) and spiral angle
+        [deg], as :func:`lsbg.experiments.rating_sweep.rating_by_angle` gives it:
         ``K_v``, the stresses [MPa], the safety factors and the rated gear
         torque [N m]; empty without a file.
 
@@ -260,5 +260,6 @@ def read_rating_sweep(path) -> pd.DataFrame:
     columns = ("gear_type", "spiral_angle", *RATING_SWEEP_VARIABLES)
     ds = open_dataset(paths[0], "rating sweep", columns, (),
                       "a rating sweep of lsbg rate-sweep")
-    return pd.DataFrame({name: ds[name].values.tolist() if name == "gear_type"
+    columns = ("gear_type", *(["trace"] if "trace" in ds else []), *columns[1:])
+    return pd.DataFrame({name: ds[name].values.tolist() if name in ("gear_type", "trace")
                          else ds[name].values for name in columns})

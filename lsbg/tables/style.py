@@ -32,7 +32,7 @@ import re
 
 import pandas as pd
 
-from lsbg.gear.design import TRACE_LABELS
+from lsbg.gear.design import TRACE_LABELS, TRACE_NAMES
 from lsbg.aggregate.runs import QUANTITY_LABELS
 from lsbg.stats import samples
 
@@ -97,7 +97,7 @@ COLUMN_HEADERS = {
 #: Words of category cells (quantities, series, traces) as a reader reads them.
 CELL_LABELS = {
     **QUANTITY_LABELS,
-    **TRACE_LABELS,
+    **TRACE_NAMES,  # a trace by its construction: the two SBGs apart
     "gear_speed_sampled_std": "500-sample std of the gear angular velocity",
     "tangential_force_sampled_std": "500-sample std of the tangential contact force",
     "gear_speed_std": "full-rate std of the gear angular velocity",

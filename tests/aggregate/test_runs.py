@@ -50,3 +50,16 @@ def test_steady_starts_at_the_runs_own_ramp_end_unless_told(runs):
     assert float(ds.attrs["solver_ramp_time_s"]) == pytest.approx(0.01)
     assert steady(ds, "gear_speed").size == np.count_nonzero(time > 0.01) == 20
     assert steady(ds, "gear_speed", 0.03).size == np.count_nonzero(time > 0.03)
+
+
+def test_the_pair_compared_is_the_published_one_unless_another_sbg_is_asked_for():
+    from lsbg.aggregate.runs import pair_traces
+
+    three = ["logarithmic", "circular", "face_milled"]
+    assert pair_traces(three) == {"SBG": "circular", "LSBG": "logarithmic"}
+    assert pair_traces(three, "face_milled") == {"SBG": "face_milled", "LSBG": "logarithmic"}
+    assert pair_traces(["logarithmic", "face_milled"]) == {"SBG": "face_milled",
+                                                           "LSBG": "logarithmic"}
+    assert pair_traces(["circular"]) == {"SBG": "circular"}
+    with pytest.raises(ValueError, match="sbg_trace 'face_milled'"):
+        pair_traces(["logarithmic", "circular"], "face_milled")

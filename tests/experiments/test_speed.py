@@ -141,7 +141,7 @@ def test_cli_writes_the_curve_with_units_and_the_natural_frequency(curve_file, g
         assert float(curve["natural_frequency"].sel(trace="logarithmic")) == pytest.approx(
             natural, rel=1e-9)
         rows = line_model.speed_curve_table(curve)
-        assert list(rows["gear_type"]) == ["SBG", "LSBG"]
+        assert list(rows["gear_type"]) == ["SBG, paper's arc", "LSBG"]   # the SBG by its construction
         assert rows["resonance_speed_deg_s"].iloc[1] == pytest.approx(
             math.degrees(2 * math.pi * natural / 9), rel=1e-9)
         ratios = line_model.speed_ratio_table(curve)

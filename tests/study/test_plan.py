@@ -203,6 +203,28 @@ def test_the_paper_point_is_not_in_a_batch(default):
         assert study.batch_spirals(trace)
 
 
+def test_a_third_trace_runs_every_angle_in_its_batch():
+    """ISO 23509's SBG in the sweep (workflow/config-sweep-face-milled.yaml): its batch holds
+    the paper's angle too, the paper point's own jobs stay the pair's."""
+    overlay = yaml.safe_load((REPO / "workflow" / "config-sweep-face-milled.yaml").read_text())
+    study = plan.Study(load(sweep=overlay["sweep"]))  # (merged into the section, as Snakemake does)
+    spirals = study.spirals
+    assert study.traces == ["logarithmic", "circular", "face_milled"]
+    assert study.batch_groups() == [
+        ("", ["logarithmic", "circular"], [s for s in spirals if s != study.paper_spiral]),
+        ("_all_angles", ["face_milled"], spirals)]
+    # every design point once, the face-milled SBG's at every angle; no reference runs,
+    # sensitivity cases or paper-point files of it
+    assert [s for t, s in study.points if t == "face_milled"] == spirals
+    assert len(study.points) == len(set(study.points)) == 3 * len(spirals)
+    produced = [f for t in study.traces for f in study.batch_outputs(t)]
+    produced += study.paper_geometry + study.paper_meshes
+    assert len(produced) == len(set(produced))
+    assert {r for r in study.sweep_runs if "face_milled" in r} <= set(produced)
+    assert not [f for f in study.paper_runs + study.sensitivity_runs() + study.vh_cases()
+                if "face_milled" in f]
+
+
 def test_sensitivity_and_speed_sweep_runs_are_named_by_case_and_speed():
     config = load("config-speed.yaml")
     study = plan.Study(config)

@@ -55,7 +55,9 @@ def test_run_ids_and_categories_read_as_words():
             == "LSBG 35°, line stiffness ×0.5")
     assert run_label("not a run") == "not a run"
     assert cell_label("tangential_force") == "tangential contact force"
-    assert cell_label("circular") == "SBG" and cell_label("urad") == "µrad"
+    # a trace by its construction, so the two SBGs read apart
+    assert cell_label("circular") == "SBG, paper's arc" and cell_label("urad") == "µrad"
+    assert cell_label("face_milled") == "SBG, ISO 23509 face-milled"
     assert cell_label(3.5) == 3.5
 
 
@@ -78,7 +80,7 @@ def test_table_html_has_readable_headers_and_no_missing_marker():
                        "full-rate std", "p (AD)"]
     cells = re.findall(r"<td[^>]*>(.*?)</td>", html)
     assert cells[:6] == ["LSBG", "35", "gear angular velocity", "2", "34.30", "8.6e-05"]
-    assert cells[6:] == ["SBG", "22.5", "mesh stiffness", "—", "—", "0.6"]
+    assert cells[6:] == ["SBG, paper&#x27;s arc", "22.5", "mesh stiffness", "—", "—", "0.6"]
     assert "NA" not in html and "nan" not in html
 
 

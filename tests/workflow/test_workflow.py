@@ -82,6 +82,27 @@ def test_default_and_test_configs_are_valid_and_plan_the_study(tmp_path):
     assert written["misalignment_map"]["sweep_steps"] == config["misalignment_map"]["sweep_steps"]
 
 
+def test_the_sweep_with_iso_23509s_sbg_plans_one_more_job_per_stage(tmp_path):
+    """workflow/config-sweep-face-milled.yaml: the face-milled SBG at every angle, the paper's
+    too, in one points job and one contact-state job; the paper point's jobs stay the pair's."""
+    proc = snakemake("-n", "--snakefile", SNAKEFILE, "--configfile",
+                     str(REPO / "workflow" / "config-sweep-face-milled.yaml"), cwd=tmp_path,
+                     check=True)
+    jobs = planned_jobs(proc.output)
+    config = yaml.safe_load((REPO / "workflow" / "config.yaml").read_text(encoding="utf-8"))
+    angles = config["sweep"]["spiral_angles_deg"]
+    assert rules_of(jobs).count("sweep_points") == rules_of(jobs).count("sweep_contact_state") == 2
+    assert rules_of(jobs).count("sweep_points_all_angles") == 1
+    assert rules_of(jobs).count("sweep_contact_state_all_angles") == 1
+    points = [f for rule, out in jobs if rule == "sweep_points_all_angles"
+              for f in out.split(", ") if f.startswith("results/geometry/")]
+    assert points == [f"results/geometry/face_milled_beta{a:g}" for a in angles]
+    for rule in ("paper_geometry", "paper_ltca", "contact_state", "convergence_point",
+                 "convergence_line", "sensitivity"):
+        assert rules_of(jobs).count(rule) == 2, rule
+        assert not [out for r, out in jobs if r == rule and "face_milled_beta" in out], rule
+
+
 def test_priorities_follow_the_studys_rule_graph(tmp_path):
     """Each rule's priority (lsbg.study.job_order, from the rules once defined) is its own
     measured seconds plus the longest chain of the rules that wait for it, in Snakemake's

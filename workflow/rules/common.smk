@@ -105,6 +105,9 @@ STUDY = plan.Study(config)
 FILES = plan.FILES
 SWEEP_ENGINE = STUDY.sweep_engine
 PAPER_SPIRAL = STUDY.paper_spiral
+#: The paper point's own jobs are the paper pair's (a wildcard constraint): another trace of
+#: the sweep (face_milled) has its paper angle in its batch jobs (points.smk).
+PAPER_PAIR = {"trace": "|".join(plan.PAPER_TRACES)}
 
 
 wildcard_constraints:

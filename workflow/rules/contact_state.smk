@@ -34,34 +34,42 @@ rule contact_state:
         settings=lambda w: plan.contact_state_params(config, w.spiral, SWEEP_ENGINE),
     wildcard_constraints:
         spiral=re.escape(PAPER_SPIRAL),
+        **PAPER_PAIR,
     log:
         "logs/contact_state/{trace}_beta{spiral}.log",
     shell:
         LSBG
 
 
-CONTACT_BATCH = STUDY.batch_spirals(STUDY.traces[0])
+# The batches as points.smk's (plan.Study.batch_groups). A trace outside the paper's pair
+# is mapped at sweep_steps at every angle, the paper's too (its paper point has no job of
+# its own, and no sensitivity cases).
+for _suffix, _traces, _batch in STUDY.batch_groups():
+    _steps = STUDY.map_steps(_batch[0]) if not _suffix else config["misalignment_map"]["sweep_steps"]
 
-if CONTACT_BATCH:
-
-    rule sweep_contact_state:
+    rule:
+        name:
+            f"sweep_contact_state{_suffix}"
         input:
-            geometries=[template(FILES["geometry"], spiral=s) for s in CONTACT_BATCH],
+            geometries=[template(FILES["geometry"], spiral=s) for s in _batch],
             config=ancient(FILES["study_config"]),
             topography=TOPOGRAPHY,
             sources=sources("misalignment-map"),
         output:
-            tca=[template(FILES["tca"], spiral=s) for s in CONTACT_BATCH],
-            vh=[template(FILES["vh_map"], spiral=s) for s in CONTACT_BATCH],
+            tca=[template(FILES["tca"], spiral=s) for s in _batch],
+            vh=[template(FILES["vh_map"], spiral=s) for s in _batch],
         params:
-            **command("misalignment-map", spiral_angles=CONTACT_BATCH,
-                      set=[f"misalignment_map.steps={STUDY.map_steps(CONTACT_BATCH[0])}"],
+            **command("misalignment-map", spiral_angles=_batch,
+                      set=[f"misalignment_map.steps={_steps}"],
                       **point_templates(geometry=FILES["geometry"], out=FILES["vh_map"],
                                         tca_out=FILES["tca"])),
-            settings=plan.contact_state_params(config, CONTACT_BATCH[0], SWEEP_ENGINE),
+            settings={**plan.contact_state_params(config, _batch[0], SWEEP_ENGINE),
+                      "steps": _steps},
+        wildcard_constraints:
+            trace="|".join(_traces),
         log:
             "logs/sweep_contact_state/{trace}.log",
         resources:
-            runtime=10 + len(CONTACT_BATCH),
+            runtime=10 + len(_batch),
         shell:
             LSBG

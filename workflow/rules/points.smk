@@ -7,7 +7,9 @@
 # sweep-engine runs come from the convergence tables (rules/simulate.smk).
 # The other spiral angles of a trace are one `lsbg points` job (geometry,
 # loaded TCA and runs in one process: the start-up is paid once per job instead
-# of once per file); adding an angle reruns that job only.
+# of once per file); adding an angle reruns that job only. A trace outside the
+# paper's pair (ISO 23509's SBG) has no paper-point jobs: its batch holds the
+# paper's angle too.
 
 import re
 
@@ -23,6 +25,7 @@ rule paper_geometry:
         design=plan.canonical(config["design"]),  # rerun trigger
     wildcard_constraints:
         spiral=re.escape(PAPER_SPIRAL),
+        **PAPER_PAIR,
     log:
         "logs/paper_geometry/{trace}_beta{spiral}.log",
     shell:
@@ -45,6 +48,7 @@ rule paper_ltca:
         contact=simulation_params(SWEEP_ENGINE, "line")["contact"],
     wildcard_constraints:
         spiral=re.escape(PAPER_SPIRAL),
+        **PAPER_PAIR,
     log:
         "logs/paper_ltca/{trace}_beta{spiral}.log",
     shell:
@@ -69,34 +73,40 @@ rule kernels:
         LSBG
 
 
-BATCH = STUDY.batch_spirals(STUDY.traces[0])
-# the runs of the batch, one template per contact model
+# the runs of a batch, one template per contact model
 RUNS = {m: template(FILES["run"], model=m, engine=SWEEP_ENGINE) for m in STUDY.sweep_models}
 
-if BATCH:
+# One rule per group of traces with the same angles (plan.Study.batch_groups): the
+# paper's pair (every angle but the paper's), and a trace outside it (ISO 23509's SBG,
+# face_milled), which runs every angle of the sweep, the paper's too, in its one job.
+for _suffix, _traces, _batch in STUDY.batch_groups():
 
-    rule sweep_points:
+    rule:
+        name:
+            f"sweep_points{_suffix}"
         input:
             config=ancient(FILES["study_config"]),
             kernels=ancient(FILES["kernels"]),
             sources=sources("points"),
         output:
-            geometry=[geometry_output(s) for s in BATCH],
-            meshes=[template(FILES["mesh"], spiral=s) for s in BATCH],
-            runs=[template(r, spiral=s) for s in BATCH for r in RUNS.values()],
-            compliances=[template(FILES["compliance"], spiral=s) for s in BATCH]
+            geometry=[geometry_output(s) for s in _batch],
+            meshes=[template(FILES["mesh"], spiral=s) for s in _batch],
+            runs=[template(r, spiral=s) for s in _batch for r in RUNS.values()],
+            compliances=[template(FILES["compliance"], spiral=s) for s in _batch]
             if STUDY.own_compliance else [],
         params:
-            **command("points", spiral_angles=BATCH, engine=SWEEP_ENGINE,
+            **command("points", spiral_angles=_batch, engine=SWEEP_ENGINE,
                       run=lambda w: [f"{m}={template(r, trace=w.trace)}" for m, r in RUNS.items()],
                       **point_templates(geometry_out=FILES["geometry"], mesh_out=FILES["mesh"],
                                         **({"compliance_out": FILES["compliance"]}
                                            if STUDY.own_compliance else {}))),
             design=plan.canonical(config["design"]),  # rerun triggers
             settings={m: simulation_params(SWEEP_ENGINE, m) for m in STUDY.sweep_models},
+        wildcard_constraints:
+            trace="|".join(_traces),
         log:
             "logs/sweep_points/{trace}.log",
         resources:
-            **points_resources(len(BATCH)),
+            **points_resources(len(_batch)),
         shell:
             LSBG

@@ -80,6 +80,8 @@ for model in plan.CONTACT_MODELS:
             settings=plan.canonical({engine: simulation_params(engine, model)  # rerun triggers
                                      for engine in STUDY.convergence_engines(model)}),
             steady_state_after=config["statistics"]["steady_state_after_s"],
+        wildcard_constraints:
+            **PAPER_PAIR,
         log:
             f"logs/convergence/{{trace}}_{model}.log",
         resources:

@@ -34,6 +34,7 @@ rule tooth_compliance:
         tooth=plan.canonical(config["tooth"]),  # rerun trigger (the design: the geometry's)
     wildcard_constraints:
         spiral=re.escape(PAPER_SPIRAL),
+        **PAPER_PAIR,
     log:
         "logs/tooth_compliance/{trace}_beta{spiral}.log",
     resources:
