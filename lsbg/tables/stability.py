@@ -25,10 +25,12 @@ import numpy as np
 import pandas as pd
 
 from lsbg.aggregate.runs import QUANTITY_LABELS, run_band_split
+from lsbg.experiments.sensitivity import case_label
 from lsbg.stats.bands import BAND_LABELS, HARMONIC_BANDS, deciding_band
 
 __all__ = ["BAND_RESOLUTION", "EMPTY_BAND", "band_table", "band_text", "band_finding",
-           "cells_range", "cells_text"]
+           "cells_range", "cells_text", "DRIVELINE_CELL", "BOUNDARY_NAMES", "driveline_pair",
+           "boundary_answers", "boundary_sentence"]
 
 #: Band ratios within this of 1 are a tie: the ratio of one run's windows varies
 #: by about ±1 %, so a smaller difference is not resolved by a run [-].
@@ -237,3 +239,95 @@ def cells_text(tables):
             parts.append(f"{pair}, {r.quantity}: {r.ratio_least:.3g}–{r.ratio_most:.3g} over "
                          f"its {r.cells} cell{'s' if r.cells != 1 else ''} ({where})")
     return "; ".join(parts) + "." if parts else ""
+
+
+# ------------------------------------------------------------ per boundary
+#: The stability cell whose runs put the mesh inside the torsional driveline (the
+#: sensitivity case ``boundary: [driveline]``); every other cell prescribes the pinion.
+DRIVELINE_CELL = case_label("boundary_driveline")
+
+#: The boundaries in words, in the order the answers state them.
+BOUNDARY_NAMES = ("prescribed pinion speed", "torsional driveline")
+
+
+def driveline_pair(runs, case="boundary_driveline"):
+    """``{gear type: run}`` of a pair's driveline case among its sensitivity runs.
+
+    Parameters
+    ----------
+    runs : iterable of xarray.Dataset
+        Sensitivity runs (their ``sensitivity_case`` attribute names the case).
+    case : str
+        The case's name.
+    """
+    from lsbg.aggregate.runs import gear_type
+
+    return {gear_type(ds): ds for ds in runs if ds.attrs.get("sensitivity_case") == case}
+
+
+def boundary_answers(cells, bands=None, quantity="gear_speed"):
+    """The stability claim's answer per pair and boundary, with the band that decides it.
+
+    Parameters
+    ----------
+    cells : dict
+        ``{pair name: stability table in the claims' long form}``
+        (:func:`lsbg.tables.claims.stability_cells`); the cell :data:`DRIVELINE_CELL`
+        runs under the torsional driveline, the others under the prescribed pinion.
+    bands : pandas.DataFrame, optional
+        :func:`band_table` with the pair's baseline runs under ``pair`` and its driveline
+        runs under ``"<pair>, torsional driveline"``.
+    quantity : str
+        The quantity whose deciding band is named.
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``pair``, ``boundary`` (of :data:`BOUNDARY_NAMES`), ``cells`` (their number),
+        ``verdict`` (:func:`lsbg.tables.claims.claim_word`) and ``deciding_band`` (words;
+        "" where the band table has no such pair).
+    """
+    from lsbg.tables.claims import claim_verdict, claim_word
+
+    rows = []
+    for pair, table in cells.items():
+        under = table["cell"] == DRIVELINE_CELL
+        for boundary, part in zip(BOUNDARY_NAMES, (table[~under], table[under])):
+            if part.empty:
+                continue
+            name = pair if boundary == BOUNDARY_NAMES[0] else f"{pair}, {boundary}"
+            band = ""
+            if bands is not None and len(bands):
+                row = bands[(bands["pair"] == name) & (bands["quantity"] == quantity)
+                            & bands["decides"].astype(bool)]
+                band = BAND_LABELS.get(row["band"].iloc[0], "") if len(row) else ""
+            rows.append({"pair": pair, "boundary": boundary,
+                         "cells": int(part["cell"].nunique()),
+                         "verdict": claim_word(claim_verdict(part, "fluctuates less")),
+                         "deciding_band": band})
+    return pd.DataFrame(rows, columns=["pair", "boundary", "cells", "verdict", "deciding_band"])
+
+
+def boundary_sentence(answers, quantity="gear_speed"):
+    """The stability answer per boundary in one sentence (Markdown), for a first screen.
+
+    Parameters
+    ----------
+    answers : pandas.DataFrame
+        :func:`boundary_answers`.
+    quantity : str
+        The quantity whose deciding band :func:`boundary_answers` named.
+    """
+    if answers.empty:
+        return ""
+    label = QUANTITY_LABELS.get(quantity, quantity)
+    parts = []
+    for pair, part in answers.groupby("pair", sort=False):
+        said = []
+        for row in part.itertuples():
+            cells = "1 cell" if row.cells == 1 else f"{row.cells} cells"
+            band = f", the {label} decided at {row.deciding_band}" if row.deciding_band else ""
+            said.append(f"under the {row.boundary} **{row.verdict}** ({cells}{band})")
+        parts.append(f"{pair}: " + "; ".join(said))
+    return "**Stability by boundary** — " + ". ".join(parts) + "."
+

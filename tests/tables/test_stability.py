@@ -76,3 +76,30 @@ def test_the_interval_over_cells_is_the_least_and_largest_ratio():
     assert "gear speed: 1.05–1.3 over its 3 cells (every cell's ratio above 1)" in text
     assert "force: 0.9–1.2 over its 3 cells (the cells on both sides of 1)" in text
     assert stability.cells_text({}) == ""
+
+
+def test_the_answer_per_boundary_splits_the_driveline_cell_from_the_others():
+    """The driveline's cell answers for the driveline alone; every other cell prescribes the
+    pinion; each answer names the band that decides its own runs' ratio."""
+    cell = stability.DRIVELINE_CELL
+    assert cell == "boundary: torsional driveline"
+    cells = {"published pair": pd.DataFrame({
+        "cell": ["baseline", "baseline", "crowning ×2", "crowning ×2", cell, cell],
+        "quantity": ["gear speed", "force"] * 3, "ratio": [0.8, 0.9, 0.85, 0.7, 1.2, 1.3],
+        "better": ["SBG", "SBG", "SBG", "tie", "LSBG", "LSBG"]})}
+    pairs = {"published pair": {"SBG": _run({2: 1.0, 9: 2.0}), "LSBG": _run({2: 1.0, 9: 1.0})},
+             "published pair, torsional driveline": {"SBG": _run({2: 2.0, 9: 0.1}),
+                                                     "LSBG": _run({2: 1.0, 9: 0.1})}}
+    answers = stability.boundary_answers(cells, stability.band_table(pairs, start=0.2))
+    assert list(answers["boundary"]) == list(stability.BOUNDARY_NAMES)
+    assert list(answers["cells"]) == [2, 1]
+    assert list(answers["verdict"]) == ["no", "yes"]
+    assert list(answers["deciding_band"]) == ["mesh harmonics 8 and up", "mesh harmonics 1–3"]
+    sentence = stability.boundary_sentence(answers)
+    assert "under the prescribed pinion speed **no** (2 cells" in sentence
+    assert "under the torsional driveline **yes** (1 cell, " in sentence
+    # without the band table, or without a driveline cell
+    assert list(stability.boundary_answers(cells)["deciding_band"]) == ["", ""]
+    plain = {"p": cells["published pair"][cells["published pair"]["cell"] != cell]}
+    assert list(stability.boundary_answers(plain)["boundary"]) == ["prescribed pinion speed"]
+    assert stability.boundary_sentence(stability.boundary_answers({})) == ""
