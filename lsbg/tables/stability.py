@@ -256,13 +256,18 @@ def driveline_pair(runs, case="boundary_driveline"):
     Parameters
     ----------
     runs : iterable of xarray.Dataset
-        Sensitivity runs (their ``sensitivity_case`` attribute names the case).
+        Sensitivity runs, read from their files ``{trace}_beta{spiral}_{case}.nc``
+        (:func:`lsbg.tables.finding.sensitivity_cells` reads them so).
     case : str
         The case's name.
     """
+    from pathlib import Path
+
     from lsbg.aggregate.runs import gear_type
 
-    return {gear_type(ds): ds for ds in runs if ds.attrs.get("sensitivity_case") == case}
+    return {gear_type(ds): ds for ds in runs
+            if Path(ds.encoding.get("source", "")).stem.endswith(f"_{case}")
+            and ds.attrs.get("solver_boundary") == "driveline"}
 
 
 def boundary_answers(cells, bands=None, quantity="gear_speed"):

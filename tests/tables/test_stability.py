@@ -103,3 +103,17 @@ def test_the_answer_per_boundary_splits_the_driveline_cell_from_the_others():
     plain = {"p": cells["published pair"][cells["published pair"]["cell"] != cell]}
     assert list(stability.boundary_answers(plain)["boundary"]) == ["prescribed pinion speed"]
     assert stability.boundary_sentence(stability.boundary_answers({})) == ""
+
+
+def test_the_driveline_pair_is_read_from_its_case_files():
+    runs = []
+    for trace in ("logarithmic", "circular"):
+        for case, boundary in (("boundary_driveline", "driveline"),
+                               ("crowning_x2", "prescribed_pinion")):
+            ds = _run({1: 1.0})
+            ds.attrs.update(design_trace=trace, solver_boundary=boundary)
+            ds.encoding["source"] = f"results/sensitivity/{trace}_beta35_{case}.nc"
+            runs.append(ds)
+    pair = stability.driveline_pair(runs)
+    assert sorted(pair) == ["LSBG", "SBG"]
+    assert all(ds.attrs["solver_boundary"] == "driveline" for ds in pair.values())
