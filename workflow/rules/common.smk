@@ -198,12 +198,13 @@ def _words(action, value):
     return [option, *map(str, items)]
 
 
-def case_values(stage):
-    """The ``--case KEY=VALUE`` values of the sensitivity cases that reach ``stage``."""
+def case_values(stage, keys=None):
+    """The ``--case KEY=VALUE`` values of the sensitivity cases that reach ``stage`` (of
+    the sensitivity keys ``keys`` only, if given: the practice and best pairs')."""
     from lsbg.experiments.sensitivity import CASE_STAGES
 
     return [f"{key}={value!r}" for key, values in config["sensitivity"].items()
-            if stage in CASE_STAGES[key] for value in values]
+            if stage in CASE_STAGES[key] and (keys is None or key in keys) for value in values]
 
 
 def command(name, **extra):
