@@ -240,7 +240,7 @@ def pair_case_keys(config):
     Parameters
     ----------
     config : dict
-        The configuration: ``practice.sensitivity`` (``"all"`` or a list of keys
+        The configuration: ``practice.sensitivity`` (``["all"]`` or a list of keys
         of the ``sensitivity`` section).
 
     Returns
@@ -253,13 +253,14 @@ def pair_case_keys(config):
     ValueError
         Naming ``practice.sensitivity`` and the key that is none of the section's.
     """
-    chosen = config["practice"].get("sensitivity", "all")
-    if chosen == "all":
+    chosen = list(config["practice"].get("sensitivity", ["all"]))
+    if chosen == ["all"]:
         return tuple(config["sensitivity"])
     for k, key in enumerate(chosen):
         if key not in CASE_KEYS:
             raise ValueError(f"practice.sensitivity[{k}] = {key!r}: must be a key of the "
-                             f"sensitivity section ({', '.join(CASE_KEYS)}) or the word 'all'")
+                             f"sensitivity section ({', '.join(CASE_KEYS)}), or the list be "
+                             f"[all]")
     return tuple(key for key in config["sensitivity"] if key in chosen)
 
 
