@@ -384,6 +384,20 @@ def practice_input(kind):
     return lambda w: STUDY.practice_file(kind, w.trace)
 
 
+def flank_file(flanks, kind):
+    """A file of the practice design point with the ``flanks`` set's ease-off ("practice",
+    "best"), as a rule's input (its trace from the wildcards)."""
+    if flanks == "practice":
+        return practice_input(kind)
+    return lambda w: STUDY.best_file(kind, w.trace)
+
+
+def case_template(flanks, kind):
+    """The ``{case}`` template of a flank set's case files (``kind``: sensitivity_run,
+    vh_case, fe_case) for ``--out``/``--case-out``, the design point from the wildcards."""
+    return lambda w: template(FILES[f"{flanks}_{kind}"], trace=w.trace, spiral=w.spiral)
+
+
 def design_set_input(paper, practice):
     """An input of a load curve: ``paper(wildcards)`` for the published pair, else
     ``practice(wildcards)`` (rules/practice.smk)."""

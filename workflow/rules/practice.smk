@@ -95,19 +95,6 @@ if STUDY.optimise:
 
 
 
-def flank_file(flanks, kind):
-    """A file of the practice design point with the ``flanks`` set's ease-off ("practice",
-    "best"), as a rule's input (its trace from the wildcards)."""
-    if flanks == "practice":
-        return lambda w: STUDY.practice_file(kind, w.trace)
-    return lambda w: STUDY.best_file(kind, w.trace)
-
-
-def case_template(flanks, kind):
-    """The ``{case}`` template of a flank set's case files (``kind``: sensitivity_run,
-    vh_case, fe_case), the design point from the wildcards."""
-    return lambda w: template(FILES[f"{flanks}_{kind}"], trace=w.trace, spiral=w.spiral)
-
 
 for flanks, flank_config in FLANK_SETS.items():
 
