@@ -1,4 +1,5 @@
-"""The ``sensitivity`` section checked before any job: its case names and settings.
+"""The ``sensitivity`` section checked before any job: its case names and settings
+(and ``practice.sensitivity``, the keys of it the practice and best pairs run).
 
 Each function takes the workflow configuration (the schema's defaults filled
 in) and returns one line per problem, starting with ``sensitivity.<key>[k]``
@@ -7,7 +8,7 @@ and the factor the user wrote. Part of :func:`lsbg.study.checks.check_config`.
 
 from __future__ import annotations
 
-from lsbg.experiments.sensitivity import case_name, scaled_contact
+from lsbg.experiments.sensitivity import case_name, pair_case_keys, scaled_contact
 from lsbg.files import label_clashes
 
 __all__ = ["case_name_problems", "sensitivity_problems", "operating_problems"]
@@ -48,7 +49,8 @@ def sensitivity_problems(config):
     Returns
     -------
     list of str
-        ``sensitivity.KEY[k] = factor: gives <the contact setting's problem>``.
+        ``sensitivity.KEY[k] = factor: gives <the contact setting's problem>``; and
+        ``practice.sensitivity[k]`` where it names no key of the section.
     """
     from lsbg.contact import ContactParameters
     from lsbg.dynamics.checks import settings_message
@@ -63,6 +65,10 @@ def sensitivity_problems(config):
             except ValueError as error:
                 problems.append(f"sensitivity.{key}[{k}] = {factor!r}: gives "
                                 f"{settings_message(error, {**config, 'contact': scaled})}")
+    try:
+        pair_case_keys(config)
+    except ValueError as error:
+        problems.append(str(error))
     return problems
 
 

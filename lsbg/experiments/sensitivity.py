@@ -37,8 +37,9 @@ from __future__ import annotations
 from lsbg.files import number_label
 
 __all__ = ["SENSITIVITY_KEYS", "FLANK_KEYS", "SENSITIVITY_SWITCHES", "OPERATING_KEYS",
-           "CASE_STAGES", "SIMULATION_SWITCHES", "case_name", "parse_case", "scaled_contact", "case_label",
-           "study_cases", "case_sections", "case_simulation", "stage_cases", "rated_cases"]
+           "CASE_STAGES", "SIMULATION_SWITCHES", "CASE_KEYS", "case_name", "parse_case",
+           "scaled_contact", "case_label", "study_cases", "case_sections", "case_simulation",
+           "stage_cases", "rated_cases", "pair_case_keys", "pair_cases"]
 
 #: Contact keys (paper units) a case may scale.
 SENSITIVITY_KEYS = ("mesh_damping_ratio", "line_stiffness_N_per_mm_um", "slices")
@@ -66,6 +67,9 @@ CASE_STAGES = {"mesh_damping_ratio": ("dynamics",),
                "displacement": ("dynamics",),
                "pinion_speed": ("dynamics",),
                "boundary": ("dynamics",)}
+
+#: Every key of the ``sensitivity`` section.
+CASE_KEYS = tuple(CASE_STAGES)
 
 #: A corner case's name starts so; its value is the corner's label.
 _DISPLACED = "displaced"
@@ -301,6 +305,50 @@ def case_simulation(key, value, simulation):
         scaled_contact({}, key, value)  # the value checked
         return {**simulation, key: value}
     return dict(simulation)
+
+
+def pair_case_keys(config):
+    """The sensitivity keys whose cases also run on the practice and best pairs.
+
+    Parameters
+    ----------
+    config : dict
+        The configuration: ``practice.sensitivity`` (``["all"]`` or a list of keys
+        of the ``sensitivity`` section).
+
+    Returns
+    -------
+    tuple of str
+        In the ``sensitivity`` section's order.
+
+    Raises
+    ------
+    ValueError
+        Naming ``practice.sensitivity`` and the key that is none of the section's.
+    """
+    chosen = list(config["practice"].get("sensitivity", ["all"]))
+    if chosen == ["all"]:
+        return tuple(config["sensitivity"])
+    for k, key in enumerate(chosen):
+        if key not in CASE_KEYS:
+            raise ValueError(f"practice.sensitivity[{k}] = {key!r}: must be a key of the "
+                             f"sensitivity section ({', '.join(CASE_KEYS)}), or the list be "
+                             f"[all]")
+    return tuple(key for key in config["sensitivity"] if key in chosen)
+
+
+def pair_cases(cases, keys):
+    """The cases of :func:`study_cases` whose key is one of ``keys`` (:func:`pair_case_keys`).
+
+    Parameters
+    ----------
+    cases : dict
+        ``{name: (key, value)}``.
+    keys : iterable of str
+        Keys of the ``sensitivity`` section.
+    """
+    keys = set(keys)
+    return {name: kv for name, kv in cases.items() if kv[0] in keys}
 
 
 def case_sections(key, value, contact, modification, misalignment):

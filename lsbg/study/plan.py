@@ -375,6 +375,39 @@ class Study:
         """:meth:`practice_file` of both traces (none without the practice design)."""
         return [self.practice_file(kind, t) for t in self.practice_traces] if self.practice else []
 
+    @cached_property
+    def pair_cases(self):
+        """The sensitivity cases that also run on the practice and best pairs (the keys
+        of ``practice.sensitivity``): ``{name: (key, value)}`` as :attr:`sensitivity`."""
+        from lsbg.experiments.sensitivity import pair_case_keys, pair_cases
+
+        return pair_cases(self.sensitivity, pair_case_keys(self.config))
+
+    def pair_stage_cases(self, stage):
+        """The practice and best pairs' cases (names) that reach ``stage``."""
+        from lsbg.experiments.sensitivity import stage_cases
+
+        return list(stage_cases(self.pair_cases, stage))
+
+    def pair_case_files(self, flanks, kind, trace=None):
+        """The model-form cells' files of the practice pair (``flanks`` "practice") or of
+        the best pair ("best"): ``kind`` "sensitivity_run" (each case's line-model run),
+        "vh_case" (the V-H map of each case that reaches the contact state) or "fe_case"
+        (the FE loaded TCA of each case that reaches it); both traces, or ``trace``'s.
+        None where the study makes no such pair."""
+        if not (self.optimise if flanks == "best" else self.practice):
+            return []
+        stage = {"sensitivity_run": "dynamics", "vh_case": "contact_state",
+                 "fe_case": "fe_ltca"}[kind]
+        traces = self.practice_traces if trace is None else [trace]
+        return [_format(FILES[f"{flanks}_{kind}"], trace=t, spiral=self.paper_spiral, case=case)
+                for case in self.pair_stage_cases(stage) for t in traces]
+
+    def pair_case_run(self, flanks, trace, case):
+        """The line-model run of one case on the practice or best pair (``flanks``)."""
+        return _format(FILES[f"{flanks}_sensitivity_run"], trace=trace, spiral=self.paper_spiral,
+                       case=case)
+
     @property
     def optimise(self):
         """Whether the study optimises each type's ease-off (on the practice design:
@@ -445,7 +478,9 @@ class Study:
                 *self.rating_files, *self.sweep_files, *extra,
                 *self.practice_files("rating"), *self.practice_files("vh_map"),
                 *self.load_curves, *self.optimise_fronts, *self.best_files("rating"),
-                *self.best_files("vh_map"), *(p["file"] for p in self.cutter_points)]
+                *self.best_files("vh_map"), *(p["file"] for p in self.cutter_points),
+                *(f for flanks in ("practice", "best") for kind in ("vh_case", "fe_case")
+                  for f in self.pair_case_files(flanks, kind))]
 
     # ------------------------------------------------ the cutter-radius sweep
     @cached_property

@@ -51,6 +51,10 @@ FILES = {
     "practice_vh_map": "results/practice/vh/{trace}_beta{spiral}.nc",
     "practice_run": "results/practice/runs/{trace}_beta{spiral}_line_{engine}.nc",
     "practice_rating": "results/practice/rating/{trace}_beta{spiral}.nc",
+    # its model-form cells: the sensitivity cases of practice.sensitivity on its design
+    "practice_sensitivity_run": "results/practice/sensitivity/{trace}_beta{spiral}_{case}.nc",
+    "practice_vh_case": "results/practice/vh/{trace}_beta{spiral}_{case}.nc",
+    "practice_fe_case": "results/practice/tooth/{trace}_beta{spiral}_{case}_ltca.nc",
     # each type at its best ease-off (lsbg optimise on the practice design, rules/optimise.smk):
     # the front of each seed, the released ease-off as an overlay, and the practice design
     # point's claims' files again with it
@@ -64,6 +68,9 @@ FILES = {
     "best_vh_map": "results/best/vh/{trace}_beta{spiral}.nc",
     "best_run": "results/best/runs/{trace}_beta{spiral}_line_{engine}.nc",
     "best_rating": "results/best/rating/{trace}_beta{spiral}.nc",
+    "best_sensitivity_run": "results/best/sensitivity/{trace}_beta{spiral}_{case}.nc",
+    "best_vh_case": "results/best/vh/{trace}_beta{spiral}_{case}.nc",
+    "best_fe_case": "results/best/tooth/{trace}_beta{spiral}_{case}_ltca.nc",
     # stresses, TE and pattern against torque (lsbg load-curve), design_set: paper or practice
     "load_curve": "results/load_curves/{design_set}_{trace}_beta{spiral}.nc",
     # the SBG's cutter radius as a design variable (lsbg cutter-point, rules/cutter.smk):

@@ -6,7 +6,8 @@ cell of its model-form sensitivity table, with the baseline's figures and
 where the answers hold. The pieces are built here from the tables of the
 other modules, so that the notebook only shows them:
 
-* :func:`sensitivity_cells`: the cells of the stability claim (runs by case);
+* :func:`sensitivity_cells` and :func:`case_cells`: the cells of the stability claim
+  (runs by case);
 * :func:`finding_table`: the line model's answer beside the point model's and
   the paper's;
 * :func:`paper_claims`, :func:`claim_counts`, :func:`claims_table` and
@@ -29,7 +30,7 @@ from lsbg.tables import claims as claim_tables
 from lsbg.tables import line_model as line_tables
 from lsbg.tables import paper as paper_tables
 
-__all__ = ["CLAIMED", "CLAIM_SECTIONS", "sensitivity_cells", "finding_table", "paper_claims",
+__all__ = ["CLAIMED", "CLAIM_SECTIONS", "sensitivity_cells", "case_cells", "finding_table", "paper_claims",
            "claim_counts", "claims_table", "claim_bullets", "scope_text", "load_ratio_text",
            "flanks_text", "sampling_sentence", "shape_sentence", "integrator_sentence"]
 
@@ -63,21 +64,42 @@ def sensitivity_cells(runs, sensitivity, engine):
     cases : dict
         ``{cell label: case name}`` of the cases.
     """
+    base = select_runs(runs, "line", engine)
+    cells, cases = case_cells(sensitivity)
+    cells = [("line model (baseline)", base, True),
+             ("point model", select_runs(runs, "point", engine), True), *cells,
+             ("500-Hz sampling", base, False)]
+    return cells, cases
+
+
+def case_cells(sensitivity):
+    """The stability cells of a pair's sensitivity runs, one per case.
+
+    Parameters
+    ----------
+    sensitivity : sequence of xarray.Dataset
+        Sensitivity runs (``lsbg sensitivity``), named
+        ``{trace}_beta{spiral}_{case}.nc``, of one pair.
+
+    Returns
+    -------
+    cells : list of (str, dict, bool)
+        ``(case label, {gear type: run}, True)`` in the order of the case names
+        (:func:`lsbg.tables.line_model.sensitivity_table`'s cells).
+    cases : dict
+        ``{cell label: case name}``.
+    """
     from lsbg.experiments.sensitivity import case_label
 
-    base = select_runs(runs, "line", engine)
-    cells = [("line model (baseline)", base, True),
-             ("point model", select_runs(runs, "point", engine), True)]
     by_case = {}
     for ds in sensitivity:
         stem = Path(ds.encoding["source"]).stem
         case = stem.split("_beta", 1)[1].split("_", 1)[1]
         by_case.setdefault(case, []).append(ds)
-    cases = {}
+    cells, cases = [], {}
     for case in sorted(by_case):
         cells.append((case_label(case), select_runs(by_case[case]), True))
         cases[case_label(case)] = case
-    cells.append(("500-Hz sampling", base, False))
     return cells, cases
 
 

@@ -2,11 +2,14 @@
 
 The paper's three claims are answered for the practice design
 (:mod:`lsbg.practice`) at its own load, its rated torque, from the files of
-the practice design point (results/practice/): stability from its
-line-model runs (at full rate and at 500 samples per second), the contact
-state from its V-H maps, the service life from its ISO rating, its FE loaded
-TCA aligned and at the envelope's corners, and, by Miner's rule, under the
-load spectrum (:mod:`lsbg.practice.spectrum`) from its load curves.
+the practice design point (results/practice/), in the cells of the published
+pair's tables (the sensitivity cases of ``practice.sensitivity``): stability
+from its line-model runs (at full rate, at 500 samples per second, each
+case's), the contact state from its V-H maps (each case's that reaches it),
+the service life from its ISO rating (with each case's K_v), its FE loaded
+TCA aligned, at each crowning case and at the envelope's corners, and, by
+Miner's rule, under the load spectrum (:mod:`lsbg.practice.spectrum`) from
+its load curves.
 """
 
 from __future__ import annotations
@@ -39,16 +42,17 @@ def by_type(datasets):
 
 
 def practice_claims(runs, vh_maps, ratings, fe_ltcas, curves=None, spectrum=None,
-                    start=0.2, where=""):
-    """The three claims for the practice design at its load.
+                    start=0.2, where="", sensitivity=(), vh_cases=(), fe_cases=()):
+    """The three claims for the practice design at its load, in the published pair's cells.
 
     Parameters
     ----------
     runs : dict
         ``{gear type: line-model run}`` at the practice load.
     vh_maps, ratings, fe_ltcas : dict
-        ``{gear type: dataset}``: V-H maps, ISO ratings (with the FE envelope)
-        and FE loaded TCAs of the practice design point.
+        ``{gear type: dataset}``: V-H maps, ISO ratings (with the FE envelope
+        and the K_v of each case's run) and FE loaded TCAs of the practice
+        design point.
     curves : dict, optional
         ``{gear type: load curve}`` of the practice design: the service life
         is also answered under ``spectrum`` (Miner's rule).
@@ -59,6 +63,13 @@ def practice_claims(runs, vh_maps, ratings, fe_ltcas, curves=None, spectrum=None
         Start of the steady state [s].
     where : str
         The design point in words.
+    sensitivity : sequence of xarray.Dataset
+        The line-model runs of the pair's sensitivity cases (``lsbg
+        sensitivity``, :func:`lsbg.tables.finding.case_cells`).
+    vh_cases, fe_cases : sequence of xarray.Dataset
+        The V-H maps and FE loaded TCAs of the cases that reach them, both
+        types each (:func:`lsbg.tables.claims.contact_state_table`,
+        :func:`lsbg.tables.claims.life_table`).
 
     Returns
     -------
@@ -66,20 +77,24 @@ def practice_claims(runs, vh_maps, ratings, fe_ltcas, curves=None, spectrum=None
         ``{claim: verdict}`` (:func:`lsbg.tables.claims.claim_verdict`).
     tables : dict
         ``stability``, ``contact state``, ``service life`` in the claims' long
-        form (the spectrum's cell among the service life's rows).
+        form (the spectrum's cell among the service life's rows): the cells of
+        the published pair's tables, the point model's aside.
     """
+    from lsbg.tables.finding import case_cells
     from lsbg.tables.line_model import sensitivity_table
     from lsbg.tables.rating import RESOLVED_STRESS_DIFFERENCE
 
-    cells = [(PRACTICE_CELL, runs, True), (PRACTICE_CELL + ", 500-Hz sampling", runs, False)]
+    cases, _ = case_cells(sensitivity)
+    cells = [(PRACTICE_CELL, runs, True), *cases,
+             (PRACTICE_CELL + ", 500-Hz sampling", runs, False)]
     stability = claim_tables.stability_cells(sensitivity_table(cells, start))
     claims = {"stability": claim_tables.claim_verdict(stability, "fluctuates less", where)}
     tables = {"stability": stability}
     if len(vh_maps) == 2:
-        tables["contact state"] = claim_tables.contact_state_table(vh_maps)
+        tables["contact state"] = claim_tables.contact_state_table(vh_maps, vh_cases)
         claims["contact state"] = claim_tables.claim_verdict(tables["contact state"],
                                                              "is lower", where)
-    life = claim_tables.life_table(ratings, fe_ltcas)
+    life = claim_tables.life_table(ratings, fe_ltcas, fe_cases)
     if curves and len(curves) == 2 and spectrum:
         life = pd.concat([life, spectrum_life_table(
             curves, spectrum["load_torque_N_m"], spectrum["torque_fractions"],
@@ -273,7 +288,8 @@ def spectrum_life_table(curves, load_torque, torque_fractions, cycle_shares, res
 
 
 # ------------------------------------------------------------ in the paper report
-def read_practice(runs, vh_maps, ratings, fe_ltcas, geometry_dirs, load_curves, engine):
+def read_practice(runs, vh_maps, ratings, fe_ltcas, geometry_dirs, load_curves, engine,
+                  sensitivity=(), vh_cases=(), fe_cases=()):
     """The practice design point's files, read: ``{gear type: dataset}`` of each kind.
 
     Parameters
@@ -282,12 +298,16 @@ def read_practice(runs, vh_maps, ratings, fe_ltcas, geometry_dirs, load_curves, 
         The files (``results/practice/``, ``results/load_curves/``); any may be empty.
     engine : str
         The engine of the line-model runs.
+    sensitivity, vh_cases, fe_cases : sequence of str
+        The files of the pair's sensitivity cases: line-model runs, V-H maps, FE
+        loaded TCAs (``results/practice/sensitivity/``, ``vh/``, ``tooth/``).
 
     Returns
     -------
     dict
         ``runs``, ``vh_maps``, ``ratings``, ``fe_ltcas``, ``records`` (design.json),
-        ``curves`` (``{(design set, gear type): load curve}``); empty dicts where no file.
+        ``curves`` (``{(design set, gear type): load curve}``); empty dicts where no file;
+        ``sensitivity``, ``vh_cases``, ``fe_cases``: lists of datasets.
     """
     import xarray as xr
 
@@ -308,6 +328,9 @@ def read_practice(runs, vh_maps, ratings, fe_ltcas, geometry_dirs, load_curves, 
     run_files = as_path_list(runs)
     return {"runs": select_runs(open_runs(run_files), "line", engine) if run_files else {},
             "vh_maps": load(vh_maps), "ratings": load(ratings), "fe_ltcas": load(fe_ltcas),
+            "sensitivity": open_runs(as_path_list(sensitivity)),
+            "vh_cases": [xr.load_dataset(p) for p in as_path_list(vh_cases)],
+            "fe_cases": [xr.load_dataset(p) for p in as_path_list(fe_cases)],
             "records": {t: records[t] for t in TYPE_ORDER if t in records},
             "curves": dict(sorted(curves.items(), key=lambda kv: (kv[0][0] != "paper",
                                                                   TYPE_ORDER.index(kv[0][1]))))}

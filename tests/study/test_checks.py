@@ -244,6 +244,9 @@ BEYOND_SCHEMA = {
         {"contact": {"slices": 2}, "sensitivity": {"slices": [0.5]}}, "sensitivity.slices[0]"),
     "sensitivity beyond the damping range": ({"sensitivity": {"mesh_damping_ratio": [100]}},
                                              "sensitivity.mesh_damping_ratio[0] = 100"),
+    "practice cells of no sensitivity key": (
+        {"practice": {"sensitivity": ["crowning", "stiffness"]}},
+        "practice.sensitivity[1] = 'stiffness': must be a key of the sensitivity section"),
     # absurd but finite: loads and speeds the teeth cannot carry, a mesh frequency the
     # full-rate record cannot resolve
     "a load no tooth carries": ({"simulation": {"load_torque_N_m": 1e12}},
@@ -438,7 +441,7 @@ def test_the_parse_time_check_runs_no_analysis_and_keeps_nothing(monkeypatch, tm
 
 
 @pytest.mark.parametrize("names", [(), ("config-test.yaml",), ("config-speed.yaml",),
-                                   ("config-optimise.yaml",)])
+                                   ("config-optimise.yaml",), ("config-cells.yaml",)])
 def test_shipped_configs_pass_with_the_schema_defaults_filled_in(names):
     config = load(*names)
     assert config_check.check_config(config, SCHEMA) == []

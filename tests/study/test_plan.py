@@ -78,7 +78,11 @@ def test_every_run_and_file_of_the_default_study_is_planned_once(default):
                              *study.practice_files("vh_map"), *study.load_curves,
                              *study.optimise_fronts, *study.best_files("rating"),
                              *study.best_files("vh_map"),
-                             *(p["file"] for p in study.cutter_points)]
+                             *(p["file"] for p in study.cutter_points),
+                             *study.pair_case_files("practice", "vh_case"),
+                             *study.pair_case_files("practice", "fe_case"),
+                             *study.pair_case_files("best", "vh_case"),
+                             *study.pair_case_files("best", "fe_case")]
     # the cutter-radius sweep: the LSBG, then ISO 23509's SBG at each nominal cutter radius
     # that fits and at the LSBG's lengthwise curvature radius R_m / sin(beta_m)
     assert [p["file"] for p in study.cutter_points] == [
@@ -117,6 +121,23 @@ def test_every_run_and_file_of_the_default_study_is_planned_once(default):
                                   "line_stiffness_N_per_mm_um_x2")}
     assert {f.rsplit("_beta35_", 1)[1] for f in study.fe_cases()} == {
         f"{case}_ltca.nc" for case in ("crowning_x0", "crowning_x0.5", "crowning_x2")}
+    # the practice and best pairs' cells: the default study's crowning cases on both
+    # traces (practice.sensitivity), every case of the section under 'all'
+    crowning = ("crowning_x0", "crowning_x0.5", "crowning_x2")
+    for flanks in ("practice", "best"):
+        assert study.pair_case_files(flanks, "sensitivity_run") == [
+            f"results/{flanks}/sensitivity/{t}_beta35_{case}.nc" for case in crowning
+            for t in ("logarithmic", "face_milled")]
+        assert study.pair_case_files(flanks, "vh_case", "face_milled") == [
+            f"results/{flanks}/vh/face_milled_beta35_{case}.nc" for case in crowning]
+        assert study.pair_case_files(flanks, "fe_case", "logarithmic") == [
+            f"results/{flanks}/tooth/logarithmic_beta35_{case}_ltca.nc" for case in crowning]
+    every = plan.Study(load(practice={"sensitivity": ["all"]}))
+    assert every.pair_cases == every.sensitivity and len(every.pair_cases) == 13
+    assert every.pair_stage_cases("contact_state") == every.stage_cases("contact_state")
+    assert every.pair_case_run("best", "face_milled", "slices_x2") == \
+        "results/best/sensitivity/face_milled_beta35_slices_x2.nc"
+    assert plan.Study(load(optimise={"enabled": False})).pair_case_files("best", "vh_case") == []
     # the ISO 10300 rating: the paper's point of each trace, K_v from its line run
     assert study.rating_files == ["results/rating/logarithmic_beta35.nc",
                                   "results/rating/circular_beta35.nc"]

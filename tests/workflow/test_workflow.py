@@ -467,18 +467,20 @@ _AGGREGATES = ["combine", "summary", "rating_sweep", "report_paper", "report_swe
                "report_verification", "all"]
 #: The practice design point's jobs of both traces, and the load curves of both designs.
 _PRACTICE_POINT = [f"practice_{step}" for step in (
-    "geometry", "compliance", "fe_ltca", "fe_envelope", "contact_state", "run", "rating")] * 2
+    "geometry", "compliance", "fe_ltca", "fe_envelope", "contact_state", "run", "sensitivity",
+    "rating")] * 2
 _LOAD_CURVES = ["load_curve"] * 4
 #: Each type's ease-off searched (two seeds) and released, and its design point's jobs.
 _OPTIMISE = ["optimise"] * 2 + ["optimise_second_seed"] * 2 + ["optimise_release"] * 2
 _BEST = [f"best_{step}" for step in (
-    "fe_ltca", "fe_envelope", "contact_state", "run", "rating")] * 2
+    "fe_ltca", "fe_envelope", "contact_state", "run", "sensitivity", "rating")] * 2
 #: What the overlay's change reruns: the practice design and everything made from it.
 _PRACTICE_ALL = ["practice_design"] + _PRACTICE_POINT + ["load_curve"] * 2 + _OPTIMISE + _BEST
 #: What a line-model setting reruns of it: the jobs that read the line model or its runs,
 #: the searches (on the line model) and so the chosen designs.
 _PRACTICE_LINE = [f"practice_{step}" for step in (
-    "fe_ltca", "fe_envelope", "contact_state", "run", "rating")] * 2 + _LOAD_CURVES \
+    "fe_ltca", "fe_envelope", "contact_state", "run", "sensitivity", "rating")] * 2 \
+    + _LOAD_CURVES \
     + _OPTIMISE + _BEST
 #: Every job of the test study.
 _EVERYTHING = (["paper_geometry"] * 2 + ["paper_ltca"] * 2 + ["sensitivity"] * 2

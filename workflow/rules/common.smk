@@ -201,12 +201,13 @@ def _words(action, value):
     return [option, *map(str, items)]
 
 
-def case_values(stage):
-    """The ``--case KEY=VALUE`` values of the sensitivity cases that reach ``stage``."""
+def case_values(stage, keys=None):
+    """The ``--case KEY=VALUE`` values of the sensitivity cases that reach ``stage`` (of
+    the sensitivity keys ``keys`` only, if given: the practice and best pairs')."""
     from lsbg.experiments.sensitivity import CASE_STAGES
 
     return [f"{key}={value!r}" for key, values in config["sensitivity"].items()
-            if stage in CASE_STAGES[key] for value in values]
+            if stage in CASE_STAGES[key] and (keys is None or key in keys) for value in values]
 
 
 def command(name, **extra):
@@ -384,6 +385,20 @@ def simulation_params(engine, model):
 def practice_input(kind):
     """A practice design point's file as a rule's input (its trace from the wildcards)."""
     return lambda w: STUDY.practice_file(kind, w.trace)
+
+
+def flank_file(flanks, kind):
+    """A file of the practice design point with the ``flanks`` set's ease-off ("practice",
+    "best"), as a rule's input (its trace from the wildcards)."""
+    if flanks == "practice":
+        return practice_input(kind)
+    return lambda w: STUDY.best_file(kind, w.trace)
+
+
+def case_template(flanks, kind):
+    """The ``{case}`` template of a flank set's case files (``kind``: sensitivity_run,
+    vh_case, fe_case) for ``--out``/``--case-out``, the design point from the wildcards."""
+    return lambda w: template(FILES[f"{flanks}_{kind}"], trace=w.trace, spiral=w.spiral)
 
 
 def design_set_input(paper, practice):

@@ -6,16 +6,24 @@
 # runs the paper point's commands with the overlay as a second --config: the
 # geometry, the FE compliance, the FE loaded TCA aligned and at the envelope's
 # corners, the V-H map, the line-model run and the ISO rating, the three claims'
-# inputs at the practice load (results/practice/). The load curves of both designs
+# inputs at the practice load (results/practice/); and the claims' model-form cells, the
+# sensitivity cases of the keys of practice.sensitivity (lsbg.experiments.sensitivity)
+# with the commands of the published pair's: the cases' line-model runs (`lsbg
+# sensitivity`), their V-H maps in the contact state's process, their FE loaded TCAs in the
+# envelope's, their K_v in the rating. The load curves of both designs
 # (`lsbg load-curve`, results/load_curves/) put the FE loaded TCA and ISO 10300
 # side by side from 10 % to 150 % of each design's rated torque and at the paper's
 # load.
 
 import re
 
+from lsbg.experiments.sensitivity import pair_case_keys
+
 #: The practice design point's configuration: the study's, the overlay over it.
 PRACTICE_CONFIG = [ancient(FILES["study_config"]), FILES["practice_design"]]
 PRACTICE_SPIRAL = dict(spiral=re.escape(PAPER_SPIRAL))
+#: The sensitivity keys whose cases also run on the practice and best pairs.
+PAIR_KEYS = pair_case_keys(config)
 
 
 rule practice_design:
@@ -85,10 +93,15 @@ FLANK_SETS = {"practice": lambda w: PRACTICE_CONFIG}
 if STUDY.optimise:
     FLANK_SETS["best"] = lambda w: [*PRACTICE_CONFIG, STUDY.best_file("overlay", w.trace)]
 
+
+
+
 for flanks, flank_config in FLANK_SETS.items():
 
-    # the FE loaded TCA at the practice load, aligned and (--envelope) at the corners
+    # the FE loaded TCA at the practice load, aligned and (--envelope) at the corners, with
+    # the FE loaded TCAs of the cases that reach it in the envelope's process
     for step, envelope in (("fe_ltca", False), ("fe_envelope", True)):
+        fe_cases = STUDY.pair_stage_cases("fe_ltca") if envelope else []
 
         rule:
             name:
@@ -103,8 +116,11 @@ for flanks, flank_config in FLANK_SETS.items():
                 sources=sources("ltca"),
             output:
                 out=FILES[f"{flanks}_{step}"],
+                cases=[template(FILES[f"{flanks}_fe_case"], case=case) for case in fe_cases],
             params:
-                **command("ltca", set=["contact.compliance=fe"], envelope=envelope),
+                **command("ltca", set=["contact.compliance=fe"], envelope=envelope,
+                          case=case_values("fe_ltca", PAIR_KEYS) if fe_cases else [],
+                          case_out=case_template(flanks, "fe_case") if fe_cases else None),
                 # rerun triggers: the line model's settings and the tooth's (the load and
                 # the flanks: the overlays')
                 contact=FE_TRIGGERS["contact"],
@@ -129,8 +145,11 @@ for flanks, flank_config in FLANK_SETS.items():
         output:
             tca_out=FILES[f"{flanks}_tca"],
             out=FILES[f"{flanks}_vh_map"],
+            cases=[template(FILES[f"{flanks}_vh_case"], case=case)
+                   for case in STUDY.pair_stage_cases("contact_state")],
         params:
-            **command("misalignment-map"),
+            **command("misalignment-map", case=case_values("contact_state", PAIR_KEYS),
+                      case_out=case_template(flanks, "vh_case")),
             settings=plan.contact_state_params(config, PAPER_SPIRAL, SWEEP_ENGINE),
         wildcard_constraints:
             **PRACTICE_SPIRAL,
@@ -160,6 +179,36 @@ for flanks, flank_config in FLANK_SETS.items():
         shell:
             LSBG
 
+    # the cases' line-model runs, as the published pair's (rule sensitivity)
+    if STUDY.pair_cases:
+
+        rule:
+            name:
+                f"{flanks}_sensitivity"
+            input:
+                geometry=FILES["practice_geometry"],
+                config=flank_config,
+                # the slice stiffness of the compliance_fe case
+                fe_ltca=flank_file(flanks, "fe_ltca") if "compliance_fe" in STUDY.pair_cases
+                else [],
+                sources=sources("sensitivity"),
+            output:
+                [template(FILES[f"{flanks}_sensitivity_run"], case=case)
+                 for case in STUDY.pair_cases],
+            params:
+                **command("sensitivity", engine=SWEEP_ENGINE,
+                          case=case_values("dynamics", PAIR_KEYS),
+                          out=case_template(flanks, "sensitivity_run")),
+                settings=simulation_params(SWEEP_ENGINE, "line"),  # rerun trigger
+            wildcard_constraints:
+                **PRACTICE_SPIRAL,
+            log:
+                f"logs/{flanks}_sensitivity/{{trace}}_beta{{spiral}}.log",
+            resources:
+                **runtime(runs=len(STUDY.pair_cases)),
+            shell:
+                LSBG
+
     rule:
         name:
             f"{flanks}_rating"
@@ -168,15 +217,19 @@ for flanks, flank_config in FLANK_SETS.items():
         input:
             geometry=FILES["practice_geometry"],
             config=flank_config,
-            run=lambda w, flanks=flanks: STUDY.practice_file("run", w.trace)
-            if flanks == "practice" else STUDY.best_file("run", w.trace),
+            run=flank_file(flanks, "run"),
             fe_ltca=FILES[f"{flanks}_fe_ltca"],
             fe_envelope=FILES[f"{flanks}_fe_envelope"],
+            # K_v of each case's run: the standard's cells of the life claim
+            case_runs=lambda w, flanks=flanks: [STUDY.pair_case_run(flanks, w.trace, case)
+                                                for case in STUDY.pair_cases],
             sources=sources("rate"),
         output:
             out=FILES[f"{flanks}_rating"],
         params:
-            **command("rate"),
+            **command("rate", case_run=lambda w, flanks=flanks: [
+                f"{case}={STUDY.pair_case_run(flanks, w.trace, case)}"
+                for case in STUDY.pair_cases]),
             rating=plan.canonical({k: config[k] for k in ("rating", "tooth")}),  # rerun trigger
             steady_state=config["statistics"]["steady_state_after_s"],
         wildcard_constraints:

@@ -28,6 +28,10 @@ rule report_paper:
         practice_rating_files=STUDY.practice_files("rating"),
         practice_fe_ltca_files=STUDY.practice_files("fe_ltca"),
         practice_geometry_dirs=STUDY.practice_files("geometry"),
+        # its model-form cells (practice.sensitivity)
+        practice_sensitivity_runs=STUDY.pair_case_files("practice", "sensitivity_run"),
+        practice_vh_case_files=STUDY.pair_case_files("practice", "vh_case"),
+        practice_fe_case_files=STUDY.pair_case_files("practice", "fe_case"),
         load_curve_files=STUDY.load_curves,
         # each type at its best ease-off (rules/optimise.smk)
         optimise_front_files=STUDY.optimise_fronts,
@@ -36,6 +40,9 @@ rule report_paper:
         best_vh_files=STUDY.best_files("vh_map"),
         best_rating_files=STUDY.best_files("rating"),
         best_fe_ltca_files=STUDY.best_files("fe_ltca"),
+        best_sensitivity_runs=STUDY.pair_case_files("best", "sensitivity_run"),
+        best_vh_case_files=STUDY.pair_case_files("best", "vh_case"),
+        best_fe_case_files=STUDY.pair_case_files("best", "fe_case"),
         sources=sources("report", "paper"),
     output:
         report(STUDY.reports["paper"], caption="../report/reports.rst", category="Reports",

@@ -11,7 +11,7 @@ import xarray as xr
 
 KINDS = [
     ("runs/{trace}_beta{angle}_{model}_{engine}.nc", "runs/logarithmic_beta35_line_compiled.nc",
-     "One meshing simulation (also `sensitivity/{trace}_beta{angle}_{case}.nc`, `practice/runs/`, `best/runs/`)."),
+     "One meshing simulation (also `sensitivity/{trace}_beta{angle}_{case}.nc`, `practice/runs/`, `best/runs/`, `practice/sensitivity/`, `best/sensitivity/`)."),
     ("sweep.nc", "sweep.nc", "Every design point's runs and their summaries, on (contact model, trace, spiral angle)."),
     ("geometry/{trace}_beta{angle}/flanks.nc", "geometry/logarithmic_beta35/flanks.nc", "The exact flank surfaces of tooth 0 (also `practice/geometry/`)."),
     ("mesh/{trace}_beta{angle}.nc", "mesh/logarithmic_beta35.nc", "The loaded TCA on the uniform bed (line model)."),
