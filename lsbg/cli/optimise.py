@@ -139,9 +139,7 @@ def add_release_parser(subparsers):
 
 def run_release(args):
     """Handler of ``lsbg release``: its summary lines."""
-    import dataclasses
     import logging
-    from functools import lru_cache
 
     import xarray as xr
 
@@ -149,9 +147,9 @@ def run_release(args):
     from lsbg.files import write_dataset
     from lsbg.gear.geometry import GearPair
     from lsbg.optimise.checks import run_settings
-    from lsbg.optimise.objectives import Evaluator
     from lsbg.optimise.release import (ReleaseSettings, release_dataset, release_design,
                                        released_modification)
+    from lsbg.optimise.verdict import evaluator_factory
     from lsbg.solid.directory import read_design
 
     design = read_design(args.geometry)
@@ -164,11 +162,7 @@ def run_release(args):
         raise CommandError(f"--front: fronts of {', '.join(sorted(traces))}, not of the "
                            f"geometry's {design.trace}")
     compliance, _ = fe_compliance_of(args)
-    pair = GearPair(design)
-
-    @lru_cache(maxsize=None)
-    def evaluator_at(positions):
-        return Evaluator(pair, dataclasses.replace(settings["evaluation"], phases=positions))
+    evaluator_at = evaluator_factory(GearPair(design), settings["evaluation"])
 
     log = logging.getLogger("lsbg.release")
     result = release_design(evaluator_at, settings, release, fronts, compliance, log.info)
