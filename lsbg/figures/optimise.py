@@ -187,13 +187,12 @@ def plot_eaf_difference(ds, projection="transmission_error / contact_pressure"):
     collection.set_clim(-1, 1)
     ax.add_collection(collection)
     bar = fig.colorbar(collection, ax=ax)
-    bar.set_label(f"EAF difference: share of the {traces[0]}'s seeds attaining a point "
-                  f"less the {traces[1]}'s [-]", fontsize="small")
+    bar.set_label(f"EAF difference, {traces[0]} less {traces[1]} [-]", fontsize="small")
     ax.set_xlim(0, reference)
     ax.set_ylim(0, reference)
     for axis, name, setter in ((0, x_name, ax.set_xlabel), (1, y_name, ax.set_ylabel)):
         low, high = float(ds[f"box_low_{name}"]), float(ds[f"box_high_{name}"])
-        unit = ds[f"box_low_{name}"].attrs["units"]
+        unit = ds[f"box_low_{name}"].attrs["units"].replace("urad", "µrad")
         setter(wrap_label(f"{name.replace('_', ' ')}, normalised: 0 = {low:.4g}, "
                           f"1 = {high:.4g} {unit} [-]", 44))
     ax.set_title(f"mean |difference| {float(ds['eaf_difference_statistic'].values[k]):.3g}, "

@@ -426,8 +426,7 @@ class Study:
                 *self.vh_maps, *self.vh_cases(), *self.tooth_files, *self.fe_cases(),
                 *self.rating_files, *self.sweep_files, *extra,
                 *self.practice_files("rating"), *self.practice_files("vh_map"),
-                *self.load_curves, *self.optimise_fronts, *self.trace_fronts,
-                *self.best_files("rating"),
+                *self.load_curves, *self.optimise_fronts, *self.best_files("rating"),
                 *self.best_files("vh_map"), *(p["file"] for p in self.cutter_points)]
 
     # ------------------------------------------------ the cutter-radius sweep

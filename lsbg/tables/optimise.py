@@ -231,7 +231,8 @@ def trace_fronts_table(ds):
     kinds = [TRACE_LABELS.get(str(t), str(t)) for t in ds["trace"].values]
 
     def per_trace(name, fmt="{:.3g}"):
-        return [fmt.format(float(v)) for v in ds[name].values]
+        # a dash where a trace has no front member to say it of
+        return [fmt.format(float(v)) if np.isfinite(v) else "–" for v in ds[name].values]
 
     seeds = [", ".join(f"{h:.3g} (seed {int(s)})" for h, s in zip(ds["hypervolume"].values[k],
                                                                   ds["seed"].values[k]) if s >= 0)
