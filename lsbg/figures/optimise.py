@@ -37,7 +37,7 @@ def plot_fronts(fronts, releases=None):
         Three panels of the loaded TE over the load range [µrad] against the
         contact pressure [MPa], the pattern's movement over the envelope [mm]
         and the mesh loss [%] at the search's positions: the front's members
-        (filled: the study's seed, open: the next), the candidates evaluated
+        (filled: the study's seed, open: the other seeds), the candidates evaluated
         under FE (diamonds: the alternatives), the released design (star) and
         the shared ease-off (a cross: it need not meet the constraints), one
         colour per type. With ``releases``, a fourth: the FE loaded TE over the
@@ -129,7 +129,7 @@ def plot_hypervolume(fronts):
     matplotlib.figure.Figure
         Hypervolume of the feasible front [-] (normalised objectives, the
         dataset's reference point) against the generation, one colour per type,
-        solid the study's seed, dashed the next.
+        solid the study's seed, dashed the others.
     """
     fig, axes = new_figure(1, 1, width=6.0, height=3.4)
     ax = axes[0][0]
