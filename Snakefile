@@ -74,6 +74,7 @@ for extension in config["extensions"]:
 # rate limit, whose timers kept Snakemake itself busy (lsbg.study.job_order).
 onstart:
     check_analyses()
+    report_search_estimate()
     plan.write_study_config(FILES["study_config"], config)
     start_job_server()
     plan.lift_job_rate_limit(workflow)

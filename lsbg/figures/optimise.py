@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from matplotlib.ticker import MaxNLocator
 
-from lsbg.figures.base import axis_label, figure_legend, new_figure, type_color
+from lsbg.figures.base import axis_label, figure_legend, new_figure, type_color, wrap_label
 
-__all__ = ["plot_fronts", "plot_hypervolume"]
+__all__ = ["plot_fronts", "plot_hypervolume", "plot_eaf_difference"]
 
 #: The fronts' panels: (x objective, y objective).
 FRONT_PANELS = (("transmission_error", "contact_pressure"),
@@ -37,7 +37,7 @@ def plot_fronts(fronts, releases=None):
         Three panels of the loaded TE over the load range [µrad] against the
         contact pressure [MPa], the pattern's movement over the envelope [mm]
         and the mesh loss [%] at the search's positions: the front's members
-        (filled: the study's seed, open: the next), the candidates evaluated
+        (filled: the study's seed, open: the other seeds), the candidates evaluated
         under FE (diamonds: the alternatives), the released design (star) and
         the shared ease-off (a cross: it need not meet the constraints), one
         colour per type. With ``releases``, a fourth: the FE loaded TE over the
@@ -129,7 +129,7 @@ def plot_hypervolume(fronts):
     matplotlib.figure.Figure
         Hypervolume of the feasible front [-] (normalised objectives, the
         dataset's reference point) against the generation, one colour per type,
-        solid the study's seed, dashed the next.
+        solid the study's seed, dashed the others.
     """
     fig, axes = new_figure(1, 1, width=6.0, height=3.4)
     ax = axes[0][0]
@@ -144,4 +144,59 @@ def plot_hypervolume(fronts):
     ax.set_ylim(bottom=0)
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize="small")
+    return fig
+
+
+def plot_eaf_difference(ds, projection="transmission_error / contact_pressure"):
+    """The difference of the two traces' empirical attainment functions in one projection.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        :func:`lsbg.optimise.fronts.trace_fronts_dataset`.
+    projection : str
+        One of its ``projection`` labels (``x / y``); the first where it has not this one.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The normalised common box [0, reference point]^2 of the two objectives [-],
+        each rectangle coloured by the share of the first trace's seeds attaining it
+        less the second's [-] (red: the first trace's, blue: the second's), its
+        statistic and permutation p in the title.
+    """
+    import numpy as np
+    from matplotlib.collections import PatchCollection
+    from matplotlib.patches import Rectangle
+
+    labels = [str(p) for p in ds["projection"].values]
+    k = labels.index(projection) if projection in labels else 0
+    x_name, y_name = labels[k].split(" / ")
+    from lsbg.gear.design import TRACE_LABELS
+
+    traces = [TRACE_LABELS.get(str(t), str(t)) for t in ds["trace"].values]
+    reference = float(ds.attrs["reference_point"])
+    rectangles = ds["eaf_rectangle"].values[k]
+    difference = ds["eaf_difference"].values[k]
+    keep = np.isfinite(difference)
+    fig, axes = new_figure(1, 1, width=6.4, height=4.6)
+    ax = axes[0][0]
+    patches = [Rectangle((r[0], r[1]), r[2] - r[0], r[3] - r[1]) for r in rectangles[keep]]
+    collection = PatchCollection(patches, cmap="RdBu_r", edgecolor="none")
+    collection.set_array(difference[keep])
+    collection.set_clim(-1, 1)
+    ax.add_collection(collection)
+    bar = fig.colorbar(collection, ax=ax)
+    bar.set_label(f"EAF difference, {traces[0]} less {traces[1]} [-]", fontsize="small")
+    ax.set_xlim(0, reference)
+    ax.set_ylim(0, reference)
+    for axis, name, setter in ((0, x_name, ax.set_xlabel), (1, y_name, ax.set_ylabel)):
+        low, high = float(ds[f"box_low_{name}"]), float(ds[f"box_high_{name}"])
+        unit = ds[f"box_low_{name}"].attrs["units"].replace("urad", "µrad")
+        setter(wrap_label(f"{name.replace('_', ' ')}, normalised: 0 = {low:.4g}, "
+                          f"1 = {high:.4g} {unit} [-]", 44))
+    ax.set_title(f"mean |difference| {float(ds['eaf_difference_statistic'].values[k]):.3g}, "
+                 f"permutation p {float(ds['eaf_difference_p'].values[k]):.2g} "
+                 f"({int(ds.attrs['labelings'])} labelings)", fontsize="small")
+    ax.grid(True, alpha=0.3)
     return fig

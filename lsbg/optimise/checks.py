@@ -32,7 +32,7 @@ from lsbg.optimise.search import ALGORITHMS
 from lsbg.optimise.space import DesignSpace, bounds_problems
 
 __all__ = ["EVALUATION_COST", "evaluation_seconds", "optimise_problems", "rated_torque",
-           "run_settings", "envelope_corners_of"]
+           "run_settings", "envelope_corners_of", "search_estimate"]
 
 #: The cost of one evaluation on one core of the 2-core machine lsbg is developed
 #: on [s]: a base (the curvature-free work of each state: its separation table and
@@ -129,6 +129,29 @@ def budget_problems(config):
             f"{population * generations} evaluations of each trace, about {needed:.3g} min on "
             f"{cores} ({each * 1e3:.2g} ms each), more than limits.optimise_minutes = "
             f"{minutes!r}"]
+
+
+def search_estimate(config, traces=2):
+    """The study's ease-off searches: their job count and estimated CPU-hours.
+
+    Parameters
+    ----------
+    config : dict
+        The configuration, the schema's defaults filled in.
+    traces : int
+        The traces searched [-].
+
+    Returns
+    -------
+    jobs : int
+        Searches (``optimise.seeds`` per trace) [-].
+    cpu_hours : float
+        Their estimated CPU time, :func:`evaluation_seconds` per design [h].
+    """
+    section = config.get("optimise", {})
+    jobs = traces * int(section.get("seeds", 3))
+    designs = section.get("population", 20) * section.get("generations", 18)
+    return jobs, jobs * designs * evaluation_seconds(config) / 3600
 
 
 def _roughness_key(config):

@@ -47,7 +47,7 @@ from lsbg.optimise.verdict import (CONVERGED_QUANTITIES, FE_QUANTITIES, STATE_FI
 
 __all__ = ["PROXIES", "VERDICT_QUANTITIES", "ReleaseSettings", "release_problems",
            "candidates_of", "verdict_values", "release_design", "release_dataset",
-           "released_modification"]
+           "released_modification", "seeds_agree"]
 
 #: The quantities a preference may weigh and a release compare: the FE loaded TCA's, and
 #: the bearing pattern's movement (unloaded TCA) and the mesh loss (converged uniform bed).
@@ -344,6 +344,36 @@ def release_design(evaluator_at, settings, release, fronts, compliance, log=None
             "chosen_fe_change": change, "seconds": time.perf_counter() - started}
 
 
+def seeds_agree(front_chosen, verdict, criteria, tolerance):
+    """Whether every seed's own answer is the same: all keep the shared design, or all
+    release designs whose criteria are within ``tolerance`` of each other.
+
+    Parameters
+    ----------
+    front_chosen : sequence of int
+        Each front's own answer (index in the candidates, -1: the shared design stays).
+    verdict : dict
+        ``{name: array over the candidates}``, the verdict's figures.
+    criteria : sequence of str
+    tolerance : float
+        Relative [-].
+
+    Returns
+    -------
+    bool
+    """
+    chosen = [int(k) for k in front_chosen]
+    if all(k < 0 for k in chosen):
+        return True
+    if any(k < 0 for k in chosen):
+        return False
+    for name in criteria:
+        values = np.asarray(verdict[name], float)[chosen]
+        if values.max() - values.min() > tolerance * np.abs(values).max():
+            return False
+    return True
+
+
 def release_dataset(result, release, attrs=None):
     """The release's dataset: the candidates and the shared design under every model.
 
@@ -365,7 +395,8 @@ def release_dataset(result, release, attrs=None):
         design), ``fe_evaluated``, ``released``, ``checked_edge_contact`` and
         ``chosen``; scalars ``reference_<model>_<name>`` of the shared design.
         Attributes: the settings, both resolutions, ``chosen`` (-1: the shared
-        design stays), each front's own answer, the chosen design's rank under
+        design stays), each front's own answer, ``seeds_agree`` (1: every seed's own
+        answer the same, :func:`seeds_agree`), the chosen design's rank under
         each alternative rule, ``chosen_fe_change``.
     """
     import xarray as xr
@@ -423,6 +454,8 @@ def release_dataset(result, release, attrs=None):
             "shared_kept": int(result["chosen"] < 0),
             "front_seeds": " ".join(str(s) for s in seeds),
             **{f"seed{s}_chosen": int(k) for s, k in zip(seeds, result["front_chosen"])},
+            "seeds_agree": int(seeds_agree(result["front_chosen"], result["verdict"],
+                                           release.criteria, release.tolerance)),
             **{f"rank_under_{rule}": r for rule, r in result["ranks"].items()},
             "chosen_fe_change": float(result["chosen_fe_change"]),
             "released_candidates": int(np.sum(result["released"])),

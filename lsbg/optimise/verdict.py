@@ -31,7 +31,7 @@ import dataclasses
 import numpy as np
 
 __all__ = ["CONVERGED_QUANTITIES", "FE_QUANTITIES", "STATE_FIGURES", "Resolution", "converged",
-           "uniform_bed_values", "fe_state_figures", "fe_group_values", "fe_combined"]
+           "evaluator_factory", "uniform_bed_values", "fe_state_figures", "fe_group_values", "fe_combined"]
 
 #: The uniform-bed quantities whose convergence with the positions is required (the ones
 #: the positions change: the loaded TCA's; the unloaded TCA's have their own grid).
@@ -146,6 +146,30 @@ def converged(evaluate, start, tolerance, largest, compared=None):
         positions, values = 2 * positions, finer
     return values, Resolution(positions, tuple(changes), bool(changes[-1] < tolerance),
                               float(tolerance))
+
+
+def evaluator_factory(pair, evaluation):
+    """``evaluator_at(positions) -> Evaluator`` of a pair, each resolution built once.
+
+    Parameters
+    ----------
+    pair : lsbg.gear.geometry.GearPair
+    evaluation : lsbg.optimise.objectives.EvaluationSettings
+        The search's (``phases`` replaced by the positions asked for).
+
+    Returns
+    -------
+    callable
+    """
+    from functools import lru_cache
+
+    from lsbg.optimise.objectives import Evaluator
+
+    @lru_cache(maxsize=None)
+    def evaluator_at(positions):
+        return Evaluator(pair, dataclasses.replace(evaluation, phases=positions))
+
+    return evaluator_at
 
 
 def uniform_bed_values(evaluator_at, modifications, positions, names=None):

@@ -416,10 +416,11 @@ class Study:
 
     @property
     def optimise_seeds(self):
-        """The seeds of each trace's search: the study's and the next (the fronts of two
-        seeds compared, the convergence evidence)."""
+        """The seeds of each trace's searches: ``optimise.seeds`` of them from the study's
+        ``optimise.seed`` on (the fronts compared trace against trace, the convergence
+        evidence)."""
         seed = int(self.config["optimise"]["seed"])
-        return [seed, seed + 1]
+        return list(range(seed, seed + int(self.config["optimise"].get("seeds", 3))))
 
     def optimise_front(self, trace, seed):
         return _format(FILES["optimise_front"], trace=trace, spiral=self.paper_spiral,
@@ -440,6 +441,18 @@ class Study:
     def optimise_releases(self):
         """Each trace's release (lsbg release; none without the optimisation)."""
         return [self.optimise_release(t) for t in self.practice_traces] if self.optimise else []
+
+    @property
+    def optimise_converged_fronts(self):
+        """Each trace's fronts at converged positions (lsbg converge-front; none without
+        the optimisation)."""
+        return [_format(FILES["optimise_converged_front"], trace=t, spiral=self.paper_spiral)
+                for t in self.practice_traces] if self.optimise else []
+
+    @property
+    def trace_fronts(self):
+        """The traces' fronts compared (lsbg trace-fronts; none without the optimisation)."""
+        return [FILES["trace_fronts"]] if self.optimise else []
 
     def best_file(self, kind, trace):
         """A file of the practice design point with each type's chosen ease-off: ``kind``

@@ -62,6 +62,10 @@ FILES = {
     # the fronts' candidates under the verdict's models and the released ease-off (lsbg release)
     "optimise_release": "results/optimise/{trace}_beta{spiral}_release.nc",
     "best_overlay": "results/optimise/{trace}_beta{spiral}_best.yaml",
+    # each front re-evaluated at the release's converged positions (lsbg converge-front),
+    # and the traces' fronts compared (lsbg trace-fronts)
+    "optimise_converged_front": "results/optimise/{trace}_beta{spiral}_converged_front.nc",
+    "trace_fronts": "results/optimise/trace_fronts.nc",
     "best_fe_ltca": "results/best/tooth/{trace}_beta{spiral}_ltca.nc",
     "best_fe_envelope": "results/best/tooth/{trace}_beta{spiral}_envelope.nc",
     "best_tca": "results/best/tca/{trace}_beta{spiral}.nc",

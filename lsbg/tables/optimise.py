@@ -14,10 +14,12 @@ import numpy as np
 import pandas as pd
 
 from lsbg.aggregate.runs import TYPE_ORDER, gear_type
+from lsbg.gear.design import TRACE_LABELS
 
 __all__ = ["read_fronts", "study_seed", "study_fronts", "seed_table", "COEFFICIENTS",
            "read_releases", "release_words",
-           "release_table", "release_text", "release_efficiency_text"]
+           "release_table", "release_text", "release_efficiency_text", "trace_fronts_table",
+           "trace_fronts_text"]
 
 #: The ease-off coefficients shown [um].
 COEFFICIENTS = ("lengthwise_crowning", "profile_crowning", "bias", "spiral_angle_correction",
@@ -215,3 +217,66 @@ def release_efficiency_text(releases):
                      f"{100 - float(ds['uniform_mesh_loss'].values[k]):.2f} % with its own")
     return ("**Mesh efficiency** (sliding friction of the loaded TCA's line loads on the "
             "uniform bed, at converged positions): " + "; ".join(parts) + ".") if parts else ""
+
+
+def trace_fronts_table(ds):
+    """The trace-against-trace statistics (:func:`lsbg.optimise.fronts.trace_fronts_dataset`),
+    one row each, a column per trace (the pair's statistics in the first's column).
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``statistic`` and one column per gear type; the hypervolumes per seed as text.
+    """
+    kinds = [TRACE_LABELS.get(str(t), str(t)) for t in ds["trace"].values]
+
+    def per_trace(name, fmt="{:.3g}"):
+        # a dash where a trace has no front member to say it of
+        return [fmt.format(float(v)) if np.isfinite(v) else "–" for v in ds[name].values]
+
+    seeds = [", ".join(f"{h:.3g} (seed {int(s)})" for h, s in zip(ds["hypervolume"].values[k],
+                                                                  ds["seed"].values[k]) if s >= 0)
+             for k in range(len(kinds))]
+    rows = [("hypervolume of each seed's converged front [-]", *seeds),
+            ("hypervolume, median [-]", *per_trace("hypervolume_median")),
+            ("hypervolume, spread (largest less least) [-]", *per_trace("hypervolume_spread")),
+            ("members of the pooled converged front", *per_trace("pooled_front_members", "{:.0f}")),
+            ("share of its pooled front the other trace dominates", *per_trace(
+                "dominated_share", "{:.0%}")),
+            ("additive epsilon-indicator against the other's front [-]",
+             *per_trace("epsilon_additive")),
+            ("Vargha-Delaney A12 of the hypervolumes (first against second)",
+             f"{float(ds['a12']):.3g}", ""),
+            ("Mann-Whitney U, exact two-sided p", f"U = {float(ds['mann_whitney_u']):.3g}, "
+             f"p = {float(ds['mann_whitney_p']):.3g}", ""),
+            ("EAF difference, mean over the 2-D projections, permutation p",
+             f"{float(ds['eaf_difference_mean_statistic']):.3g}, "
+             f"p = {float(ds['eaf_difference_mean_p']):.3g}", ""),
+            ("verdict (docs/optimise.md)", ds.attrs["verdict_text"]
+             + (" (indicative)" if ds.attrs["indicative"] else ""), "")]
+    rows += [(f"EAF difference, {p.replace('_', ' ')}: mean |difference|, p",
+              f"{s:.3g}, p = {q:.2g}", "")
+             for p, s, q in zip(ds["projection"].values, ds["eaf_difference_statistic"].values,
+                                ds["eaf_difference_p"].values)]
+    return pd.DataFrame(rows, columns=["statistic", *kinds])
+
+
+def trace_fronts_text(ds):
+    """The trace-level answer in words, with its limits (the seeds, the labelings)."""
+    kinds = [TRACE_LABELS.get(str(t), str(t)) for t in ds["trace"].values]
+    seeds = [int((ds["seed"].values[k] >= 0).sum()) for k in range(len(kinds))]
+    members = [int(v) for v in ds["pooled_front_members"].values]
+    hv = ds["hypervolume_median"].values
+    eps = ds["epsilon_additive"].values
+    if not all(members):
+        empty = " and ".join(k for k, m in zip(kinds, members) if not m)
+        return (f"**Trace against trace:** no verdict: no search of the {empty} kept a feasible "
+                f"front member at the converged positions ({seeds[0]} against {seeds[1]} seeds; "
+                f"a budget this small finds none).")
+    return (f"**Trace against trace** ({seeds[0]} against {seeds[1]} seeds, each front at "
+            f"{ds.attrs['positions'].split()[0]} positions): median hypervolume {hv[0]:.3g} "
+            f"({kinds[0]}) against {hv[1]:.3g} ({kinds[1]}), A12 {float(ds['a12']):.2f}; the "
+            f"additive epsilon-indicator {eps[0]:.3g} ({kinds[0]} to cover {kinds[1]}) against "
+            f"{eps[1]:.3g}. By the rule of docs/optimise.md: {ds.attrs['verdict_text']}."
+            + (f" Indicative only: {ds.attrs['least_attainable_p_note']}."
+               if ds.attrs["indicative"] else ""))

@@ -46,6 +46,7 @@ COMMANDS = {
     "optimise": "--geometry {geo} --out {out}",
     "release": "--geometry {geo} --front {text} --compliance-file {root}/c.nc --out {out} "
                "--overlay-out {root}/best.yaml",
+    "converge-front": "--geometry {geo} --front {text} --release {root}/r.nc --out {out}",
     "cutter-point": "--roles nominal --radius-mm 76.2 --out {out}",
     "kernels": "--out {root}/kernels.json",
 }
@@ -54,7 +55,8 @@ COMMANDS = {
 FILES_ONLY = {"check-config": "config.yaml", "combine": "--runs r.nc --out o.nc",
               "speed-curve": "--runs r.nc --out o.nc", "report": "paper --out o.html",
               "checks": "--geometry g --mesh m.nc --run r.nc --out o.nc",
-              "notebook-kernel": "--connection-file kernel.json"}
+              "notebook-kernel": "--connection-file kernel.json",
+              "trace-fronts": "--converged a.nc b.nc --out o.nc"}
 
 #: A valid value other than the default of one key per section, and the value it reads as.
 GOOD = {

@@ -88,11 +88,15 @@ def test_every_run_and_file_of_the_default_study_is_planned_once(default):
     assert [p["file"] for p in study.cutter_points] == [
         "results/cutter/lsbg.nc", *(f"results/cutter/face_milled_r{r}.nc" for r in (
             "44.45", "63.5", "76.2", "95.25", "114.3", "127.581"))]
-    # each trace's search at two seeds, and the chosen ease-off's rating and V-H map: the
-    # practice pair's traces, its SBG ISO 23509's face-milled one
+    # each trace's search at optimise.seeds = 3 seeds, and the chosen ease-off's rating and
+    # V-H map: the practice pair's traces, its SBG ISO 23509's face-milled one; each trace's
+    # converged fronts and the traces' comparison
     assert study.practice_traces == ("logarithmic", "face_milled")
     assert study.optimise_fronts == [f"results/optimise/{t}_beta35_seed{s}_front.nc"
-                                     for t in ("logarithmic", "face_milled") for s in (1, 2)]
+                                     for t in ("logarithmic", "face_milled") for s in (1, 2, 3)]
+    assert study.optimise_converged_fronts == [
+        f"results/optimise/{t}_beta35_converged_front.nc" for t in ("logarithmic", "face_milled")]
+    assert study.trace_fronts == ["results/optimise/trace_fronts.nc"]
     assert study.best_files("rating") == ["results/best/rating/logarithmic_beta35.nc",
                                           "results/best/rating/face_milled_beta35.nc"]
     # the practice design point of each trace and the load curves of both designs (the

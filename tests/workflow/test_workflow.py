@@ -470,8 +470,10 @@ _PRACTICE_POINT = [f"practice_{step}" for step in (
     "geometry", "compliance", "fe_ltca", "fe_envelope", "contact_state", "run", "sensitivity",
     "rating")] * 2
 _LOAD_CURVES = ["load_curve"] * 4
-#: Each type's ease-off searched (two seeds) and released, and its design point's jobs.
-_OPTIMISE = ["optimise"] * 2 + ["optimise_second_seed"] * 2 + ["optimise_release"] * 2
+#: Each type's ease-off searched (three seeds) and released, its fronts at converged
+#: positions and the traces' fronts compared, and its design point's jobs.
+_OPTIMISE = (["optimise"] * 6 + ["optimise_release"] * 2 + ["optimise_converged_front"] * 2
+             + ["trace_fronts"])
 _BEST = [f"best_{step}" for step in (
     "fe_ltca", "fe_envelope", "contact_state", "run", "sensitivity", "rating")] * 2
 #: What the overlay's change reruns: the practice design and everything made from it.
@@ -494,8 +496,8 @@ _CUTTER = ["cutter_lsbg"] + _CUTTER_SBG
 #: The loaded TCA's jobs: the commands that reach lsbg.tca.loaded and what reads them.
 #: The practice and best points' jobs that the sensitivity cases do not reach: the runs
 #: and the searches (the chosen design is unchanged, so its runs are too).
-_NO_CASES = ("practice_run", "best_run", "optimise", "optimise_second_seed", "optimise_release",
-             "load_curve")
+_NO_CASES = ("practice_run", "best_run", "optimise", "optimise_release",
+             "optimise_converged_front", "trace_fronts", "load_curve")
 _LOADED_TCA = (["paper_ltca"] * 2 + ["fe_ltca"] * 2 + ["fe_sensitivity"] * 2
                + ["contact_state"] * 2 + ["sensitivity"] * 2 + ["rating"] * 2 + _CHECKS
                + _AGGREGATES)

@@ -92,6 +92,22 @@ def check_analyses():
     stop_if(problems)
 
 
+def report_search_estimate():
+    """Print the ease-off searches' job count and estimated CPU-hours (the Snakefile's
+    ``onstart``, before any job; lsbg.optimise.checks.search_estimate)."""
+    if not STUDY.optimise:
+        return
+    from lsbg.optimise.checks import search_estimate
+
+    traces = STUDY.practice_traces
+    jobs, hours = search_estimate(config, len(traces))
+    o = config["optimise"]
+    logger.info(f"ease-off searches: {jobs} jobs ({len(traces)} traces x {o['seeds']} seeds, "
+                f"{o['population']} x {o['generations']} designs each), about {hours:.3g} "
+                f"CPU-hours estimated, {o['workers']} CPUs per job; then per trace a release "
+                f"and a converge-front job, and one trace-fronts job")
+
+
 def stop_if(problems):
     """Print ``problems`` (lines naming a configuration key) and exit 1, if any."""
     if problems:

@@ -36,6 +36,7 @@ rule report_paper:
         # each type at its best ease-off (rules/optimise.smk)
         optimise_front_files=STUDY.optimise_fronts,
         optimise_release_files=STUDY.optimise_releases,
+        trace_fronts_files=STUDY.trace_fronts,
         best_run_files=STUDY.best_files("run"),
         best_vh_files=STUDY.best_files("vh_map"),
         best_rating_files=STUDY.best_files("rating"),
