@@ -285,10 +285,9 @@ def case_simulation(key, value, simulation):
 
     Parameters
     ----------
-    key : str
-        A case's key (:func:`parse_case`).
-    value : float or str
-        Its factor, switch value or corner label.
+    key, value
+        The case's key and its factor, switch value or corner label, as
+        :func:`case_sections` takes them.
     simulation : dict
         The study's ``simulation`` section.
 
