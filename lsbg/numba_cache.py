@@ -37,7 +37,8 @@ __all__ = ["COMPILED_MODULES", "KEEP_CACHES", "numba_cache_root", "compiled_sour
 
 #: The modules with numba-compiled code (``cache=True``), relative to the package.
 COMPILED_MODULES = ("contact/law.py", "contact/kernels.py", "contact/statics.py",
-                    "dynamics/settings.py", "dynamics/compiled_engine.py", "solid/render.py",
+                    "dynamics/settings.py", "dynamics/compiled_engine.py", "dynamics/driveline.py",
+                    "solid/render.py",
                     "stats/kernels.py", "tca/surface.py", "tooth/cholesky.py")
 #: Versions of the compiled sources whose caches are kept in a root (the most recently used).
 KEEP_CACHES = 3

@@ -319,7 +319,7 @@ def _settings_problems(config):
     problems = (engine_problems(config, engines_run(config)) + driveline_problems(config)
                 + contact_problems(config) + sensitivity_problems(config)
                 + operating_problems(config))
-    if config.get("speed_sweep"):
+    if config.get("speed_sweep") and config["speed_sweep"].get("enabled", True):
         problems += speed_sweep_problems(config)
     return problems
 

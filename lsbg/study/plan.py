@@ -313,8 +313,9 @@ class Study:
     # ---------------------------------------------------------- speed sweep
     @property
     def speed_sweep(self):
-        """The ``speed_sweep`` section, or None."""
-        return self.config.get("speed_sweep") or None
+        """The ``speed_sweep`` section, or None (none, or not ``enabled``)."""
+        section = self.config.get("speed_sweep") or None
+        return section if section and section.get("enabled", True) else None
 
     @property
     def speed_spiral(self):

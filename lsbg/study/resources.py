@@ -117,7 +117,7 @@ def engines_run(config):
                                for e in engines["reference"].get(model, []))}
     run |= {sweep.get("engine", engines["sweep"]) for sweep in (config.get("sweeps") or {}).values()
             if isinstance(sweep, dict)}
-    if config.get("speed_sweep"):
+    if (config.get("speed_sweep") or {}).get("enabled", True) and config.get("speed_sweep"):
         run.add(config["speed_sweep"]["engine"])
     return run
 

@@ -221,7 +221,8 @@ def release_efficiency_text(releases):
 
 def trace_fronts_table(ds):
     """The trace-against-trace statistics (:func:`lsbg.optimise.fronts.trace_fronts_dataset`),
-    one row each, a column per trace (the pair's statistics in the first's column).
+    one row each, a column per trace (the pair's statistics in the first's column, the
+    second's saying so).
 
     Returns
     -------
@@ -229,6 +230,7 @@ def trace_fronts_table(ds):
         ``statistic`` and one column per gear type; the hypervolumes per seed as text.
     """
     kinds = [TRACE_LABELS.get(str(t), str(t)) for t in ds["trace"].values]
+    pair_cell = f"(of the pair: under {kinds[0]})"
 
     def per_trace(name, fmt="{:.3g}"):
         # a dash where a trace has no front member to say it of
@@ -246,16 +248,16 @@ def trace_fronts_table(ds):
             ("additive epsilon-indicator against the other's front [-]",
              *per_trace("epsilon_additive")),
             ("Vargha-Delaney A12 of the hypervolumes (first against second)",
-             f"{float(ds['a12']):.3g}", ""),
+             f"{float(ds['a12']):.3g}", pair_cell),
             ("Mann-Whitney U, exact two-sided p", f"U = {float(ds['mann_whitney_u']):.3g}, "
-             f"p = {float(ds['mann_whitney_p']):.3g}", ""),
+             f"p = {float(ds['mann_whitney_p']):.3g}", pair_cell),
             ("EAF difference, mean over the 2-D projections, permutation p",
              f"{float(ds['eaf_difference_mean_statistic']):.3g}, "
-             f"p = {float(ds['eaf_difference_mean_p']):.3g}", ""),
+             f"p = {float(ds['eaf_difference_mean_p']):.3g}", pair_cell),
             ("verdict (docs/optimise.md)", ds.attrs["verdict_text"]
-             + (" (indicative)" if ds.attrs["indicative"] else ""), "")]
+             + (" (indicative)" if ds.attrs["indicative"] else ""), pair_cell)]
     rows += [(f"EAF difference, {p.replace('_', ' ')}: mean |difference|, p",
-              f"{s:.3g}, p = {q:.2g}", "")
+              f"{s:.3g}, p = {q:.2g}", pair_cell)
              for p, s, q in zip(ds["projection"].values, ds["eaf_difference_statistic"].values,
                                 ds["eaf_difference_p"].values)]
     return pd.DataFrame(rows, columns=["statistic", *kinds])

@@ -10,7 +10,7 @@ from scipy.integrate import quad
 from lsbg.contact import ContactParameters, MeshContact, calibrated_line_stiffness
 from lsbg.contact import kernels
 from lsbg.gear.design import GearPairDesign
-from lsbg.dynamics.compiled_engine import integrate, tableau
+from lsbg.dynamics.compiled_engine import PRESCRIBED, integrate, tableau
 from lsbg.gear.geometry import GearPair
 
 LOAD = 1964.99
@@ -132,9 +132,11 @@ def test_mesh_mode_rings_at_its_frequency_with_its_damping_ratio():
     omega_mean = 2 * math.pi * contact.natural_frequency(GEAR_INERTIA)
     expected_zeta = zeta * omega / omega_mean  # stiffness-proportional slice damping
     times = np.linspace(0.0, 0.006, 12001)
-    states, status, *_ = integrate(times, rest - 2e-5, 0.0, 0.0, 1.0, LOAD, GEAR_INERTIA,
-                                   *contact.arrays, *tableau("DOP853"), 1e-11, 1e-14, 1e-10,
-                                   1e-5, 1e-3, 1e3)
+    # the pinion held at rest (speed 0, ramp 1 s): the gear's angle and speed
+    states, status, *_ = integrate(PRESCRIBED, times, np.array([rest - 2e-5, 0.0]),
+                                   np.array([0.0, 1.0, LOAD, GEAR_INERTIA]), *contact.arrays,
+                                   *tableau("DOP853"), 1e-11, np.array([1e-14, 1e-10]), 1e-5,
+                                   1e-3, 1e3, 1)
     assert status == 0
     x = states[:, 0] - rest
     peaks = np.flatnonzero((x[1:-1] > x[:-2]) & (x[1:-1] >= x[2:])) + 1

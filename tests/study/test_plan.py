@@ -127,17 +127,19 @@ def test_every_run_and_file_of_the_default_study_is_planned_once(default):
         f"{case}_ltca.nc" for case in ("crowning_x0", "crowning_x0.5", "crowning_x2")}
     # the practice and best pairs' cells: the default study's crowning cases on both
     # traces (practice.sensitivity), every case of the section under 'all'
+    # the practice and best pairs' runs also at the other speeds and under the driveline
     crowning = ("crowning_x0", "crowning_x0.5", "crowning_x2")
+    dynamics = (*crowning, "pinion_speed_x0.25", "pinion_speed_x1.5", "boundary_driveline")
     for flanks in ("practice", "best"):
         assert study.pair_case_files(flanks, "sensitivity_run") == [
-            f"results/{flanks}/sensitivity/{t}_beta35_{case}.nc" for case in crowning
+            f"results/{flanks}/sensitivity/{t}_beta35_{case}.nc" for case in dynamics
             for t in ("logarithmic", "face_milled")]
         assert study.pair_case_files(flanks, "vh_case", "face_milled") == [
             f"results/{flanks}/vh/face_milled_beta35_{case}.nc" for case in crowning]
         assert study.pair_case_files(flanks, "fe_case", "logarithmic") == [
             f"results/{flanks}/tooth/logarithmic_beta35_{case}_ltca.nc" for case in crowning]
     every = plan.Study(load(practice={"sensitivity": ["all"]}))
-    assert every.pair_cases == every.sensitivity and len(every.pair_cases) == 13
+    assert every.pair_cases == every.sensitivity and len(every.pair_cases) == 16
     assert every.pair_stage_cases("contact_state") == every.stage_cases("contact_state")
     assert every.pair_case_run("best", "face_milled", "slices_x2") == \
         "results/best/sensitivity/face_milled_beta35_slices_x2.nc"

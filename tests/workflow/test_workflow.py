@@ -72,9 +72,10 @@ def test_default_and_test_configs_are_valid_and_plan_the_study(tmp_path):
     assert len(maps) == len(set(maps)) == len(points)
     # The settings lsbg reads, as validated (schema defaults filled in).
     written = yaml.safe_load((tmp_path / "results" / "config.yaml").read_text(encoding="utf-8"))
-    assert set(written) == {"design", "simulation", "contact", "flank_modification",
-                            "misalignment", "tca", "misalignment_map", "statistics",
-                            "tooth", "rating", "practice", "optimise", "limits"}
+    assert set(written) == {"design", "simulation", "driveline", "contact",
+                            "flank_modification", "misalignment", "tca", "misalignment_map",
+                            "statistics", "tooth", "rating", "practice", "optimise", "limits",
+                            "speed_sweep"}
     assert written["simulation"]["duration_s"] == config["simulation"]["duration_s"]
     # the search's budget as configured (lsbg optimise reads it from this file)
     assert written["optimise"]["population"] * written["optimise"]["generations"] == 360
@@ -324,9 +325,9 @@ def test_study_writes_the_summary_table(study):
     assert list(table.columns) == list(SUMMARY_COLUMNS)
     runs = table[~table.engine.isin(["ltca", "tca"])].groupby("run").size()
     # two traces x (point, line) x compiled, the point model on pybullet, the line model
-    # on scipy, three sensitivity cases (damping x2, the tooth's FE compliance, crowning
-    # x0.5) x two traces
-    assert len(runs) == 14
+    # on scipy, five sensitivity cases (damping x2, the tooth's FE compliance, crowning
+    # x0.5, the pinion at 1.5 times its speed, the torsional driveline) x two traces
+    assert len(runs) == 18
     speed = table[table.quantity == "gear_speed"]
     assert (abs(speed["mean"] - 1873.703) / 1873.703 < 0.02).all()
     mesh = table[table.engine == "ltca"]
