@@ -111,6 +111,9 @@ def compile_kernels(design, flanks, point, line, simulation):
                           flanks=flanks)
         for model in (point, line):
             simulate(geometry, short, model, flanks=flanks)
+        # the torsional driveline's equations (the boundary cases' runs), its defaults
+        simulate(geometry, dataclasses.replace(short, boundary="driveline"), line,
+                 flanks=flanks, driveline={})
     tooth_contact_analysis(GearPair(design), flanks.modification, flanks.misalignment,
                            positions=POSITIONS)
     std_ci(np.sin(np.arange(64.0)), n_boot=100)

@@ -40,16 +40,17 @@ def test_one_spiral_angle_and_the_papers_pair(study):
         assert html.index('class="lsbg-coarse"') < html.index("<h2")
     assert paper.index("the paper's claim as published") < paper.index("Compared")
     # the practice and best pairs' claims in the published pair's cells (the test
-    # configuration's three cases, practice.sensitivity: [all]), the point model aside
-    for heading, cells in (("The practice design's stability claim", 5),
+    # configuration's five cases, practice.sensitivity: [all]), the point model aside
+    for heading, cells in (("The practice design's stability claim", 7),
                            ("The practice design's contact state claim", 2),
-                           ("Best against best: the stability claim", 5),
-                           ("Best against best: the service life claim", 10)):
+                           ("Best against best: the stability claim", 7),
+                           ("Best against best: the service life claim", 12)):
         assert f"{heading} at " in paper, heading
         assert f"in each of its {cells} model-form cells" in \
             paper[paper.index(heading):][:300], heading
     section = paper[paper.index("The practice design's stability claim"):]
-    for case in ("damping ratio ×2", "compliance: FE", "crowning ×0.5", "500-Hz sampling"):
+    for case in ("damping ratio ×2", "compliance: FE", "crowning ×0.5", "500-Hz sampling",
+                 "pinion speed ×1.5", "boundary: torsional driveline"):
         assert case in section[:section.index("The practice design's contact state claim")]
     import xarray as xr
 
