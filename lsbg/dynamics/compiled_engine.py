@@ -170,7 +170,10 @@ def integrate(kind, times, y0, system, params, sides, table, a, b, c, e, e3, ble
     where = np.zeros(4)
     t = times[0]
     states[0] = y
-    deepest = _rates(kind, t, y, k, 0, system, params, sides, table)
+    # the first row as an int64, not the literal 0: the driveline's rates (cached on their
+    # own) would compile once more for a literal argument
+    first = stages - stages
+    deepest = _rates(kind, t, y, k, first, system, params, sides, table)
     f = k[0].copy()
     evaluations = 1
     steps = 0
