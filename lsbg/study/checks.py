@@ -92,7 +92,7 @@ from lsbg.config import fill_defaults, key_path, nonfinite_problems, schema_prob
 from lsbg.files import label_clashes, number_label
 from lsbg.gear.checks import design_problems, points_named
 from lsbg.stats.checks import AD_MIN_SAMPLES, statistics_problems
-from lsbg.study.points import design_points, map_steps
+from lsbg.study.points import design_points, map_steps, speed_sweep_of
 from lsbg.study.resources import (engines_run, geometry_problem, load_problems,
                                   memory_limit_gb, run_cost_problems, run_memory_gb,
                                   speed_sweep_problems)
@@ -319,7 +319,7 @@ def _settings_problems(config):
     problems = (engine_problems(config, engines_run(config)) + driveline_problems(config)
                 + contact_problems(config) + sensitivity_problems(config)
                 + operating_problems(config))
-    if config.get("speed_sweep") and config["speed_sweep"].get("enabled", True):
+    if speed_sweep_of(config):
         problems += speed_sweep_problems(config)
     return problems
 

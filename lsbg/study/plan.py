@@ -30,7 +30,7 @@ from lsbg.study.params import (CONTACT_STATE_SECTIONS, STUDY_SECTIONS, canonical
 from lsbg.gear.design import TRACES
 from lsbg.practice.design import practice_traces
 from lsbg.study.points import (CONTACT_MODELS, FILES, PAPER_TRACES, REPORT_NAMES,
-                               design_points, map_steps, speed_labels)
+                               design_points, map_steps, speed_labels, speed_sweep_of)
 
 __all__ = ["PAPER_TRACES", "CONTACT_MODELS", "REPORT_NAMES", "STUDY_SECTIONS", "FILES",
            "design_points", "speed_labels", "canonical", "yaml_text",
@@ -314,8 +314,7 @@ class Study:
     @property
     def speed_sweep(self):
         """The ``speed_sweep`` section, or None (none, or not ``enabled``)."""
-        section = self.config.get("speed_sweep") or None
-        return section if section and section.get("enabled", True) else None
+        return speed_sweep_of(self.config)
 
     @property
     def speed_spiral(self):

@@ -14,7 +14,7 @@ import math
 from lsbg.files import number_label
 
 __all__ = ["PAPER_TRACES", "CONTACT_MODELS", "REPORT_NAMES", "FILES", "design_points",
-           "map_steps", "speed_labels"]
+           "map_steps", "speed_labels", "speed_sweep_of"]
 
 #: File name patterns of every stage (Snakemake wildcards in braces).
 FILES = {
@@ -146,3 +146,16 @@ def map_steps(config, spiral):
     section = config["misalignment_map"]
     paper = number_label(config["paper_spiral_angle_deg"])
     return section["steps"] if number_label(spiral) == paper else section["sweep_steps"]
+
+
+def speed_sweep_of(config):
+    """The configuration's ``speed_sweep`` section if the study runs it, else None (no
+    section, or ``enabled: false``).
+
+    Parameters
+    ----------
+    config : dict
+        The workflow configuration.
+    """
+    section = config.get("speed_sweep") or None
+    return section if section and section.get("enabled", True) else None

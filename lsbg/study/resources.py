@@ -20,7 +20,7 @@ from lsbg.files import number_label
 from lsbg.gear.checks import design_value
 from lsbg.gear.design import GearPairDesign
 from lsbg.study.params import simulation_runtime
-from lsbg.study.points import CONTACT_MODELS, speed_labels
+from lsbg.study.points import CONTACT_MODELS, speed_labels, speed_sweep_of
 
 __all__ = [
     "RUN_MEMORY_BASE_GB", "RUN_BYTES_PER_INSTANT", "LINE_SECONDS_PER_SLICE",
@@ -117,7 +117,7 @@ def engines_run(config):
                                for e in engines["reference"].get(model, []))}
     run |= {sweep.get("engine", engines["sweep"]) for sweep in (config.get("sweeps") or {}).values()
             if isinstance(sweep, dict)}
-    if (config.get("speed_sweep") or {}).get("enabled", True) and config.get("speed_sweep"):
+    if speed_sweep_of(config):
         run.add(config["speed_sweep"]["engine"])
     return run
 
