@@ -74,8 +74,8 @@ def add_simulate_parser(subparsers):
                     "ramped to 7703 deg/s, gear loaded with 1964.99 N m; the 'simulation' and "
                     "'contact' sections; under simulation.boundary=driveline the torsional "
                     "driveline of the 'driveline' section around the mesh) and write the time "
-                    "series to --out (NetCDF, CF-1.11). A blow-up (NaN, penetration beyond d, runaway speed) stops the "
-                    "run with exit code 3 and writes nothing.")
+                    "series to --out (NetCDF, CF-1.11). A blow-up (NaN, penetration beyond d, "
+                    "runaway speed) stops the run with exit code 3 and writes nothing.")
     add_run_options(parser)
     add_config_options(parser, RUN_SECTIONS)
     add_output(parser, metavar="RUN.nc")

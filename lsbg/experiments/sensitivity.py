@@ -28,7 +28,8 @@ every case.
   the study's speed (its K_v is rated).
 
 Which stages a case reaches (:data:`CASE_STAGES`): every case reruns the
-dynamics (an operating case only the dynamics); crowning and the line stiffness also change the V-H map (the
+dynamics (an operating or a boundary case only the dynamics); crowning and the line
+stiffness also change the V-H map (the
 contact state), crowning also the FE loaded TCA (the teeth's stresses).
 """
 
@@ -158,6 +159,12 @@ def _check_factor(key, factor, least=0.0, strict=True):
         raise ValueError(f"sensitivity.{key} factor {factor!r}: must be {rule}")
 
 
+def _check_switch(key, value):
+    values = SENSITIVITY_SWITCHES[key]
+    if value not in values:
+        raise ValueError(f"sensitivity.{key} value {value!r}: must be one of {values}")
+
+
 def scaled_contact(contact, key, factor):
     """The contact setting of a case: ``{key: contact[key] * factor}``, or
     ``{key: value}`` for a switch; ``{}`` for a case of the flanks.
@@ -187,19 +194,13 @@ def scaled_contact(contact, key, factor):
     if key in OPERATING_KEYS:
         _check_factor(key, factor)
         return {}
-    if key in SIMULATION_SWITCHES:
-        if factor not in SENSITIVITY_SWITCHES[key]:
-            raise ValueError(f"sensitivity.{key} value {factor!r}: must be one of "
-                             f"{SENSITIVITY_SWITCHES[key]}")
-        return {}
     if key in SENSITIVITY_SWITCHES:
-        values = SENSITIVITY_SWITCHES[key]
-        if factor not in values:
-            raise ValueError(f"sensitivity.{key} value {factor!r}: must be one of {values}")
-        return {key: factor}
+        _check_switch(key, factor)
+        # (a switch of the simulation section leaves the contact as it is)
+        return {} if key in SIMULATION_SWITCHES else {key: factor}
     if key not in SENSITIVITY_KEYS:
-        raise ValueError(f"sensitivity key {key!r}: must be one of "
-                         f"{', '.join((*SENSITIVITY_KEYS, *FLANK_KEYS, *OPERATING_KEYS, *SENSITIVITY_SWITCHES))}")
+        keys = (*SENSITIVITY_KEYS, *FLANK_KEYS, *OPERATING_KEYS, *SENSITIVITY_SWITCHES)
+        raise ValueError(f"sensitivity key {key!r}: must be one of {', '.join(keys)}")
     _check_factor(key, factor)
     value = contact[key] * factor
     return {key: int(round(value)) if key == "slices" else value}
@@ -235,9 +236,7 @@ def study_cases(section, misalignment_map=None):
     for key, values in section.items():
         for value in values:
             if key == "displacement":
-                if value not in SENSITIVITY_SWITCHES[key]:
-                    raise ValueError(f"sensitivity.displacement value {value!r}: must be one "
-                                     f"of {SENSITIVITY_SWITCHES[key]}")
+                _check_switch(key, value)
                 for corner in envelope_corners(vh.get("axes") or ["E", "P"],
                                                vh.get("range") or 0.1):
                     out[case_name(key, corner)] = (key, corner)
@@ -301,7 +300,7 @@ def case_simulation(key, value, simulation):
         name = OPERATING_KEYS[key]
         return {**simulation, name: simulation[name] * value}
     if key in SIMULATION_SWITCHES:
-        scaled_contact({}, key, value)  # the value checked
+        _check_switch(key, value)
         return {**simulation, key: value}
     return dict(simulation)
 
