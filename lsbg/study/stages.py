@@ -19,25 +19,15 @@ executes them:
   lazily (:func:`lsbg.lazy_exports`, its ``_EXPORTS`` table) is the submodule
   that defines ``Name``.
 
-Parsing the ~130 sources and walking their trees for their import statements
-took about 1 s of every Snakemake start: the statements of each file are kept
-between processes by the SHA-256 of its content (:func:`import_statements`,
-in lsbg's machine-wide cache beside the configuration check's answers), and
-only resolved to modules afresh. An answer of some code computed while
-Snakemake starts (the configuration check) is kept on the same terms:
-:func:`cached_answer` asks again when a source of that code changes. So are the
-commands' closures themselves (workflow/rules/common.smk), keyed by
-:func:`package_digest`: the walk over the functions' trees took about 0.45 s of
-every start.
+Each source file is parsed once per process (:func:`import_statements`): nothing
+is kept between Snakemake starts, so what a rule lists is always what its sources
+import as they are now.
 """
 
 from __future__ import annotations
 
 import ast
-import atexit
-import copy
 import functools
-import hashlib
 import json
 import os
 from pathlib import Path
@@ -46,8 +36,7 @@ from lsbg.files import kept_file_digest
 
 __all__ = ["PACKAGE", "module_files", "import_statements", "module_imports", "module_closure",
            "function_closure", "notebook_closure", "closure_files", "sources_listing",
-           "write_if_changed", "sources_digest", "package_digest", "cached_answer",
-           "listing_cache_dir"]
+           "write_if_changed"]
 
 #: The lsbg package directory.
 PACKAGE = Path(__file__).resolve().parents[1]
@@ -151,63 +140,6 @@ def _imports(node, package):
     return _resolved(_import_names(node), package)
 
 
-#: The import statements of the sources seen, by the SHA-256 of their content: loaded
-#: from the machine-wide file once per process, written back at its end if it grew.
-_STATEMENTS = {"known": None, "grown": False}
-#: The most entries the file keeps (the most recent): lsbg has about 130 sources.
-STATEMENT_ENTRIES = 4000
-
-
-def listing_cache_dir():
-    """Where the source listings' answers are kept between Snakemake starts
-    (:func:`cached_answer`): ``config-checks`` in lsbg's machine-wide cache
-    (:func:`lsbg.numba_cache.numba_cache_root`, beside numba's kernels); None (kept by
-    the process only) if ``LSBG_CHECK_CACHE=off``."""
-    if os.environ.get("LSBG_CHECK_CACHE", "").lower() in ("0", "off", "no", "false"):
-        return None
-    from lsbg.numba_cache import numba_cache_root
-
-    return numba_cache_root() / "config-checks"
-
-
-def _statements_file():
-    """``source-imports.json`` in :func:`listing_cache_dir` (None: kept by the process only)."""
-    folder = listing_cache_dir()
-    return None if folder is None else folder / "source-imports.json"
-
-
-def _known_statements():
-    if _STATEMENTS["known"] is None:
-        _STATEMENTS["known"] = {}
-        path = _statements_file()
-        try:
-            known = json.loads(path.read_text(encoding="utf-8"))
-            if isinstance(known, dict):
-                _STATEMENTS["known"] = known
-        except (AttributeError, OSError, ValueError):
-            pass
-    return _STATEMENTS["known"]
-
-
-def _keep_statements():
-    """Write the statements back (atomically) if this process found new ones."""
-    path = _statements_file()
-    if not _STATEMENTS["grown"] or path is None:
-        return
-    known = dict(list(_STATEMENTS["known"].items())[-STATEMENT_ENTRIES:])
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        part = path.with_name(f"{path.name}.{os.getpid()}.part")
-        part.write_text(json.dumps(known), encoding="utf-8")
-        part.replace(path)
-        _STATEMENTS["grown"] = False
-    except OSError:
-        pass
-
-
-atexit.register(_keep_statements)
-
-
 def import_statements(path):
     """The dotted names a source file imports: anywhere, and at module level.
 
@@ -217,22 +149,21 @@ def import_statements(path):
 
     Returns
     -------
-    everywhere, module_level : list of str
+    everywhere, module_level : tuple of str
         As written (:func:`_import_names`), not yet resolved to lsbg's modules;
-        module level is outside the top-level functions and classes. Kept
-        between processes by the file's content.
+        module level is outside the top-level functions and classes.
     """
-    data = Path(path).read_bytes()
-    key = hashlib.sha256(data).hexdigest()
-    known = _known_statements()
-    if key not in known:
-        tree = ast.parse(data.decode("utf-8"))
-        level = [name for node in tree.body
-                 if not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef))
-                 for name in _import_names(node)]
-        known[key] = [_import_names(tree), level]
-        _STATEMENTS["grown"] = True
-    return known[key]
+    return _statements(Path(path).read_bytes())
+
+
+@functools.lru_cache(maxsize=None)
+def _statements(data):
+    """:func:`import_statements` of a source's content (bytes), parsed once per process."""
+    tree = ast.parse(data.decode("utf-8"))
+    level = tuple(name for node in tree.body
+                  if not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef))
+                  for name in _import_names(node))
+    return tuple(_import_names(tree)), level
 
 
 def module_imports(name, package=PACKAGE):
@@ -409,28 +340,6 @@ def closure_files(modules, root=None, package=PACKAGE):
                   for f in files)
 
 
-def package_digest(package=PACKAGE):
-    """SHA-256 of the names and content of every source file of the package, hexadecimal.
-
-    What every import-following answer (:func:`function_closure`,
-    :func:`notebook_closure`) depends on besides its own arguments: a key under which
-    :func:`cached_answer` may keep such an answer.
-
-    Parameters
-    ----------
-    package : pathlib.Path
-
-    Returns
-    -------
-    str
-    """
-    digest = hashlib.sha256()
-    for path in sorted(Path(package).rglob("*.py")):
-        digest.update(path.relative_to(package).as_posix().encode() + b"\0"
-                      + kept_file_digest(path).encode())
-    return digest.hexdigest()
-
-
 def sources_listing(modules, package=PACKAGE):
     """The source files of ``modules`` with their SHA-256, as ``sha256sum`` prints them.
 
@@ -482,73 +391,3 @@ def write_if_changed(path, text):
     part.write_text(text, encoding="utf-8")
     part.replace(path)
     return path
-
-
-# ------------------------------------------------------ answers of some code
-#: Answers :func:`cached_answer` keeps in a folder (the most recently used).
-CACHE_ENTRIES = 2000
-#: Answers of this process, by key.
-_ANSWERS = {}
-
-
-@functools.lru_cache(maxsize=None)
-def sources_digest(modules):
-    """SHA-256 of the names and content of every source file the modules run, hexadecimal.
-
-    Parameters
-    ----------
-    modules : str or tuple of str
-        Dotted module names (:func:`module_closure`); computed once per process.
-    """
-    names = (modules,) if isinstance(modules, str) else tuple(modules)
-    digest = hashlib.sha256()
-    for name in closure_files(module_closure(names)):
-        path = Path(name)
-        digest.update(path.relative_to(PACKAGE.parent).as_posix().encode() + b"\0")
-        digest.update(path.read_bytes() + b"\0")
-    return digest.hexdigest()
-
-
-def cached_answer(folder, modules, inputs, compute):
-    """``compute()``, or its answer kept from an earlier call with the same inputs.
-
-    Parameters
-    ----------
-    folder : str or os.PathLike or None
-        Where answers are kept between processes (created if missing; at most
-        :data:`CACHE_ENTRIES` files, the least recently used go); None: only in
-        this process. A folder that cannot be written keeps nothing.
-    modules : str or tuple of str
-        The modules whose code ``compute`` runs: a change of any source they
-        run (:func:`sources_digest`) asks again.
-    inputs : JSON-serialisable
-        Everything else the answer depends on.
-    compute : callable
-        Returns the answer, a JSON-serialisable value.
-    """
-    key = hashlib.sha256(json.dumps([inputs, sources_digest(modules)], sort_keys=True,
-                                    default=repr).encode()).hexdigest()[:40]
-    if key not in _ANSWERS:
-        path = Path(folder) / f"{key}.json" if folder is not None else None
-        try:
-            _ANSWERS[key] = json.loads(path.read_text(encoding="utf-8"))["answer"]
-            os.utime(path)
-        except (AttributeError, OSError, ValueError, KeyError, TypeError):
-            _ANSWERS[key] = compute()
-            if path is not None:
-                _keep(path, _ANSWERS[key])
-    return copy.deepcopy(_ANSWERS[key])
-
-
-def _keep(path, answer):
-    """Write an answer atomically and drop the least recently used beyond the limit."""
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        part = path.with_name(f"{path.name}.{os.getpid()}.part")
-        part.write_text(json.dumps({"answer": answer}), encoding="utf-8")
-        part.replace(path)
-        entries = sorted(path.parent.glob("*.json"), key=lambda p: p.stat().st_mtime)
-        for old in entries[:max(0, len(entries) - CACHE_ENTRIES)]:
-            old.unlink(missing_ok=True)
-    except OSError:
-        pass

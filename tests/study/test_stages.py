@@ -113,89 +113,15 @@ def test_a_report_depends_on_its_notebooks_imports(name):
     assert "tables" in {m.split(".")[0] for m in modules}
 
 
-def test_answers_are_kept_until_an_input_or_a_source_changes(tmp_path, monkeypatch):
-    monkeypatch.setattr(stages, "_ANSWERS", {})
-    calls = []
-    code = "tca.checks"
-
-    def compute():
-        calls.append(1)
-        return ["a problem"]
-
-    assert stages.cached_answer(tmp_path, code, {"x": 1}, compute) == ["a problem"]
-    assert stages.cached_answer(tmp_path, code, {"x": 1}, compute) == ["a problem"]
-    assert len(calls) == 1 and len(list(tmp_path.glob("*.json"))) == 1
-    monkeypatch.setattr(stages, "_ANSWERS", {})                 # another process: from disk
-    assert stages.cached_answer(tmp_path, code, {"x": 1}, compute) == ["a problem"]
-    assert len(calls) == 1
-    stages.cached_answer(tmp_path, code, {"x": 2}, compute)   # another input
-    assert len(calls) == 2
-    # the key holds the code's sources: their digest changes with any of its files
-    assert stages.sources_digest(code) != stages.sources_digest("aggregate.summary")
-    monkeypatch.setattr(stages, "sources_digest", lambda modules: "edited")
-    stages.cached_answer(tmp_path, code, {"x": 1}, compute)
-    assert len(calls) == 3
-    # a corrupt entry is computed again; the oldest go beyond CACHE_ENTRIES
-    monkeypatch.setattr(stages, "_ANSWERS", {})
-    for path in tmp_path.glob("*.json"):
-        path.write_text("{not json")
-    monkeypatch.setattr(stages, "CACHE_ENTRIES", 2)
-    stages.cached_answer(tmp_path, code, {"x": 1}, compute)
-    assert len(calls) == 4 and len(list(tmp_path.glob("*.json"))) == 2
-    # without a folder, or one that cannot be written: kept by the process only
-    assert stages.cached_answer(None, code, {"x": 9}, compute) == ["a problem"]
-    blocked = tmp_path / "file"
-    blocked.write_text("")
-    assert stages.cached_answer(blocked, code, {"x": 10}, compute) == ["a problem"]
-    assert len(calls) == 6
-
-
-def test_import_statements_are_kept_by_content_between_processes(tmp_path, monkeypatch):
-    kept = tmp_path / "cache" / "source-imports.json"
-    monkeypatch.setattr(stages, "_statements_file", lambda: kept)
-    monkeypatch.setattr(stages, "_STATEMENTS", {"known": None, "grown": False})
+def test_import_statements_come_from_the_source_as_it_is_now(tmp_path):
+    """Nothing is kept between processes: an edited source is read afresh (its content
+    is the key of the process's own memo), so a rule's listing follows the edit."""
     source = tmp_path / "a.py"
     source.write_text("import lsbg.b\n\ndef f():\n    from lsbg.c import d\n")
-    assert stages.import_statements(source) == [["lsbg.b", "lsbg.c.d"], ["lsbg.b"]]
-    stages._keep_statements()                           # the process's end
-    assert len(json.loads(kept.read_text())) == 1
-    # another process reads them from the file, without parsing the source
-    monkeypatch.setattr(stages, "_STATEMENTS", {"known": None, "grown": False})
-    monkeypatch.setattr(stages.ast, "parse", lambda text: pytest.fail("parsed again"))
-    assert stages.import_statements(source) == [["lsbg.b", "lsbg.c.d"], ["lsbg.b"]]
-    monkeypatch.undo()
-    # an edited source is read afresh: the key is its content
-    monkeypatch.setattr(stages, "_statements_file", lambda: kept)
-    monkeypatch.setattr(stages, "_STATEMENTS", {"known": None, "grown": False})
+    assert stages.import_statements(source) == (("lsbg.b", "lsbg.c.d"), ("lsbg.b",))
     source.write_text("import lsbg.e\n")
-    assert stages.import_statements(source) == [["lsbg.e"], ["lsbg.e"]]
-    # a corrupt file is ignored (and replaced at the end)
-    kept.write_text("{not json")
-    monkeypatch.setattr(stages, "_STATEMENTS", {"known": None, "grown": False})
-    assert stages.import_statements(source) == [["lsbg.e"], ["lsbg.e"]]
-    stages._keep_statements()
-    assert len(json.loads(kept.read_text())) == 1
+    assert stages.import_statements(source) == (("lsbg.e",), ("lsbg.e",))
+    source.write_text("import lsbg.b\n\ndef f():\n    from lsbg.c import d\n")
+    assert stages.import_statements(source)[1] == ("lsbg.b",)
 
 
-def test_the_package_digest_follows_content_names_and_new_files(tmp_path):
-    """The key under which the commands' closures are kept (workflow/rules/common.smk):
-    it moves with a file's content, its name or a new file, not with a time stamp alone."""
-    import os
-
-    package = write_package(tmp_path, {"__init__.py": "", "a.py": "import lsbg.b\n",
-                                       "b.py": "X = 1\n"})
-    first = stages.package_digest(package)
-    assert stages.package_digest(package) == first
-    os.utime(package / "a.py", ns=(1, 1))                  # touched, the same content
-    assert stages.package_digest(package) == first
-    (package / "b.py").write_text("X = 2\n")
-    second = stages.package_digest(package)
-    assert second != first
-    (package / "b.py").write_text("X = 1\n")
-    assert stages.package_digest(package) == first
-    (package / "c").mkdir()
-    (package / "c" / "__init__.py").write_text("")
-    assert stages.package_digest(package) not in (first, second)
-    (package / "c" / "__init__.py").unlink()
-    (package / "b.py").rename(package / "d.py")
-    assert stages.package_digest(package) not in (first, second)

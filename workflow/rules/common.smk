@@ -319,26 +319,11 @@ def sources(name, notebook=None):
         # the submitting Snakemake wrote it: a job's two Snakemakes (a SLURM job's and
         # its job step's) spare following the imports, 1-2 CPU-s each
         return path.as_posix()
-    from lsbg.files import file_digest
-    from lsbg.study.stages import (cached_answer, listing_cache_dir, sources_listing,
-                                   write_if_changed)
+    from lsbg.study.stages import sources_listing, write_if_changed
 
     notebook_file = NOTEBOOKS / f"{notebook}.ipynb" if notebook else None
-    # the closure depends on the package's sources and the notebook only: kept between
-    # Snakemake starts under their digests (it took about 0.45 s of each)
-    inputs = {"command": name, "package": lsbg_digest(), "notebook": notebook_file and
-              file_digest(notebook_file)}
-    modules = cached_answer(listing_cache_dir(), (), inputs,
-                            lambda: command_closure(name, notebook_file))
-    return write_if_changed(path, sources_listing(modules)).as_posix()
-
-
-@lru_cache(maxsize=None)
-def lsbg_digest():
-    """lsbg's sources, digested once per parse (lsbg.study.stages.package_digest)."""
-    from lsbg.study.stages import package_digest
-
-    return package_digest()
+    listing = sources_listing(command_closure(name, notebook_file))
+    return write_if_changed(path, listing).as_posix()
 
 
 def command_closure(name, notebook_file=None):
