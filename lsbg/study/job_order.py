@@ -26,7 +26,7 @@ __all__ = ["JOB_SECONDS", "rule_graph", "levels", "assign_priorities", "lift_job
 
 #: Wall time [s] of one job of each rule of the default study, ``snakemake -j2``
 #: on the 2-core reference machine from a fresh copy with an empty numba cache
-#: (tests/benchmarks/bench_study.py, 2026-11-28 04:20 UTC: the mean of each rule's jobs),
+#: (tests/benchmarks/bench_study.py: the mean of each rule's jobs),
 #: with the practice design, the load curves, the ease-off searches and the best design
 #: point, the job server and the kernels' job.
 JOB_SECONDS = {"kernels": 14.7, "paper_geometry": 4.3, "paper_ltca": 0.3,

@@ -122,12 +122,31 @@ def _import_names(node):
     """The dotted names imported anywhere below an AST node (``from a import b``: ``a.b``),
     as written (absolute imports only)."""
     names = []
-    for item in ast.walk(node):
+    for item in _import_nodes(node):
         if isinstance(item, ast.Import):
             names += [alias.name for alias in item.names]
         elif isinstance(item, ast.ImportFrom) and item.module and not item.level:
             names += [f"{item.module}.{alias.name}" for alias in item.names]
     return names
+
+
+def _import_nodes(node):
+    """The import statements below an AST node, in source order.
+
+    Only statements are followed (the bodies, ``else``, ``finally``, handlers and
+    ``case`` blocks): an import is a statement, and the expressions below them are
+    most of a tree's nodes.
+    """
+    todo = [node]
+    while todo:
+        item = todo.pop()
+        if isinstance(item, (ast.Import, ast.ImportFrom)):
+            yield item
+            continue
+        for field in ("cases", "handlers", "finalbody", "orelse", "body"):
+            block = getattr(item, field, None)
+            if isinstance(block, list):
+                todo.extend(reversed(block))
 
 
 def _resolved(names, package):
@@ -156,9 +175,11 @@ def import_statements(path):
     return _statements(Path(path).read_bytes())
 
 
+# by content, and the tree let go: kept trees of every source slow the rest of the
+# parse (the garbage collector walks them) and hold about 50 MB
 @functools.lru_cache(maxsize=None)
 def _statements(data):
-    """:func:`import_statements` of a source's content (bytes), parsed once per process."""
+    """:func:`import_statements` of a source's content (bytes), once per process."""
     tree = ast.parse(data.decode("utf-8"))
     level = tuple(name for node in tree.body
                   if not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef))
@@ -223,7 +244,7 @@ def _defined(tree):
 def _imported_names(node, package):
     """``{local name: (lsbg module, name there)}`` of the ``from lsbg... import`` below ``node``."""
     names = {}
-    for item in ast.walk(node):
+    for item in _import_nodes(node):
         if isinstance(item, ast.ImportFrom) and item.module and not item.level:
             module = _resolve(item.module, package)
             if module is not None:
