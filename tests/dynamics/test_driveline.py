@@ -207,17 +207,24 @@ REFERENCE = Path(__file__).parent / "data" / "prescribed_pinion_main.npz"
 
 @pytest.mark.parametrize("contact_model", ["line", "point"])
 @pytest.mark.parametrize("engine", ["compiled", "scipy"])
-def test_the_prescribed_pinion_is_bit_for_bit_as_before(model, engine, contact_model):
+def test_the_prescribed_pinion_is_as_before(model, engine, contact_model):
     geometry = Path(model.urdf).parent
     old = np.load(REFERENCE)
     settings = SimulationSettings(engine=engine, duration=0.02, samples=10, ramp_time=0.01,
                                   full_rate_after=0.01)
     record = load_model(geometry, ContactParameters.from_config({"model": contact_model})
                         ).run(settings)
+    # Bit for bit on a machine like the one that made the file; on another processor the
+    # geometry's sums round differently (seen: 1e-9 to 8e-6 of each series' scale, and the
+    # adaptive scipy engine 2 % more steps), far below what the driveline's code could
+    # change by taking the pinion's path (its states, its ramp: order one)
     for name in ("gear_angle", "gear_speed", "gear_torque"):
-        assert np.array_equal(getattr(record.full_rate, name),
-                              old[f"{contact_model}_{engine}_{name}"]), name
-    assert record.steps == int(old[f"{contact_model}_{engine}_steps"])
+        reference = old[f"{contact_model}_{engine}_{name}"]
+        series = getattr(record.full_rate, name)
+        assert series.shape == reference.shape, name
+        assert np.abs(series - reference).max() <= 5e-5 * np.abs(reference).max(), name
+    steps = int(old[f"{contact_model}_{engine}_steps"])
+    assert record.steps == pytest.approx(steps, rel=0.05)
 
 
 # --------------------------------------------------------------- lsbg simulate
