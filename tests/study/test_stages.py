@@ -125,3 +125,27 @@ def test_import_statements_come_from_the_source_as_it_is_now(tmp_path):
     assert stages.import_statements(source)[1] == ("lsbg.b",)
 
 
+
+
+def test_import_statements_read_from_the_code_agree_with_the_syntax_tree():
+    """Every lsbg source: the names its compiled code imports (everywhere, and in the
+    module's own code) are those the syntax tree's import statements name."""
+    import ast
+
+    for path in sorted(stages.PACKAGE.rglob("*.py")):
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        level = {name for node in tree.body
+                 if not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef))
+                 for name in stages._import_names(node)}
+        everywhere, module_level = stages.import_statements(path)
+        assert set(everywhere) == set(stages._import_names(tree)), path
+        assert set(module_level) == level, path
+    # nested blocks, a class body, a relative import and a star
+    source = ("import os.path as p\nfrom . import sibling\nif p:\n    from lsbg.a import (b,\n"
+              "        c)\nfrom lsbg.z import *\nclass K:\n    import lsbg.k\n    def f(self):\n"
+              "        try:\n            import lsbg.t\n        finally:\n"
+              "            import lsbg.f\n")
+    everywhere, module_level = stages._statements(source.encode())
+    assert set(everywhere) == {"os.path", "lsbg.a.b", "lsbg.a.c", "lsbg.z.*", "lsbg.k", "lsbg.t",
+                               "lsbg.f"}
+    assert set(module_level) == {"os.path", "lsbg.a.b", "lsbg.a.c", "lsbg.z.*"}
