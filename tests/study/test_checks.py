@@ -108,11 +108,13 @@ def bad_values(schema):
         if kind == "string":
             return [("wrong type", 7), ("wrong type", ["a.csv"])]
         return bad_values({**schema, "type": kind})
-    if "oneOf" in schema:  # a choice or a number (rating.dynamic_factor): the number's bad
-        # values that are no choice either, and a word that is no choice
-        number = next(s for s in schema["oneOf"] if s.get("type") in ("number", "integer"))
+    if "oneOf" in schema:  # a choice or a number (rating.dynamic_factor) or a list
+        # (trace_study.spiral_angles_deg): the other's bad values that are no choice either,
+        # and a word that is no choice
+        other = next(s for s in schema["oneOf"] if s.get("type") in ("number", "integer",
+                                                                     "array"))
         return [("not one of the choices", "no-such-choice")] + [
-            (category, value) for category, value in bad_values(number)
+            (category, value) for category, value in bad_values(other)
             if category not in ("wrong type",)]
     if "enum" in schema:
         return [("not one of the choices", "no-such-choice"), ("wrong type", 7)]
@@ -283,6 +285,17 @@ BEYOND_SCHEMA = {
     "cutter radius a face-milled sweep point cannot span": (
         {"design": {"cutter_radius_mm": 23}, "practice": {"sbg_trace": "circular"},
          "sweep": {"traces": ["face_milled"]}}, "design.cutter_radius_mm = 23: is too small"),
+    # the trace study's cells (lsbg.optimise.cells): an angle the study has no geometry of,
+    # a cutter the practice design's face-milled SBG cannot span at an angle of the section
+    "a trace-study angle outside the sweep": (
+        {"trace_study": {"spiral_angles_deg": [35, 33]}},
+        "trace_study.spiral_angles_deg[1] = 33: not the paper's angle"),
+    "a trace-study cutter that cannot span the face": (
+        {"trace_study": {"cutter_radii_mm": [76.2, 23]}},
+        "trace_study.cutter_radii_mm[1] = 23: at 35 deg cannot span the face"),
+    "a trace-study cutter outside the usual radii": (
+        {"trace_study": {"cutter_radii_mm": [400]}},
+        "trace_study.cutter_radii_mm[0] = 400: at 35 deg is outside the usual cutter radii"),
     "bore through the teeth": ({"design": {"gear_bore_mm": 500}}, "design.gear_bore_mm = 500"),
     "pinion larger than the gear": ({"design": {"pinion_teeth": 40}},
                                     "design.pinion_teeth = 40"),

@@ -93,19 +93,20 @@ def check_analyses():
 
 
 def report_search_estimate():
-    """Print the ease-off searches' job count and estimated CPU-hours (the Snakefile's
-    ``onstart``, before any job; lsbg.optimise.checks.search_estimate)."""
+    """Print the ease-off searches' cells, job count and estimated CPU-hours (the
+    Snakefile's ``onstart``, before any job; lsbg.optimise.checks.search_estimate)."""
     if not STUDY.optimise:
         return
     from lsbg.optimise.checks import search_estimate
 
-    traces = STUDY.practice_traces
-    jobs, hours = search_estimate(config, len(traces))
+    jobs, hours = search_estimate(config)
+    cells = STUDY.trace_cells
     o = config["optimise"]
-    logger.info(f"ease-off searches: {jobs} jobs ({len(traces)} traces x {o['seeds']} seeds, "
+    logger.info(f"ease-off searches: {jobs} jobs in {len(cells)} cell(s) of the trace study "
+                f"(the SBG per cell, the LSBG per spiral angle, {o['seeds']} seeds each, "
                 f"{o['population']} x {o['generations']} designs each), about {hours:.3g} "
-                f"CPU-hours estimated, {o['workers']} CPUs per job; then per trace a release "
-                f"and a converge-front job, and one trace-fronts job")
+                f"CPU-hours estimated, {o['workers']} CPUs per job; then per trace and cell a "
+                f"release and a converge-front job, and per cell a trace-fronts job")
 
 
 def stop_if(problems):
