@@ -124,3 +124,28 @@ def test_no_cell_or_a_bad_code_is_refused():
         cells.trace_level_verdict({})
     with pytest.raises(ValueError, match="not a verdict"):
         cells.trace_level_verdict({"beta35": 2})
+
+
+def test_the_reports_table_has_a_row_per_cell_and_the_answer_over_them():
+    from lsbg.tables.optimise import trace_cells_table, trace_level_text
+
+    rng = np.random.default_rng(8)
+
+    def cell(shift, angle, cutter):
+        a = [synthetic_front(rng, 0.0) for _ in range(3)]
+        b = [synthetic_front(rng, shift) for _ in range(3)]
+        second = converged_dataset("face_milled", b, [1, 2, 3])
+        second.attrs.update(design_spiral_angle_deg=angle, design_cutter_radius_mm=cutter)
+        return fronts.trace_fronts_dataset(fronts.trace_statistics(a, b, OBJECTIVES),
+                                           converged_dataset("logarithmic", a, [1, 2, 3]),
+                                           second)
+
+    datasets = [cell(0.3, 35.0, 76.2), cell(-0.3, 25.0, 95.25)]
+    assert datasets[1].attrs["cell_cutter_radius_mm"] == 95.25
+    table = trace_cells_table(datasets)
+    assert table["cell"].tolist() == ["35 deg, r_c0 76.2 mm", "25 deg, r_c0 95.25 mm"]
+    assert table["verdict"].str.startswith(("the LSBG", "the SBG")).tolist() == [True, True]
+    assert table["A12"].tolist() == [1.0, 0.0]
+    text = trace_level_text(datasets)
+    assert "not decided: the LSBG better in 1, the SBG in 1" in text and "Indicative" in text
+    assert "better in all 2 cells" in trace_level_text([datasets[0], cell(0.4, 25.0, 95.25)])
