@@ -502,6 +502,23 @@ class Study:
         """The two traces' converged fronts a cell compares (the LSBG's first)."""
         return [self.cell_file("converged_front", t, cell) for t in self.practice_traces]
 
+    @property
+    def trace_study_jobs(self):
+        """The jobs of the trace study's other cells, ``{rule: count}``
+        (rules/trace_study.smk; the paper cell's are the optimise rules')."""
+        others = self.other_cells.values()
+        runs = {(t, c["lsbg_cell"] if t == "logarithmic" else c["label"])
+                for c in others for t in self.practice_traces}
+        runs = {(t, cell) for t, cell in runs if cell in self.other_cells}
+        per_run = {"cell_geometry": 1, "cell_compliance": 1,
+                   "cell_optimise": len(self.optimise_seeds), "cell_release": 1,
+                   "cell_converged_front": 1}
+        jobs = {"cell_practice_design": len({c["spiral"] for c in others
+                                             if c["spiral"] != self.paper_spiral})}
+        jobs.update({rule: n * len(runs) for rule, n in per_run.items()})
+        jobs["cell_trace_fronts"] = len(others)
+        return jobs
+
     def cell_settings(self, cell, trace):
         """The ``--set`` values of a cell's design point beyond the trace: its spiral angle,
         and an SBG's cutter radius unless it is the design's."""

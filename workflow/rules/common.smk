@@ -107,6 +107,11 @@ def report_search_estimate():
                 f"{o['population']} x {o['generations']} designs each), about {hours:.3g} "
                 f"CPU-hours estimated, {o['workers']} CPUs per job; then per trace and cell a "
                 f"release and a converge-front job, and per cell a trace-fronts job")
+    cell_jobs = STUDY.trace_study_jobs
+    if len(cells) > 1:
+        logger.info(f"the trace study's {len(cells) - 1} cell(s) beyond the paper's: "
+                    f"{sum(cell_jobs.values())} jobs ("
+                    + ", ".join(f"{rule} {n}" for rule, n in cell_jobs.items()) + ")")
 
 
 def stop_if(problems):
