@@ -454,12 +454,13 @@ def test_the_parse_time_check_runs_no_analysis_and_keeps_nothing(monkeypatch, tm
 
 
 @pytest.mark.parametrize("names", [(), ("config-test.yaml",), ("config-speed.yaml",),
-                                   ("config-optimise.yaml",), ("config-cells.yaml",)])
+                                   ("config-optimise.yaml",), ("config-cells.yaml",),
+                                   ("config-trace.yaml",)])
 def test_shipped_configs_pass_with_the_schema_defaults_filled_in(names):
     config = load(*names)
     assert config_check.check_config(config, SCHEMA) == []
     # the full ease-off search (15 000 designs a trace) sets its own time limit
-    full_search = names == ("config-optimise.yaml",)
+    full_search = names in (("config-optimise.yaml",), ("config-trace.yaml",))
     assert config["limits"] == {"geometry_minutes": 10, "tooth_minutes": 10,
                                 "optimise_minutes": 15 if full_search else 10}
     assert config["contact"]["model"] == "point" and "slices" in config["contact"]
