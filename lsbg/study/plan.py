@@ -587,9 +587,10 @@ class Study:
     @property
     def sample_wildcards(self):
         """A design point's wildcards, for the input functions of the rule graph
-        (:func:`lsbg.study.job_order.rule_graph`): the paper's point, the line model."""
+        (:func:`lsbg.study.job_order.rule_graph`): the paper's point, the line model, the
+        trace study's first cell beyond the paper's (if any)."""
         return {"trace": PAPER_TRACES[0], "spiral": self.paper_spiral, "model": "line",
-                "engine": self.sweep_engine}
+                "engine": self.sweep_engine, "cell": next(iter(self.other_cells), "none")}
 
     @property
     def wildcards(self):
