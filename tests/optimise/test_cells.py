@@ -149,3 +149,17 @@ def test_the_reports_table_has_a_row_per_cell_and_the_answer_over_them():
     text = trace_level_text(datasets)
     assert "not decided: the LSBG better in 1, the SBG in 1" in text and "Indicative" in text
     assert "better in all 2 cells" in trace_level_text([datasets[0], cell(0.4, 25.0, 95.25)])
+
+
+def test_the_cluster_configuration_runs_what_its_header_and_docs_scaling_say():
+    from lsbg.config import SCHEMA_PATH, load_schema
+    from lsbg.study.checks import fill_defaults
+
+    config = study("config-trace.yaml")
+    config["trace_study"] = yaml.safe_load((REPO / "workflow" / "config-trace.yaml").read_text(
+        encoding="utf-8"))["trace_study"]
+    fill_defaults(config, load_schema(SCHEMA_PATH))
+    got = cells.trace_cells(config)
+    assert len(got) == 55 and len({c["spiral"] for c in got}) == 11
+    jobs, hours = search_estimate(config)
+    assert jobs == 330 and hours == pytest.approx(56.3, abs=0.05)
