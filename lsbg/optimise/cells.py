@@ -131,7 +131,8 @@ def trace_cells(config):
 def trace_study_problems(config):
     """The ``trace_study`` section's problems, one line each naming its key and value.
 
-    An explicit angle must be the paper's or one of ``sweep.spiral_angles_deg`` (the
+    Cells beyond the paper's need the searches (``optimise.enabled``, ``practice.enabled``);
+    an explicit angle must be the paper's or one of ``sweep.spiral_angles_deg`` (the
     study's geometry is checked there); an explicit cutter radius must fit the pair at
     every angle of the section (:func:`lsbg.gear.cutter.cutter_fit_problem`, within
     ``cutter_sweep.usual_range_outer_cone_distance``).
@@ -149,6 +150,13 @@ def trace_study_problems(config):
     from lsbg.gear.design import DesignError
 
     angles, cutters = _section(config)
+    if (angles, cutters) != ("paper", "design") and not (
+            config.get("optimise", {}).get("enabled", True)
+            and config.get("practice", {}).get("enabled", True)):
+        key, value = (("spiral_angles_deg", angles) if angles != "paper"
+                      else ("cutter_radii_mm", cutters))
+        return [f"trace_study.{key} = {value!r}: compares the ease-off searches' fronts, so "
+                f"it needs optimise.enabled and practice.enabled"]
     problems = []
     known = [float(a) for a in config["sweep"]["spiral_angles_deg"]]
     if isinstance(angles, list):

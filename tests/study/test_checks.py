@@ -296,6 +296,9 @@ BEYOND_SCHEMA = {
     "a trace-study cutter outside the usual radii": (
         {"trace_study": {"cutter_radii_mm": [400]}},
         "trace_study.cutter_radii_mm[0] = 400: at 35 deg is outside the usual cutter radii"),
+    "a trace study without the searches": (
+        {"trace_study": {"cutter_radii_mm": "sweep"}, "optimise": {"enabled": False}},
+        "trace_study.cutter_radii_mm = 'sweep': compares the ease-off searches' fronts"),
     "bore through the teeth": ({"design": {"gear_bore_mm": 500}}, "design.gear_bore_mm = 500"),
     "pinion larger than the gear": ({"design": {"pinion_teeth": 40}},
                                     "design.pinion_teeth = 40"),
