@@ -427,3 +427,26 @@ def design_set_input(paper, practice):
     """An input of a load curve: ``paper(wildcards)`` for the published pair, else
     ``practice(wildcards)`` (rules/practice.smk)."""
     return lambda w: paper(w) if w.design_set == "paper" else practice(w)
+
+
+# ---------------------------------------------------------------- the trace study
+def cell_config(w):
+    """A cell's configuration: the study's, the practice overlay at the cell's angle."""
+    return [ancient(FILES["study_config"]),
+            STUDY.cell_file("practice_design", w.trace, w.cell)]
+
+
+def cell_set(w):
+    """The ``--set`` values of a cell's design point (its angle, an SBG's cutter): the
+    geometry's (the later commands read the design from the geometry)."""
+    return STUDY.cell_settings(w.cell, w.trace)
+
+
+def cell_input(kind):
+    """A file of the cell's own chain as a rule's input (from the wildcards)."""
+    return lambda w: STUDY.cell_file(kind, w.trace, w.cell)
+
+
+def cell_fronts(w):
+    """A cell's trace's fronts, every seed's."""
+    return [STUDY.cell_file("front", w.trace, w.cell, seed) for seed in STUDY.optimise_seeds]

@@ -8,30 +8,13 @@
 # converge-front and trace-fronts (results/optimise/trace_fronts_<cell>.nc). The LSBG has
 # no cutter: it runs once per angle, in the angle's cell of the design's cutter, and every
 # cutter cell of the angle reads its fronts. The default study has no other cell and no
-# job here.
+# job here. The rules' input functions are common.smk's (cell_config, cell_input, ...).
 
 #: The other cells' labels, a wildcard's pattern.
 OTHER_CELLS = "|".join(map(re.escape, STUDY.other_cells)) or "none"
 #: The spiral angles whose practice design is made here (all but the paper's).
 CELL_SPIRALS = "|".join(sorted({re.escape(c["spiral"]) for c in STUDY.other_cells.values()
                                 if c["spiral"] != PAPER_SPIRAL})) or "none"
-
-
-def cell_config(w):
-    """A cell's configuration: the study's, the practice overlay at the cell's angle."""
-    return [ancient(FILES["study_config"]),
-            STUDY.cell_file("practice_design", w.trace, w.cell)]
-
-
-def cell_set(w):
-    """The ``--set`` values of a cell's design point (its angle, an SBG's cutter): the
-    geometry's (the later commands read the design from the geometry)."""
-    return STUDY.cell_settings(w.cell, w.trace)
-
-
-def cell_input(kind):
-    """A file of the cell's own chain as a rule's input (from the wildcards)."""
-    return lambda w: STUDY.cell_file(kind, w.trace, w.cell)
 
 
 CELL = dict(cell=OTHER_CELLS)
@@ -118,11 +101,6 @@ rule cell_optimise:
         mem_mb=1500 + 500 * (config["optimise"]["workers"] - 1),
     shell:
         lsbg_shell("optimise.workers={threads}")
-
-
-def cell_fronts(w):
-    """A cell's trace's fronts, every seed's."""
-    return [STUDY.cell_file("front", w.trace, w.cell, seed) for seed in STUDY.optimise_seeds]
 
 
 rule cell_release:
