@@ -131,25 +131,31 @@ def budget_problems(config):
             f"{minutes!r}"]
 
 
-def search_estimate(config, traces=2):
-    """The study's ease-off searches: their job count and estimated CPU-hours.
+def search_estimate(config):
+    """The study's ease-off searches: their cells, job count and estimated CPU-hours.
+
+    Every cell of the trace study (:func:`lsbg.optimise.cells.trace_cells`) searches the
+    SBG ``optimise.seeds`` times; the LSBG, which has no cutter, is searched once per
+    spiral angle (its fronts serve every cutter of the angle).
 
     Parameters
     ----------
     config : dict
         The configuration, the schema's defaults filled in.
-    traces : int
-        The traces searched [-].
 
     Returns
     -------
     jobs : int
-        Searches (``optimise.seeds`` per trace) [-].
+        Searches [-].
     cpu_hours : float
         Their estimated CPU time, :func:`evaluation_seconds` per design [h].
     """
+    from lsbg.optimise.cells import trace_cells
+
     section = config.get("optimise", {})
-    jobs = traces * int(section.get("seeds", 3))
+    cells = trace_cells(config)
+    searched = len(cells) + len({c["lsbg_cell"] for c in cells})
+    jobs = searched * int(section.get("seeds", 3))
     designs = section.get("population", 20) * section.get("generations", 18)
     return jobs, jobs * designs * evaluation_seconds(config) / 3600
 

@@ -527,6 +527,10 @@ def trace_fronts_dataset(stats, first, second, attrs=None):
                 f"statistic (the same for a labeling and its swap) are {least_mw:.3g}"),
             "indicative": int(min(n) < 5),
             "positions": " ".join(str(d.attrs["positions"]) for d in (first, second))}
+    # the cell (docs/optimise.md): the design point of the second trace's fronts
+    for key in ("spiral_angle_deg", "cutter_radius_mm"):
+        if f"design_{key}" in second.attrs:
+            base[f"cell_{key}"] = float(second.attrs[f"design_{key}"])
     base.update(attrs or {})
     labels = [f"{a} / {b}" for a, b in stats["projections"]]
     return xr.Dataset(data, coords={

@@ -70,6 +70,9 @@ configuration that returns its problem lines):
 13. the cutter-radius sweep (:func:`lsbg.experiments.cutter.cutter_sweep_problems`):
     its trace, and each listed cutter radius fitting the pair at the paper's spiral
     angle, while parsing.
+14. the trace study's cells (:func:`lsbg.optimise.cells.trace_study_problems`): each
+    listed spiral angle the paper's or the sweep's, each listed cutter radius fitting the
+    pair at every angle of the section, while parsing.
 
 A ``load_sweep`` section (the former extension) gets one line naming the
 ``sweeps`` entry that replaces it (:func:`lsbg.study.sweep_checks.load_sweep_moved`).
@@ -155,6 +158,10 @@ def check_config(config, schema, analyses=True, given=None):
         from lsbg.experiments.cutter import cutter_sweep_problems
 
         problems += cutter_sweep_problems(config)
+    if not problems:
+        from lsbg.optimise.cells import trace_study_problems
+
+        problems += trace_study_problems(config)
     if analyses:
         problems += analysis_problems(config, pairs)
     if not problems and config.get("sweeps"):

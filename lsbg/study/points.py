@@ -66,6 +66,18 @@ FILES = {
     # and the traces' fronts compared (lsbg trace-fronts)
     "optimise_converged_front": "results/optimise/{trace}_beta{spiral}_converged_front.nc",
     "trace_fronts": "results/optimise/trace_fronts.nc",
+    # the trace study's other cells (trace_study; lsbg.optimise.cells, rules/trace_study.smk):
+    # the practice design at each other spiral angle, and per cell (a spiral angle and the
+    # SBG's cutter) the same chain as the paper cell's; the LSBG's at an angle's cell of the
+    # design's cutter only
+    "cell_practice_design": "results/trace_study/beta{spiral}_design.yaml",
+    "cell_geometry": "results/trace_study/{cell}/geometry/{trace}",
+    "cell_compliance": "results/trace_study/{cell}/{trace}_compliance.nc",
+    "cell_front": "results/trace_study/{cell}/{trace}_seed{seed}_front.nc",
+    "cell_release": "results/trace_study/{cell}/{trace}_release.nc",
+    "cell_best_overlay": "results/trace_study/{cell}/{trace}_best.yaml",
+    "cell_converged_front": "results/trace_study/{cell}/{trace}_converged_front.nc",
+    "cell_trace_fronts": "results/optimise/trace_fronts_{cell}.nc",
     "best_fe_ltca": "results/best/tooth/{trace}_beta{spiral}_ltca.nc",
     "best_fe_envelope": "results/best/tooth/{trace}_beta{spiral}_envelope.nc",
     "best_tca": "results/best/tca/{trace}_beta{spiral}.nc",

@@ -19,7 +19,7 @@ from lsbg.gear.design import TRACE_LABELS
 __all__ = ["read_fronts", "study_seed", "study_fronts", "seed_table", "COEFFICIENTS",
            "read_releases", "release_words",
            "release_table", "release_text", "release_efficiency_text", "trace_fronts_table",
-           "trace_fronts_text"]
+           "trace_fronts_text", "cell_name", "trace_cells_table", "trace_level_text"]
 
 #: The ease-off coefficients shown [um].
 COEFFICIENTS = ("lengthwise_crowning", "profile_crowning", "bias", "spiral_angle_correction",
@@ -282,3 +282,53 @@ def trace_fronts_text(ds):
             f"{eps[1]:.3g}. By the rule of docs/optimise.md: {ds.attrs['verdict_text']}."
             + (f" Indicative only: {ds.attrs['least_attainable_p_note']}."
                if ds.attrs["indicative"] else ""))
+
+
+def cell_name(ds):
+    """A cell of the trace study in words: its spiral angle [deg] and the SBG's cutter
+    radius [mm] (the attributes ``cell_*`` of a trace-fronts dataset), else "?"."""
+    angle = ds.attrs.get("cell_spiral_angle_deg")
+    cutter = ds.attrs.get("cell_cutter_radius_mm")
+    if angle is None:
+        return "?"
+    return f"{float(angle):g} deg" + ("" if cutter is None else f", r_c0 {float(cutter):g} mm")
+
+
+def trace_cells_table(datasets):
+    """The trace study's cells (lsbg trace-fronts, one dataset per cell), a row each.
+
+    Parameters
+    ----------
+    datasets : list of xarray.Dataset
+        The cells' trace-fronts datasets, the paper's first.
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``cell`` (spiral angle [deg], the SBG's cutter radius [mm]), the median
+        hypervolume of each trace [-], A12 [-], the additive epsilon-indicator both ways
+        [-] and the cell's verdict.
+    """
+    rows = []
+    for ds in datasets:
+        hv = ds["hypervolume_median"].values
+        eps = ds["epsilon_additive"].values
+        rows.append({"cell": cell_name(ds), "hypervolume median, LSBG": float(hv[0]),
+                     "hypervolume median, SBG": float(hv[1]), "A12": float(ds["a12"]),
+                     "epsilon LSBG to SBG": float(eps[0]), "epsilon SBG to LSBG": float(eps[1]),
+                     "verdict": ds.attrs["verdict_text"]
+                     + (" (indicative)" if ds.attrs["indicative"] else "")})
+    return pd.DataFrame(rows)
+
+
+def trace_level_text(datasets):
+    """The trace-level answer over the cells (:func:`lsbg.optimise.cells.trace_level_verdict`)
+    in words."""
+    from lsbg.optimise.cells import trace_level_verdict
+
+    answer = trace_level_verdict({f"{k}: {cell_name(ds)}": ds for k, ds in enumerate(datasets)})
+    indicative = any(ds.attrs["indicative"] for ds in datasets)
+    return (f"**The trace over every cell** ({answer['cells']} cells: spiral angles and the "
+            f"SBG's cutters; a side only where every cell gives it, docs/optimise.md): "
+            f"{answer['text']}." + (" Indicative only: fewer than 5 seeds per trace."
+                                    if indicative else ""))

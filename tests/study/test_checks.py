@@ -108,11 +108,13 @@ def bad_values(schema):
         if kind == "string":
             return [("wrong type", 7), ("wrong type", ["a.csv"])]
         return bad_values({**schema, "type": kind})
-    if "oneOf" in schema:  # a choice or a number (rating.dynamic_factor): the number's bad
-        # values that are no choice either, and a word that is no choice
-        number = next(s for s in schema["oneOf"] if s.get("type") in ("number", "integer"))
+    if "oneOf" in schema:  # a choice or a number (rating.dynamic_factor) or a list
+        # (trace_study.spiral_angles_deg): the other's bad values that are no choice either,
+        # and a word that is no choice
+        other = next(s for s in schema["oneOf"] if s.get("type") in ("number", "integer",
+                                                                     "array"))
         return [("not one of the choices", "no-such-choice")] + [
-            (category, value) for category, value in bad_values(number)
+            (category, value) for category, value in bad_values(other)
             if category not in ("wrong type",)]
     if "enum" in schema:
         return [("not one of the choices", "no-such-choice"), ("wrong type", 7)]
@@ -283,6 +285,20 @@ BEYOND_SCHEMA = {
     "cutter radius a face-milled sweep point cannot span": (
         {"design": {"cutter_radius_mm": 23}, "practice": {"sbg_trace": "circular"},
          "sweep": {"traces": ["face_milled"]}}, "design.cutter_radius_mm = 23: is too small"),
+    # the trace study's cells (lsbg.optimise.cells): an angle the study has no geometry of,
+    # a cutter the practice design's face-milled SBG cannot span at an angle of the section
+    "a trace-study angle outside the sweep": (
+        {"trace_study": {"spiral_angles_deg": [35, 33]}},
+        "trace_study.spiral_angles_deg[1] = 33: not the paper's angle"),
+    "a trace-study cutter that cannot span the face": (
+        {"trace_study": {"cutter_radii_mm": [76.2, 23]}},
+        "trace_study.cutter_radii_mm[1] = 23: at 35 deg cannot span the face"),
+    "a trace-study cutter outside the usual radii": (
+        {"trace_study": {"cutter_radii_mm": [400]}},
+        "trace_study.cutter_radii_mm[0] = 400: at 35 deg is outside the usual cutter radii"),
+    "a trace study without the searches": (
+        {"trace_study": {"cutter_radii_mm": "sweep"}, "optimise": {"enabled": False}},
+        "trace_study.cutter_radii_mm = 'sweep': compares the ease-off searches' fronts"),
     "bore through the teeth": ({"design": {"gear_bore_mm": 500}}, "design.gear_bore_mm = 500"),
     "pinion larger than the gear": ({"design": {"pinion_teeth": 40}},
                                     "design.pinion_teeth = 40"),
@@ -441,12 +457,13 @@ def test_the_parse_time_check_runs_no_analysis_and_keeps_nothing(monkeypatch, tm
 
 
 @pytest.mark.parametrize("names", [(), ("config-test.yaml",), ("config-speed.yaml",),
-                                   ("config-optimise.yaml",), ("config-cells.yaml",)])
+                                   ("config-optimise.yaml",), ("config-cells.yaml",),
+                                   ("config-trace.yaml",)])
 def test_shipped_configs_pass_with_the_schema_defaults_filled_in(names):
     config = load(*names)
     assert config_check.check_config(config, SCHEMA) == []
     # the full ease-off search (15 000 designs a trace) sets its own time limit
-    full_search = names == ("config-optimise.yaml",)
+    full_search = names in (("config-optimise.yaml",), ("config-trace.yaml",))
     assert config["limits"] == {"geometry_minutes": 10, "tooth_minutes": 10,
                                 "optimise_minutes": 15 if full_search else 10}
     assert config["contact"]["model"] == "point" and "slices" in config["contact"]

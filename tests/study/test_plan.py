@@ -400,3 +400,41 @@ def test_a_local_run_drops_only_snakemakes_default_job_rate_limit():
         workflow = _workflow(chosen, local)
         assert job_order.lift_job_rate_limit(workflow) is False
         assert workflow.scheduler.job_rate_limiter is not None
+
+
+def test_the_default_study_compares_the_traces_in_the_paper_cell_only(default):
+    study = plan.Study(default)
+    assert [c["label"] for c in study.trace_cells] == ["beta35"]
+    assert study.trace_fronts == ["results/optimise/trace_fronts.nc"]
+    assert study.other_cells == {} and sum(study.trace_study_jobs.values()) == 0
+    # the paper cell's chain is the optimise rules' files
+    assert study.cell_converged_fronts("beta35") == study.optimise_converged_fronts
+
+
+def test_every_other_cell_has_its_chain_and_shares_the_angles_lsbg():
+    config = load(trace_study={"spiral_angles_deg": [35, 25], "cutter_radii_mm": [76.2, 95.25]})
+    study = plan.Study(config)
+    labels = [c["label"] for c in study.trace_cells]
+    assert labels == ["beta35", "beta35_r95.25", "beta25", "beta25_r95.25"]
+    assert study.trace_fronts == ["results/optimise/trace_fronts.nc",
+                                  *(f"results/optimise/trace_fronts_{c}.nc" for c in labels[1:])]
+    # the LSBG of a cutter cell: its angle's (the paper's files at the paper's angle)
+    assert study.cell_converged_fronts("beta35_r95.25") == [
+        "results/optimise/logarithmic_beta35_converged_front.nc",
+        "results/trace_study/beta35_r95.25/face_milled_converged_front.nc"]
+    assert study.cell_converged_fronts("beta25_r95.25")[0] == \
+        "results/trace_study/beta25/logarithmic_converged_front.nc"
+    # one practice design per angle, the paper's the practice rules'
+    assert study.cell_file("practice_design", "face_milled", "beta35_r95.25") == \
+        "results/practice/design.yaml"
+    assert study.cell_file("practice_design", "logarithmic", "beta25_r95.25") == \
+        "results/trace_study/beta25_design.yaml"
+    assert study.cell_settings("beta25_r95.25", "face_milled") == [
+        "design.spiral_angle_deg=25", "design.cutter_radius_mm=95.25"]
+    assert study.cell_settings("beta25_r95.25", "logarithmic") == ["design.spiral_angle_deg=25"]
+    seeds = len(study.optimise_seeds)
+    # searched: the SBG in 3 other cells, the LSBG at 25 deg once
+    assert study.trace_study_jobs == {
+        "cell_practice_design": 1, "cell_geometry": 4, "cell_compliance": 4,
+        "cell_optimise": 4 * seeds, "cell_release": 4, "cell_converged_front": 4,
+        "cell_trace_fronts": 3}

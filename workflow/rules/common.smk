@@ -93,19 +93,25 @@ def check_analyses():
 
 
 def report_search_estimate():
-    """Print the ease-off searches' job count and estimated CPU-hours (the Snakefile's
-    ``onstart``, before any job; lsbg.optimise.checks.search_estimate)."""
+    """Print the ease-off searches' cells, job count and estimated CPU-hours (the
+    Snakefile's ``onstart``, before any job; lsbg.optimise.checks.search_estimate)."""
     if not STUDY.optimise:
         return
     from lsbg.optimise.checks import search_estimate
 
-    traces = STUDY.practice_traces
-    jobs, hours = search_estimate(config, len(traces))
+    jobs, hours = search_estimate(config)
+    cells = STUDY.trace_cells
     o = config["optimise"]
-    logger.info(f"ease-off searches: {jobs} jobs ({len(traces)} traces x {o['seeds']} seeds, "
+    logger.info(f"ease-off searches: {jobs} jobs in {len(cells)} cell(s) of the trace study "
+                f"(the SBG per cell, the LSBG per spiral angle, {o['seeds']} seeds each, "
                 f"{o['population']} x {o['generations']} designs each), about {hours:.3g} "
-                f"CPU-hours estimated, {o['workers']} CPUs per job; then per trace a release "
-                f"and a converge-front job, and one trace-fronts job")
+                f"CPU-hours estimated, {o['workers']} CPUs per job; then per trace and cell a "
+                f"release and a converge-front job, and per cell a trace-fronts job")
+    cell_jobs = STUDY.trace_study_jobs
+    if len(cells) > 1:
+        logger.info(f"the trace study's {len(cells) - 1} cell(s) beyond the paper's: "
+                    f"{sum(cell_jobs.values())} jobs ("
+                    + ", ".join(f"{rule} {n}" for rule, n in cell_jobs.items()) + ")")
 
 
 def stop_if(problems):
@@ -406,3 +412,26 @@ def design_set_input(paper, practice):
     """An input of a load curve: ``paper(wildcards)`` for the published pair, else
     ``practice(wildcards)`` (rules/practice.smk)."""
     return lambda w: paper(w) if w.design_set == "paper" else practice(w)
+
+
+# ---------------------------------------------------------------- the trace study
+def cell_config(w):
+    """A cell's configuration: the study's, the practice overlay at the cell's angle."""
+    return [ancient(FILES["study_config"]),
+            STUDY.cell_file("practice_design", w.trace, w.cell)]
+
+
+def cell_set(w):
+    """The ``--set`` values of a cell's design point (its angle, an SBG's cutter): the
+    geometry's (the later commands read the design from the geometry)."""
+    return STUDY.cell_settings(w.cell, w.trace)
+
+
+def cell_input(kind):
+    """A file of the cell's own chain as a rule's input (from the wildcards)."""
+    return lambda w: STUDY.cell_file(kind, w.trace, w.cell)
+
+
+def cell_fronts(w):
+    """A cell's trace's fronts, every seed's."""
+    return [STUDY.cell_file("front", w.trace, w.cell, seed) for seed in STUDY.optimise_seeds]

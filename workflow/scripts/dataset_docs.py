@@ -24,6 +24,7 @@ KINDS = [
     ("rating/{trace}_beta{angle}.nc", "rating/logarithmic_beta35.nc", "ISO 10300 method B1 and the FE stresses, per sensitivity case (also `practice/rating/`, `best/rating/`)."),
     ("rating_sweep.nc", "rating_sweep.nc", "ISO 10300 at every design point of the sweep."),
     ("optimise/{trace}_beta{angle}_seed{n}_front.nc", "optimise/logarithmic_beta35_seed1_front.nc", "An ease-off search: its final population and front (`reference_*`: the shared design)."),
+    ("optimise/trace_fronts.nc", "optimise/trace_fronts.nc", "Trace against trace (`lsbg trace-fronts`; docs/optimise.md): the statistics of the traces' converged fronts in the paper's cell. Each other cell of the `trace_study` section writes `optimise/trace_fronts_{cell}.nc` with the same variables (its spiral angle and the SBG's cutter in the attributes `cell_spiral_angle_deg`, `cell_cutter_radius_mm`), its chain under `trace_study/{cell}/`."),
     ("verification/{trace}_beta{angle}_checks.nc", "verification/logarithmic_beta35_checks.nc", "The verification checks and their bounds."),
 ]
 
