@@ -1,0 +1,15 @@
+"""Matched designs: the two traces' front members paired and compared design by design.
+
+The fronts compared as sets (:mod:`lsbg.optimise.fronts`) say which trace's
+searches reach further; the matched designs ask the paper's questions of
+designs that are equally good on the search's terms (docs/optimise.md,
+"Matched designs"):
+
+* :mod:`lsbg.matched.pairs`: the LSBG's and the SBG's converged front members
+  paired one to one on two objectives (pattern movement and contact pressure,
+  normalised by the common box of ``lsbg trace-fronts``), a caliper dropping
+  poor matches, and the paired statistics (Wilcoxon's signed-rank test and a
+  bootstrap interval over the pairs) of a per-pair log ratio;
+
+SI inside; the objectives in :data:`lsbg.optimise.objectives.QUANTITIES`' units.
+"""
