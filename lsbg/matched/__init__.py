@@ -10,6 +10,9 @@ designs that are equally good on the search's terms (docs/optimise.md,
   normalised by the common box of ``lsbg trace-fronts``), a caliper dropping
   poor matches, and the paired statistics (Wilcoxon's signed-rank test and a
   bootstrap interval over the pairs) of a per-pair log ratio;
+* :mod:`lsbg.matched.stability`: each design's stability, the driveline's and
+  the prescribed pinion's, by a proxy (the loaded TE's mesh harmonics through
+  the linearised system's frequency response) and by a full run;
 
 SI inside; the objectives in :data:`lsbg.optimise.objectives.QUANTITIES`' units.
 """
