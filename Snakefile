@@ -61,6 +61,7 @@ if STUDY.practice:
 if STUDY.optimise:
 
     include: "workflow/rules/optimise.smk"
+    include: "workflow/rules/matched.smk"
 
 
 for extension in config["extensions"]:

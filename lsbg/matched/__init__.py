@@ -13,6 +13,13 @@ designs that are equally good on the search's terms (docs/optimise.md,
 * :mod:`lsbg.matched.stability`: each design's stability, the driveline's and
   the prescribed pinion's, by a proxy (the loaded TE's mesh harmonics through
   the linearised system's frequency response) and by a full run;
+* :mod:`lsbg.matched.run`: the pairs of two converged fronts, one design's
+  answers, the statistics over the pairs' log std ratios;
+* :mod:`lsbg.matched.stage`: ``lsbg matched-pairs``' work, every pair's designs
+  answered (stability, the FE figures; the pattern's movement is the searches'
+  objective, the ISO rating the design point's: it takes no ease-off);
+* :mod:`lsbg.matched.dataset`: the pairs and their answers as a CF dataset;
+* :mod:`lsbg.matched.checks`: the ``matched`` section's check beyond its schema.
 
 SI inside; the objectives in :data:`lsbg.optimise.objectives.QUANTITIES`' units.
 """

@@ -97,6 +97,8 @@ def test_every_run_and_file_of_the_default_study_is_planned_once(default):
     assert study.optimise_converged_fronts == [
         f"results/optimise/{t}_beta35_converged_front.nc" for t in ("logarithmic", "face_milled")]
     assert study.trace_fronts == ["results/optimise/trace_fronts.nc"]
+    assert study.matched_pairs == ["results/optimise/matched_pairs.nc"]
+    assert "results/optimise/matched_pairs.nc" in study.targets
     assert study.best_files("rating") == ["results/best/rating/logarithmic_beta35.nc",
                                           "results/best/rating/face_milled_beta35.nc"]
     # the practice design point of each trace and the load curves of both designs (the

@@ -476,9 +476,9 @@ _PRACTICE_POINT = [f"practice_{step}" for step in (
     "rating")] * 2
 _LOAD_CURVES = ["load_curve"] * 4
 #: Each type's ease-off searched (three seeds) and released, its fronts at converged
-#: positions and the traces' fronts compared, and its design point's jobs.
+#: positions, the traces' fronts compared and their matched designs, and its design point's jobs.
 _OPTIMISE = (["optimise"] * 6 + ["optimise_release"] * 2 + ["optimise_converged_front"] * 2
-             + ["trace_fronts"])
+             + ["trace_fronts", "matched_pairs"])
 _BEST = [f"best_{step}" for step in (
     "fe_ltca", "fe_envelope", "contact_state", "run", "sensitivity", "rating")] * 2
 #: What the overlay's change reruns: the practice design and everything made from it.
