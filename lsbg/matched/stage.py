@@ -116,9 +116,12 @@ def answer_pairs(settings, geometry_dirs, releases, compliance_files, matched, c
     ratios = log_ratios(std)  # (pairs, estimate, boundary, quantity)
     statistics = ratio_statistics(ratios)
     proxy_error = std[:, :, 0] / std[:, :, 1] - 1
+    nothing = np.full((len(BOUNDARIES), len(STABILITY_QUANTITIES)), np.nan)
     with np.errstate(all="ignore"):
-        worst = np.nanmax(np.abs(proxy_error), axis=(0, 1)) if full.any() else \
-            np.full((len(BOUNDARIES), len(STABILITY_QUANTITIES)), np.nan)
+        worst = np.nanmax(np.abs(proxy_error), axis=(0, 1)) if full.any() else nothing
+        # the proxy's error in the pair's answer: its log ratio less the full runs'
+        worst_ratio = np.nanmax(np.abs(ratios[:, 0] - ratios[:, 1]), axis=0) if full.any() \
+            else nothing
     attrs = {"caliper": float(section["caliper"]), "pairs_sought": int(section["pairs"]),
              "enough_pairs": int(n >= int(section["pairs"])),
              "full_run_pairs": int(full_pairs),
@@ -140,5 +143,8 @@ def answer_pairs(settings, geometry_dirs, releases, compliance_files, matched, c
              "proxy_error_max": " ".join(f"{b}/{q}={worst[i, j]:.4g}"
                                          for i, b in enumerate(BOUNDARIES)
                                          for j, q in enumerate(STABILITY_QUANTITIES)),
+             "proxy_log_ratio_error_max": " ".join(
+                 f"{b}/{q}={worst_ratio[i, j]:.4g}" for i, b in enumerate(BOUNDARIES)
+                 for j, q in enumerate(STABILITY_QUANTITIES)),
              "steady_state_after_s": start, "run_seconds": time.perf_counter() - started}
     return matched_pairs_dataset(matched, converged, std, fe, statistics, attrs)
