@@ -4,9 +4,12 @@
 (:func:`lsbg.optimise.loaded.loaded_points`, the line model on the uniform bed,
 the search's model) is the quasi-static mesh deflection; its mesh harmonics
 drive the system linearised about its mean mesh (Ozguven & Houser 1988: the
-static TE as the mesh's displacement excitation). With the mean torsional mesh
-stiffness k_theta and the mesh's damping c_theta = 2 zeta k_theta / omega_n
-(the line contact's stiffness-proportional damping,
+static TE as the mesh's displacement excitation). With the mesh's tangent
+torsional stiffness at the load k_theta (the torque's change over the mean loaded
+TE's, +-:data:`STEP` of the load: an ease-off that loads part of the line makes it
+well below the conjugate flanks' mean) and the mesh's damping
+c_theta = 2 zeta k_theta / omega_n (the line contact's stiffness-proportional
+damping, omega_n its mesh mode at the conjugate mean stiffness,
 :class:`lsbg.contact.MeshContact`), the mesh torque on the gear is
 
     T_m = k_theta (rho phi1 - phi2 - delta) + c_theta (rho phi1' - phi2' - delta'),
@@ -45,6 +48,8 @@ __all__ = ["STABILITY_QUANTITIES", "BOUNDARIES", "harmonics", "response_stds", "
 
 #: The quantities of the stability answer (run dataset variables) [deg/s], [N].
 STABILITY_QUANTITIES = ("gear_speed", "tangential_force_outer")
+#: The relative torque step of the mesh's tangent stiffness [-].
+STEP = 0.05
 #: The boundaries each design is answered at (``simulation.boundary``).
 BOUNDARIES = ("prescribed_pinion", "driveline")
 
@@ -156,8 +161,13 @@ def proxy_stds(model, boundary, load_torque, pinion_speed, phases=32):
     if not uniform_bed_contact(model):
         raise ValueError("the proxy is defined for the line model on the uniform bed")
     contact = model.contact
-    te = loaded_points(contact, [load_torque], phases).transmission_error[0]
-    k_theta = contact.mean_torsional_stiffness()
+    torques = load_torque * (1.0 + np.array([0.0, -STEP, STEP]))
+    te = loaded_points(contact, torques, phases).transmission_error
+    # the mesh's tangent stiffness at the load: the torque over the mean TE's change
+    k_theta = 2 * STEP * load_torque / (te[2].mean() - te[1].mean())
+    te = te[0]
+    # the line contact's damping is stiffness-proportional, c = 2 zeta k / omega_n with
+    # omega_n the mesh mode at the conjugate flanks' mean stiffness (MeshContact)
     omega_n = 2 * math.pi * contact.natural_frequency(contact.gear_inertia)
     c_theta = 2 * contact.params.damping_ratio * k_theta / omega_n
     design = model.pair.design

@@ -8,9 +8,11 @@ import pytest
 
 from lsbg.matched import stability
 
-#: The proxy's largest relative error against the full run measured on the test's design
-#: and the tiny study's (docs/optimise.md, "Matched designs"): it lies above the run.
-PROXY_ERROR = {"gear_speed": 0.25, "tangential_force_outer": 0.6}
+#: The proxy's largest relative error against the full run on the test's design, which
+#: measures -0.5 % and -9 % (prescribed pinion), +11 % and 0 % (driveline): the bound of
+#: docs/optimise.md, "Matched designs" (on the tiny study's search individuals up to 21 %
+#: and 26 %).
+PROXY_ERROR = {"gear_speed": 0.15, "tangential_force_outer": 0.15}
 
 
 def test_harmonics_of_a_sampled_sum_of_cosines():
