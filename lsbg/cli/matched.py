@@ -63,6 +63,12 @@ def run_matched_pairs(args):
     if traces[0] != "logarithmic" or traces[1] == "logarithmic":
         raise CommandError(f"--converged: fronts of {' and '.join(traces)}; give the "
                            f"logarithmic trace's first, then one other's")
+    from lsbg.config import ConfigError
+    from lsbg.matched.checks import matched_problems
+
+    problems = matched_problems(args.settings)
+    if problems:
+        raise ConfigError(problems[0])
     section = args.settings["matched"]
     trace_fronts = xr.load_dataset(args.trace_fronts)
     matched = checked(lambda: matched_designs(converged, box_of(trace_fronts),
