@@ -35,7 +35,9 @@ def add_matched_pairs_parser(subparsers):
             ("--geometry", "DIR", "each trace's geometry directory (lsbg geometry)"),
             ("--release", "RELEASE.nc", "each trace's release (lsbg release): its positions"),
             ("--compliance-file", "COMPLIANCE.nc", "each trace's FE compliance (lsbg "
-                                                   "compliance)")):
+                                                   "compliance)"),
+            ("--rating", "RATING.nc", "each trace's ISO 10300 rating at its design point "
+                                      "(lsbg rate; it takes no ease-off)")):
         parser.add_argument(option, nargs=2, required=True, metavar=metavar,
                             help=f"{text}, the logarithmic trace's first")
     parser.add_argument("--front", nargs="+", required=True, metavar="FRONT.nc",
@@ -75,8 +77,9 @@ def run_matched_pairs(args):
                                               float(section["caliper"]), int(section["pairs"])))
     fronts = [xr.load_dataset(p) for p in args.front]
     releases = [xr.load_dataset(p) for p in args.release]
+    ratings = [xr.load_dataset(p) for p in args.rating]
     ds = answer_pairs(args.settings, args.geometry, releases, args.compliance_file, matched,
-                      converged, fronts, log.info)
+                      converged, fronts, log.info, ratings)
     ds.attrs["history"] = command_line()
     write_dataset(ds, args.out)
     a = ds.attrs

@@ -25,7 +25,8 @@ STATISTICS = {
 }
 
 
-def matched_pairs_dataset(matched, converged, std, fe, statistics, attrs=None):
+def matched_pairs_dataset(matched, converged, std, fe, statistics, attrs=None,
+                          state_statistics=None):
     """The matched pairs' dataset.
 
     Parameters
@@ -41,6 +42,9 @@ def matched_pairs_dataset(matched, converged, std, fe, statistics, attrs=None):
     statistics : dict
         :func:`lsbg.matched.run.ratio_statistics` of the log ratios.
     attrs : dict, optional
+    state_statistics : dict, optional
+        ``{figure: ratio_statistics of its (pairs, 1) log ratios}``: the contact state's
+        and life's figures (the FE figures, the pattern's movement) over the pairs.
 
     Returns
     -------
@@ -85,6 +89,12 @@ def matched_pairs_dataset(matched, converged, std, fe, statistics, attrs=None):
         data[f"fe_{name}"] = (pt, values, {"units": unit, "long_name": text})
     for name, text in STATISTICS.items():
         data[f"ratio_{name}"] = (dims[2:], statistics[name], {"units": one, "long_name": text})
+    for figure, stats in (state_statistics or {}).items():
+        for name, text in STATISTICS.items():
+            data[f"{figure}_ratio_{name}"] = ((), float(stats[name][0]), {
+                "units": one, "long_name": text.replace("log std ratio", f"log {figure} ratio")
+                .replace("log std(SBG)/std(LSBG)", f"log {figure} SBG/LSBG")
+                .replace("the LSBG calmer", "the LSBG's lower")})
     traces = [str(d.attrs.get("design_trace")) for d in converged]
     base = {"Conventions": "CF-1.11",
             "title": "Matched designs of the two traces' converged fronts: stability, contact "

@@ -21,11 +21,14 @@ import numpy as np
 from lsbg.matched.run import ESTIMATES, design_answers, log_ratios, ratio_statistics
 from lsbg.matched.stability import BOUNDARIES, STABILITY_QUANTITIES
 
-__all__ = ["answer_pairs"]
+__all__ = ["RATING_FIGURES", "answer_pairs"]
+
+#: The rating's figures the dataset carries per trace (pinion, gear where per member).
+RATING_FIGURES = ("contact_safety", "bending_safety", "contact_stress", "root_stress")
 
 
 def answer_pairs(settings, geometry_dirs, releases, compliance_files, matched, converged,
-                 fronts, log=None):
+                 fronts, log=None, ratings=None):
     """Answer every matched pair and build the dataset.
 
     Parameters
@@ -42,6 +45,9 @@ def answer_pairs(settings, geometry_dirs, releases, compliance_files, matched, c
     fronts : sequence of xarray.Dataset
         Every search's front of both traces (``design_trace`` and ``seed`` attributes).
     log : callable, optional
+    ratings : sequence of xarray.Dataset, optional
+        Each trace's ISO 10300 rating at its design point (``lsbg rate``): its
+        :data:`RATING_FIGURES` go into the attributes (the rating takes no ease-off).
 
     Returns
     -------
@@ -115,6 +121,15 @@ def answer_pairs(settings, geometry_dirs, releases, compliance_files, matched, c
                 + (" (full runs too)" if full[k] else ""))
     ratios = log_ratios(std)  # (pairs, estimate, boundary, quantity)
     statistics = ratio_statistics(ratios)
+    # the contact state and life over the pairs: log SBG / LSBG of each FE figure and of
+    # the pattern's movement
+    state = {name: values for name, values in fe.items()}
+    if "pattern_movement" in converged[0].attrs["objectives"].split():
+        state["pattern_movement"] = np.column_stack(
+            [d["pattern_movement"].values[member[:, t]] for t, d in enumerate(converged)]) \
+            if n else np.zeros((0, 2))
+    state_statistics = {name: ratio_statistics(log_ratios(v)[:, None])
+                        for name, v in state.items()}
     proxy_error = std[:, :, 0] / std[:, :, 1] - 1
     nothing = np.full((len(BOUNDARIES), len(STABILITY_QUANTITIES)), np.nan)
     with np.errstate(all="ignore"):
@@ -132,8 +147,9 @@ def answer_pairs(settings, geometry_dirs, releases, compliance_files, matched, c
                  "(estimate full) only the full_run_pair_indices: indicative where fewer "
                  "than all pairs, or fewer pairs than pairs_sought"),
              "rating_note": ("the ISO 10300 rating (lsbg.rating) takes no ease-off: it is "
-                             "each trace's design point's (results/practice/rating/), the same "
-                             "for every design of the trace"),
+                             "each trace's design point's (results/practice/rating/; the "
+                             "attributes rating_<trace>_*, pinion and gear), the same for "
+                             "every design of the trace"),
              "fe_note": (f"FE figures of the aligned pair over the load range at the "
                          f"releases' aligned FE positions "
                          f"({' '.join(str(int(r.attrs['fe_aligned_positions'])) for r in releases)})"),
@@ -147,4 +163,10 @@ def answer_pairs(settings, geometry_dirs, releases, compliance_files, matched, c
                  f"{b}/{q}={worst_ratio[i, j]:.4g}" for i, b in enumerate(BOUNDARIES)
                  for j, q in enumerate(STABILITY_QUANTITIES)),
              "steady_state_after_s": start, "run_seconds": time.perf_counter() - started}
-    return matched_pairs_dataset(matched, converged, std, fe, statistics, attrs)
+    if ratings is not None:
+        for t, rating in enumerate(ratings):
+            for name in RATING_FIGURES:
+                values = np.atleast_1d(rating[name].values)
+                attrs[f"rating_{traces[t]}_{name}"] = " ".join(f"{v:.6g}" for v in values)
+    return matched_pairs_dataset(matched, converged, std, fe, statistics, attrs,
+                                 state_statistics)

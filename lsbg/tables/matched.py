@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pandas as pd
 
-__all__ = ["ALPHA", "matched_table", "matched_text", "calmer_of"]
+__all__ = ["ALPHA", "matched_table", "state_table", "matched_text", "calmer_of"]
 
 _QUANTITY_WORDS = {"gear_speed": "gear angular velocity",
                    "tangential_force_outer": "tangential force (torque / outer radius)"}
@@ -62,6 +62,26 @@ def matched_table(ds):
     return pd.DataFrame(rows)
 
 
+def state_table(ds):
+    """The contact state's and life's figures over the pairs: per figure (the pattern's
+    movement, the FE figures) the pairs, exp of the mean log SBG/LSBG (> 1: the LSBG's
+    lower), its bootstrap interval, Wilcoxon's p and the lower trace (:func:`calmer_of`)."""
+    rows = []
+    for name in ds.data_vars:
+        if not name.endswith("_ratio_mean"):
+            continue
+        figure = name[:-len("_ratio_mean")]
+
+        def value(statistic):
+            return float(ds[f"{figure}_ratio_{statistic}"])
+
+        rows.append({"figure": figure, "pairs": int(value("pairs")),
+                     "ratio": math.exp(value("mean")), "low": math.exp(value("low")),
+                     "high": math.exp(value("high")), "wilcoxon_p": value("wilcoxon_p"),
+                     "lower": calmer_of(value("low"), value("high"), value("wilcoxon_p"))})
+    return pd.DataFrame(rows)
+
+
 def matched_text(ds):
     """The matched designs' answer in words, with its limits (the pairs found, the
     proxy's error, the full runs' share)."""
@@ -84,5 +104,11 @@ def matched_text(ds):
     checked = (f"; against them the proxy's largest relative error in a std: "
                f"{a['proxy_error_max']}, and in the log std ratio: "
                f"{a['proxy_log_ratio_error_max']}" if full else "")
+    state = state_table(ds)
+    life = "; ".join(f"{r.figure} {r.ratio:.3g} (p {r.wilcoxon_p:.2g})"
+                     for r in state.itertuples())
     return (head + f" By the proxy over every pair: {said}. The full runs cover {full} of "
-            f"the pairs{checked}" + (" (indicative)." if int(a["indicative"]) else "."))
+            f"the pairs{checked}" + (" (indicative)." if int(a["indicative"]) else ".")
+            + (f" Contact state and life, SBG over LSBG (geometric mean over the pairs): "
+               f"{life}; the ISO 10300 rating takes no ease-off (the design point's)."
+               if len(state) else ""))

@@ -18,6 +18,10 @@ def inputs(tmp_path, first="logarithmic"):
         ds.to_netcdf(paths[trace])
         release = xr.Dataset(attrs={"design_trace": trace, "fe_aligned_positions": 24})
         release.to_netcdf(tmp_path / f"{trace}_release.nc")
+        rating = xr.Dataset({"contact_safety": ("member", [1.0, 1.1]),
+                             "bending_safety": ("member", [2.0, 2.1]),
+                             "contact_stress": 1500.0, "root_stress": ("member", [400, 410])})
+        rating.to_netcdf(tmp_path / f"{trace}_rating.nc")
         (tmp_path / trace).mkdir(exist_ok=True)
     # a search's front: only its trace and seed are read where no pair is found
     xr.Dataset(attrs={"design_trace": first, "seed": 1}).to_netcdf(tmp_path / "front.nc")
@@ -27,6 +31,7 @@ def inputs(tmp_path, first="logarithmic"):
              "--geometry", *[str(tmp_path / t) for t in traces],
              "--release", *[str(tmp_path / f"{t}_release.nc") for t in traces],
              "--compliance-file", *[str(tmp_path / f"{t}_compliance.nc") for t in traces],
+             "--rating", *[str(tmp_path / f"{t}_rating.nc") for t in traces],
              "--front", str(tmp_path / "front.nc"), "--trace-fronts", str(tmp_path / "trace_fronts.nc"),
              "--out", str(tmp_path / "matched_pairs.nc")])
 
@@ -37,6 +42,8 @@ def test_no_overlap_no_pairs(tmp_path, capsys):
     assert ds.sizes["pair"] == 0 and ds.attrs["pairs_found"] == 0
     assert ds.attrs["candidates"] == "2 2" and ds.attrs["dropped_by_caliper"] == 2
     assert ds.attrs["enough_pairs"] == 0 and np.isnan(ds["ratio_wilcoxon_p"]).all()
+    # the rating is the design point's, carried per trace
+    assert ds.attrs["rating_logarithmic_bending_safety"] == "2 2.1"
     assert "0 pairs of 2 2 designs within caliper 0.05" in capsys.readouterr().out
 
 

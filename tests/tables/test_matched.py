@@ -23,7 +23,11 @@ def constructed(n=10):
     attrs = {"caliper": 0.05, "pairs_sought": n, "full_run_pairs": 3, "indicative": 1,
              "proxy_error_max": "x", "proxy_log_ratio_error_max": "y"}
     stats = ratio_statistics(log_ratios(std))
-    return matched_pairs_dataset(found, (lsbg, sbg), std, {}, stats, attrs)
+    # the SBG's root stress 10 % above the LSBG's in every pair
+    stress = np.column_stack([np.full(n, 500.0), 550.0 + rng.standard_normal(n)])
+    state = {"root_stress_gear": ratio_statistics(log_ratios(stress)[:, None])}
+    return matched_pairs_dataset(found, (lsbg, sbg), std, {"root_stress_gear": stress}, stats,
+                                 attrs, state)
 
 
 def test_the_table_says_the_lsbg_is_calmer_where_the_sbg_is_rougher():
@@ -36,6 +40,9 @@ def test_the_table_says_the_lsbg_is_calmer_where_the_sbg_is_rougher():
     assert (full["pairs"] == 3).all() and (full["calmer"] == "not resolved").all()
     text = matched.matched_text(constructed())
     assert text.startswith("**Matched designs:** 10 pairs") and "(indicative)" in text
+    state = matched.state_table(constructed())
+    assert state["figure"].tolist() == ["root_stress_gear"] and state["lower"][0] == "LSBG"
+    assert np.isclose(state["ratio"][0], 1.1, atol=0.01) and "root_stress_gear 1.1" in text
 
 
 def test_calmer_needs_both_the_interval_and_the_test():

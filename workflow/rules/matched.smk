@@ -25,6 +25,7 @@ rule matched_pairs:
         geometry=_both_traces("practice_geometry"),
         release=_both_traces("optimise_release"),
         compliance_file=_both_traces("practice_compliance"),
+        rating=_both_traces("practice_rating"),
         front=STUDY.optimise_fronts,
         trace_fronts=FILES["trace_fronts"],
         config=PRACTICE_CONFIG,
