@@ -6,10 +6,10 @@ from lsbg.cli.options import CommandError, add_config_options, add_output, check
 
 __all__ = ["add_matched_pairs_parser"]
 
-#: The sections ``lsbg matched-pairs`` reads: its own, the searches' (the line model, the
+#: The sections ``lsbg matched-pairs`` reads: the searches' (its own, optimise.matched; (the line model, the
 #: envelope, the rated torque), the runs' (the simulation, the driveline) and the steady
 #: state's start.
-SECTIONS = ("matched", "optimise", "flank_modification", "misalignment", "misalignment_map",
+SECTIONS = ("optimise", "flank_modification", "misalignment", "misalignment_map",
             "tca", "contact", "simulation", "driveline", "rating", "tooth", "limits",
             "statistics")
 
@@ -22,9 +22,9 @@ def add_matched_pairs_parser(subparsers):
         description="Pair the LSBG's converged front members with the SBG's (--converged, "
                     "lsbg converge-front) on pattern_movement and contact_pressure normalised "
                     "by the common box of --trace-fronts (lsbg trace-fronts): the least total "
-                    "distance, pairs beyond matched.caliper dropped, at most matched.pairs. "
+                    "distance, pairs beyond optimise.matched.caliper dropped, at most optimise.matched.pairs. "
                     "Each design's stability at both boundaries by the proxy (the loaded TE "
-                    "through the linearised system) and, for the closest matched.full_runs "
+                    "through the linearised system) and, for the closest optimise.matched.full_runs "
                     "pairs, by full runs (the compiled engine, the line model on the uniform "
                     "bed); its FE figures with --compliance-file at the release's aligned "
                     "positions (--release); Wilcoxon's signed-rank test and a bootstrap "
@@ -71,7 +71,7 @@ def run_matched_pairs(args):
     problems = matched_problems(args.settings)
     if problems:
         raise ConfigError(problems[0])
-    section = args.settings["matched"]
+    section = args.settings["optimise"]["matched"]
     trace_fronts = xr.load_dataset(args.trace_fronts)
     matched = checked(lambda: matched_designs(converged, box_of(trace_fronts),
                                               float(section["caliper"]), int(section["pairs"])))

@@ -1,4 +1,4 @@
-"""The ``matched`` section's checks beyond its schema (at parse time, no analysis)."""
+"""The ``optimise.matched`` section's checks beyond its schema (at parse time, no analysis)."""
 
 from __future__ import annotations
 
@@ -6,7 +6,7 @@ __all__ = ["matched_problems"]
 
 
 def matched_problems(config):
-    """Every problem of the ``matched`` section, one line each naming the key and value.
+    """Every problem of the ``optimise.matched`` section, one line each naming the key and value.
 
     Parameters
     ----------
@@ -17,10 +17,11 @@ def matched_problems(config):
     -------
     list of str
     """
-    section = config.get("matched", {})
+    section = config.get("optimise", {}).get("matched", {})
     pairs, full_runs = section.get("pairs", 30), section.get("full_runs", 3)
     problems = []
     if isinstance(pairs, int) and isinstance(full_runs, int) and full_runs > pairs:
-        problems.append(f"matched.full_runs = {full_runs!r}: at most matched.pairs = {pairs!r} "
+        problems.append(f"optimise.matched.full_runs = {full_runs!r}: at most optimise.matched.pairs = "
+                        f"{pairs!r} "
                         f"(the full runs are of the matched pairs)")
     return problems

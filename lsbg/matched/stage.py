@@ -3,7 +3,7 @@
 For each pair of :func:`lsbg.matched.run.matched_designs` and each of its two
 designs (its ease-off from its search's front, on its trace's geometry and the
 aligned pair): the proxy's stds at both boundaries, the full runs' for the
-closest ``matched.full_runs`` pairs (the compiled engine, the line model on
+closest ``optimise.matched.full_runs`` pairs (the compiled engine, the line model on
 the uniform bed, the ``simulation`` and ``driveline`` sections), and the FE
 figures of the aligned pair over the load range (:func:`lsbg.optimise.verdict.fe_group_values`
 at the release's aligned FE positions). The ISO 10300 rating takes no ease-off:
@@ -68,7 +68,7 @@ def answer_pairs(settings, geometry_dirs, releases, compliance_files, matched, c
 
     log = log or (lambda text: None)
     started = time.perf_counter()
-    section = settings["matched"]
+    section = settings["optimise"]["matched"]
     member = matched["member"]
     n = member.shape[0]
     full_pairs = min(int(section["full_runs"]), n)

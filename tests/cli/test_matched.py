@@ -54,7 +54,8 @@ def test_the_logarithmic_trace_comes_first(tmp_path, capsys):
 
 
 def test_more_full_runs_than_pairs_is_refused(tmp_path, capsys):
-    argv = inputs(tmp_path) + ["--set", "matched.pairs=2", "--set", "matched.full_runs=3"]
+    argv = inputs(tmp_path) + ["--set", "optimise.matched.pairs=2", "--set",
+                             "optimise.matched.full_runs=3"]
     assert cli.main(argv) == 2
-    assert "matched.full_runs = 3: at most matched.pairs = 2" in capsys.readouterr().err
+    assert "optimise.matched.full_runs = 3: at most optimise.matched.pairs = 2" in capsys.readouterr().err
     assert not (tmp_path / "matched_pairs.nc").exists()

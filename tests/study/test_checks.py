@@ -305,8 +305,9 @@ BEYOND_SCHEMA = {
     "a taper the flank stages do not build": ({"design": {"depth_taper": "uniform"}},
                                               "design.depth_taper = 'uniform': lsbg's flanks"),
     # the matched designs: the full runs are of the pairs
-    "more full runs than pairs": ({"matched": {"pairs": 4, "full_runs": 5}},
-                                  "matched.full_runs = 5: at most matched.pairs = 4"),
+    "more full runs than pairs": ({"optimise": {"matched": {"pairs": 4, "full_runs": 5}}},
+                                  "optimise.matched.full_runs = 5: at most "
+                                  "optimise.matched.pairs = 4"),
     # the resource guard
     "a gear of 100000 teeth": ({"design": {"gear_teeth": 100000}},
                                "design.gear_teeth = 100000"),

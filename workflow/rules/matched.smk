@@ -1,16 +1,17 @@
 # Matched designs (docs/optimise.md, "Matched designs"): `lsbg matched-pairs` pairs the
 # LSBG's converged front members with the SBG's on pattern movement and contact pressure
 # (normalised by lsbg trace-fronts' common box, a caliper), answers each pair's designs
-# (the stability proxy at both boundaries, full runs for the closest matched.full_runs
+# (the stability proxy at both boundaries, full runs for the closest optimise.matched.full_runs
 # pairs, the FE figures) and writes the paired statistics
 # (results/optimise/matched_pairs.nc). The default study's answer is the proxy's, with a
 # few full runs (indicative); workflow/config-trace.yaml asks for 30 pairs.
 
-#: What `lsbg matched-pairs` reads beyond its inputs: its section, the searches', the
+#: What `lsbg matched-pairs` reads beyond its inputs: its section (optimise.matched), the searches', the
 #: runs' and the steady state's start.
 MATCHED_SETTINGS = plan.canonical({
     **OPTIMISE_SETTINGS,
-    **{k: config[k] for k in ("matched", "simulation", "driveline", "statistics", "tooth")}})
+    "matched": config["optimise"]["matched"],
+    **{k: config[k] for k in ("simulation", "driveline", "statistics", "tooth")}})
 
 
 def _both_traces(name):
