@@ -6,9 +6,9 @@ from lsbg.cli.options import CommandError, add_config_options, add_output, check
 
 __all__ = ["add_matched_pairs_parser"]
 
-#: The sections ``lsbg matched-pairs`` reads: the searches' (its own, optimise.matched; (the line model, the
-#: envelope, the rated torque), the runs' (the simulation, the driveline) and the steady
-#: state's start.
+#: The sections ``lsbg matched-pairs`` reads: the searches' (its own, optimise.matched; the
+#: line model, the envelope, the rated torque), the runs' (the simulation, the driveline)
+#: and the steady state's start.
 SECTIONS = ("optimise", "flank_modification", "misalignment", "misalignment_map",
             "tca", "contact", "simulation", "driveline", "rating", "tooth", "limits",
             "statistics")
@@ -22,9 +22,11 @@ def add_matched_pairs_parser(subparsers):
         description="Pair the LSBG's converged front members with the SBG's (--converged, "
                     "lsbg converge-front) on pattern_movement and contact_pressure normalised "
                     "by the common box of --trace-fronts (lsbg trace-fronts): the least total "
-                    "distance, pairs beyond optimise.matched.caliper dropped, at most optimise.matched.pairs. "
+                    "distance, pairs beyond optimise.matched.caliper dropped, at most "
+                    "optimise.matched.pairs. "
                     "Each design's stability at both boundaries by the proxy (the loaded TE "
-                    "through the linearised system) and, for the closest optimise.matched.full_runs "
+                    "through the linearised system) and, for the closest "
+                    "optimise.matched.full_runs "
                     "pairs, by full runs (the compiled engine, the line model on the uniform "
                     "bed); its FE figures with --compliance-file at the release's aligned "
                     "positions (--release); Wilcoxon's signed-rank test and a bootstrap "

@@ -21,7 +21,7 @@ def matched_problems(config):
     pairs, full_runs = section.get("pairs", 30), section.get("full_runs", 3)
     problems = []
     if isinstance(pairs, int) and isinstance(full_runs, int) and full_runs > pairs:
-        problems.append(f"optimise.matched.full_runs = {full_runs!r}: at most optimise.matched.pairs = "
-                        f"{pairs!r} "
+        problems.append(f"optimise.matched.full_runs = {full_runs!r}: at most "
+                        f"optimise.matched.pairs = {pairs!r} "
                         f"(the full runs are of the matched pairs)")
     return problems

@@ -137,6 +137,7 @@ def answer_pairs(settings, geometry_dirs, releases, compliance_files, matched, c
         # the proxy's error in the pair's answer: its log ratio less the full runs'
         worst_ratio = np.nanmax(np.abs(ratios[:, 0] - ratios[:, 1]), axis=0) if full.any() \
             else nothing
+    fe_positions = " ".join(str(int(r.attrs["fe_aligned_positions"])) for r in releases)
     attrs = {"caliper": float(section["caliper"]), "pairs_sought": int(section["pairs"]),
              "enough_pairs": int(n >= int(section["pairs"])),
              "full_run_pairs": int(full_pairs),
@@ -151,8 +152,7 @@ def answer_pairs(settings, geometry_dirs, releases, compliance_files, matched, c
                              "attributes rating_<trace>_*, pinion and gear), the same for "
                              "every design of the trace"),
              "fe_note": (f"FE figures of the aligned pair over the load range at the "
-                         f"releases' aligned FE positions "
-                         f"({' '.join(str(int(r.attrs['fe_aligned_positions'])) for r in releases)})"),
+                         f"releases' aligned FE positions ({fe_positions})"),
              "contact_state_note": ("pattern_movement: the largest movement of the bearing "
                                     "pattern's centre over the envelope's corners (unloaded "
                                     "TCA), as the searches' objective"),

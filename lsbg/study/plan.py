@@ -458,6 +458,13 @@ class Study:
         """The traces' fronts compared (lsbg trace-fronts; none without the optimisation)."""
         return [FILES["trace_fronts"]] if self.optimise else []
 
+    def both_traces(self, name):
+        """``FILES[name]`` of each practice trace at the paper's angle, the logarithmic
+        trace's first (none without the optimisation): lsbg matched-pairs' inputs."""
+        traces = sorted(self.practice_traces, key=lambda t: t != "logarithmic")
+        return [_format(FILES[name], trace=t, spiral=self.paper_spiral)
+                for t in traces] if self.optimise else []
+
     @property
     def matched_pairs(self):
         """The traces' matched designs answered (lsbg matched-pairs; none without the

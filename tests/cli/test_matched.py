@@ -32,7 +32,8 @@ def inputs(tmp_path, first="logarithmic"):
              "--release", *[str(tmp_path / f"{t}_release.nc") for t in traces],
              "--compliance-file", *[str(tmp_path / f"{t}_compliance.nc") for t in traces],
              "--rating", *[str(tmp_path / f"{t}_rating.nc") for t in traces],
-             "--front", str(tmp_path / "front.nc"), "--trace-fronts", str(tmp_path / "trace_fronts.nc"),
+             "--front", str(tmp_path / "front.nc"),
+             "--trace-fronts", str(tmp_path / "trace_fronts.nc"),
              "--out", str(tmp_path / "matched_pairs.nc")])
 
 
@@ -57,5 +58,6 @@ def test_more_full_runs_than_pairs_is_refused(tmp_path, capsys):
     argv = inputs(tmp_path) + ["--set", "optimise.matched.pairs=2", "--set",
                              "optimise.matched.full_runs=3"]
     assert cli.main(argv) == 2
-    assert "optimise.matched.full_runs = 3: at most optimise.matched.pairs = 2" in capsys.readouterr().err
+    error = capsys.readouterr().err
+    assert "optimise.matched.full_runs = 3: at most optimise.matched.pairs = 2" in error
     assert not (tmp_path / "matched_pairs.nc").exists()

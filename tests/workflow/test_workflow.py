@@ -510,8 +510,10 @@ CODE_CHANGES = {
     # (the rating reads the line run that the convergence table writes, and its K_v
     # comes through lsbg.aggregate.summary, which reads lsbg.stats)
     "lsbg/experiments/verification.py": _CONVERGENCE + ["rating"] * 2 + _CHECKS + _AGGREGATES,
+    # (the matched designs read lsbg.stats through lsbg.aggregate.runs, and the practice
+    # ratings)
     "lsbg/stats/samples.py": ["rating"] * 2 + ["practice_rating"] * 2 + ["best_rating"] * 2
-                             + _AGGREGATES,
+                             + ["matched_pairs"] + _AGGREGATES,
     # a command depends on its stage only (lsbg.study.stages): the loaded TCA reruns the
     # loaded TCAs (the line model's, the FE one, the V-H maps'), not the runs or the FE
     # compliance; the sensitivity runs and the rating read the FE loaded TCA

@@ -6,27 +6,21 @@
 # (results/optimise/matched_pairs.nc). The default study's answer is the proxy's, with a
 # few full runs (indicative); workflow/config-trace.yaml asks for 30 pairs.
 
-#: What `lsbg matched-pairs` reads beyond its inputs: its section (optimise.matched), the searches', the
-#: runs' and the steady state's start.
+#: What `lsbg matched-pairs` reads beyond its inputs: its section (optimise.matched), the
+#: searches', the runs' and the steady state's start.
 MATCHED_SETTINGS = plan.canonical({
     **OPTIMISE_SETTINGS,
     "matched": config["optimise"]["matched"],
     **{k: config[k] for k in ("simulation", "driveline", "statistics", "tooth")}})
 
 
-def _both_traces(name):
-    """A file of each practice trace, the logarithmic trace's first."""
-    traces = sorted(STUDY.practice_traces, key=lambda t: t != "logarithmic")
-    return [template(FILES[name], trace=t, spiral=PAPER_SPIRAL) for t in traces]
-
-
 rule matched_pairs:
     input:
-        converged=_both_traces("optimise_converged_front"),
-        geometry=_both_traces("practice_geometry"),
-        release=_both_traces("optimise_release"),
-        compliance_file=_both_traces("practice_compliance"),
-        rating=_both_traces("practice_rating"),
+        converged=STUDY.both_traces("optimise_converged_front"),
+        geometry=STUDY.both_traces("practice_geometry"),
+        release=STUDY.both_traces("optimise_release"),
+        compliance_file=STUDY.both_traces("practice_compliance"),
+        rating=STUDY.both_traces("practice_rating"),
         front=STUDY.optimise_fronts,
         trace_fronts=FILES["trace_fronts"],
         config=PRACTICE_CONFIG,
