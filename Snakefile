@@ -62,6 +62,7 @@ if STUDY.optimise:
 
     include: "workflow/rules/optimise.smk"
     include: "workflow/rules/trace_study.smk"
+    include: "workflow/rules/matched.smk"
 
 
 for extension in config["extensions"]:

@@ -28,6 +28,7 @@ LAYERS = (
     ("stats",),
     ("experiments",),
     ("aggregate",),
+    ("matched",),
     ("tables",),
     ("figures",),
     ("reports",),

@@ -478,7 +478,7 @@ def test_notebooks_declare_the_interface_parameters():
                   "practice_geometry_dirs", "load_curve_files", "load_spectrum_fractions",
                   "load_spectrum_shares", "practice_profile_shift", "practice_addendum_rule",
                   "optimise_front_files", "optimise_release_files", "trace_fronts_files",
-                  "best_run_files",
+                  "matched_pairs_files", "best_run_files",
                   "best_vh_files", "best_rating_files", "best_fe_ltca_files",
                   "practice_sensitivity_runs", "practice_vh_case_files",
                   "practice_fe_case_files", "best_sensitivity_runs", "best_vh_case_files",

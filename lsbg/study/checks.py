@@ -154,6 +154,9 @@ def check_config(config, schema, analyses=True, given=None):
     from lsbg.optimise.checks import optimise_problems  # (imports numba's kernels)
 
     problems += load_problems(config, pairs) + _flank_problems(config) + optimise_problems(config)
+    from lsbg.matched.checks import matched_problems
+
+    problems += matched_problems(config)
     if not problems:  # (at the paper's design point, which passed)
         from lsbg.experiments.cutter import cutter_sweep_problems
 

@@ -40,6 +40,8 @@ JOB_SECONDS = {"kernels": 14.7, "paper_geometry": 4.3, "paper_ltca": 0.3,
                "practice_fe_envelope": 2.4, "practice_run": 1.8, "practice_rating": 0.3,
                "optimise": 8.5, "optimise_release": 20.0, "optimise_converged_front": 15.0,
                "trace_fronts": 4.0,
+               # not measured on the reference machine: the tiny study's job
+               "matched_pairs": 10.0,
                "best_contact_state": 3.1,
                "best_fe_ltca": 1.6, "best_fe_envelope": 2.4, "best_run": 1.4,
                "best_rating": 0.3, "report_paper": 18.8, "report_sweep": 8.6,

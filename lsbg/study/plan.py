@@ -32,6 +32,10 @@ from lsbg.practice.design import practice_traces
 from lsbg.study.points import (CONTACT_MODELS, FILES, PAPER_TRACES, REPORT_NAMES,
                                design_points, map_steps, speed_labels, speed_sweep_of)
 
+#: The matched designs' dataset (lsbg matched-pairs). Here, not in lsbg.study.points'
+#: FILES: that module is among every command's sources, so a new entry would rerun every job.
+MATCHED_PAIRS = "results/optimise/matched_pairs.nc"
+
 __all__ = ["PAPER_TRACES", "CONTACT_MODELS", "REPORT_NAMES", "STUDY_SECTIONS", "FILES",
            "design_points", "speed_labels", "canonical", "yaml_text",
            "write_study_config", "simulation_params", "simulation_runtime", "map_steps",
@@ -528,6 +532,19 @@ class Study:
             settings.append(f"design.cutter_radius_mm={c['cutter_mm']!r}")
         return settings
 
+    def both_traces(self, name):
+        """``FILES[name]`` of each practice trace at the paper's angle, the logarithmic
+        trace's first (none without the optimisation): lsbg matched-pairs' inputs."""
+        traces = sorted(self.practice_traces, key=lambda t: t != "logarithmic")
+        return [_format(FILES[name], trace=t, spiral=self.paper_spiral)
+                for t in traces] if self.optimise else []
+
+    @property
+    def matched_pairs(self):
+        """The traces' matched designs answered (lsbg matched-pairs; none without the
+        optimisation)."""
+        return [MATCHED_PAIRS] if self.optimise else []
+
     def best_file(self, kind, trace):
         """A file of the practice design point with each type's chosen ease-off: ``kind``
         one of overlay, fe_ltca, fe_envelope, tca, vh_map, run, rating."""
@@ -564,7 +581,8 @@ class Study:
                 *self.vh_maps, *self.vh_cases(), *self.tooth_files, *self.fe_cases(),
                 *self.rating_files, *self.sweep_files, *extra,
                 *self.practice_files("rating"), *self.practice_files("vh_map"),
-                *self.load_curves, *self.optimise_fronts, *self.best_files("rating"),
+                *self.load_curves, *self.optimise_fronts, *self.matched_pairs,
+                *self.best_files("rating"),
                 *self.best_files("vh_map"), *(p["file"] for p in self.cutter_points),
                 *(f for flanks in ("practice", "best") for kind in ("vh_case", "fe_case")
                   for f in self.pair_case_files(flanks, kind))]

@@ -320,6 +320,10 @@ BEYOND_SCHEMA = {
                                             "design.dedendum_angles_deg = [2, 6]"),
     "a taper the flank stages do not build": ({"design": {"depth_taper": "uniform"}},
                                               "design.depth_taper = 'uniform': lsbg's flanks"),
+    # the matched designs: the full runs are of the pairs
+    "more full runs than pairs": ({"optimise": {"matched": {"pairs": 4, "full_runs": 5}}},
+                                  "optimise.matched.full_runs = 5: at most "
+                                  "optimise.matched.pairs = 4"),
     # the resource guard
     "a gear of 100000 teeth": ({"design": {"gear_teeth": 100000}},
                                "design.gear_teeth = 100000"),

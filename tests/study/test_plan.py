@@ -76,7 +76,8 @@ def test_every_run_and_file_of_the_default_study_is_planned_once(default):
                              *study.rating_files, *study.speed_curves,
                              *study.practice_files("rating"),
                              *study.practice_files("vh_map"), *study.load_curves,
-                             *study.optimise_fronts, *study.best_files("rating"),
+                             *study.optimise_fronts, *study.matched_pairs,
+                             *study.best_files("rating"),
                              *study.best_files("vh_map"),
                              *(p["file"] for p in study.cutter_points),
                              *study.pair_case_files("practice", "vh_case"),
@@ -97,6 +98,10 @@ def test_every_run_and_file_of_the_default_study_is_planned_once(default):
     assert study.optimise_converged_fronts == [
         f"results/optimise/{t}_beta35_converged_front.nc" for t in ("logarithmic", "face_milled")]
     assert study.trace_fronts == ["results/optimise/trace_fronts.nc"]
+    assert study.matched_pairs == ["results/optimise/matched_pairs.nc"]
+    assert "results/optimise/matched_pairs.nc" in study.targets
+    assert study.both_traces("optimise_release") == [
+        f"results/optimise/{t}_beta35_release.nc" for t in ("logarithmic", "face_milled")]
     assert study.best_files("rating") == ["results/best/rating/logarithmic_beta35.nc",
                                           "results/best/rating/face_milled_beta35.nc"]
     # the practice design point of each trace and the load curves of both designs (the

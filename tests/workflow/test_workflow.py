@@ -476,9 +476,9 @@ _PRACTICE_POINT = [f"practice_{step}" for step in (
     "rating")] * 2
 _LOAD_CURVES = ["load_curve"] * 4
 #: Each type's ease-off searched (three seeds) and released, its fronts at converged
-#: positions and the traces' fronts compared, and its design point's jobs.
+#: positions, the traces' fronts compared and their matched designs, and its design point's jobs.
 _OPTIMISE = (["optimise"] * 6 + ["optimise_release"] * 2 + ["optimise_converged_front"] * 2
-             + ["trace_fronts"])
+             + ["trace_fronts", "matched_pairs"])
 _BEST = [f"best_{step}" for step in (
     "fe_ltca", "fe_envelope", "contact_state", "run", "sensitivity", "rating")] * 2
 #: What the overlay's change reruns: the practice design and everything made from it.
@@ -510,8 +510,10 @@ CODE_CHANGES = {
     # (the rating reads the line run that the convergence table writes, and its K_v
     # comes through lsbg.aggregate.summary, which reads lsbg.stats)
     "lsbg/experiments/verification.py": _CONVERGENCE + ["rating"] * 2 + _CHECKS + _AGGREGATES,
+    # (the matched designs read lsbg.stats through lsbg.aggregate.runs, and the practice
+    # ratings)
     "lsbg/stats/samples.py": ["rating"] * 2 + ["practice_rating"] * 2 + ["best_rating"] * 2
-                             + _AGGREGATES,
+                             + ["matched_pairs"] + _AGGREGATES,
     # a command depends on its stage only (lsbg.study.stages): the loaded TCA reruns the
     # loaded TCAs (the line model's, the FE one, the V-H maps'), not the runs or the FE
     # compliance; the sensitivity runs and the rating read the FE loaded TCA

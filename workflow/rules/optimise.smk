@@ -21,7 +21,9 @@ OPTIMISE_SETTINGS = plan.canonical({
     **{k: config[k] for k in ("misalignment", "misalignment_map", "rating", "tooth", "limits")},
     # the processes do not change a front, nor do more seeds the others': neither
     # reruns a search
-    "optimise": {k: v for k, v in config["optimise"].items() if k not in ("workers", "seeds")},
+    # (nor the matched designs' settings: lsbg matched-pairs reads them, rules/matched.smk)
+    "optimise": {k: v for k, v in config["optimise"].items()
+                 if k not in ("workers", "seeds", "matched")},
     "contact": simulation_params(SWEEP_ENGINE, "line")["contact"],
     "marking_compound_um": config["tca"]["marking_compound_um"],
     "pinion_speed_deg_s": config["simulation"]["pinion_speed_deg_s"]})

@@ -37,6 +37,8 @@ rule report_paper:
         optimise_front_files=STUDY.optimise_fronts,
         optimise_release_files=STUDY.optimise_releases,
         trace_fronts_files=STUDY.trace_fronts,
+        # the matched designs (rules/matched.smk)
+        matched_pairs_files=STUDY.matched_pairs,
         best_run_files=STUDY.best_files("run"),
         best_vh_files=STUDY.best_files("vh_map"),
         best_rating_files=STUDY.best_files("rating"),
