@@ -12,6 +12,9 @@ from lsbg.optimise.verdict import FE_QUANTITIES
 
 __all__ = ["STATISTICS", "matched_pairs_dataset"]
 
+#: The unit of each stability quantity's std, in STABILITY_QUANTITIES' order.
+_STD_UNITS = {name: {"gear_speed": "deg/s", "tangential_force_outer": "N"}[name]
+              for name in STABILITY_QUANTITIES}
 #: The paired statistics' variables: name -> long name (all dimensionless).
 STATISTICS = {
     "pairs": "pairs with both stds finite",
@@ -74,9 +77,9 @@ def matched_pairs_dataset(matched, converged, std, fe, statistics, attrs=None,
         data[name] = (pt, _taken(converged, member, name), {
             "units": unit, "long_name": f"{text}, at the converged positions"})
     dims = ("pair", "trace", "estimate", "boundary", "quantity")
-    data["std"] = (dims, std, {"units": "deg/s | N", "long_name": (
-        "steady std of the quantity (gear_speed in deg/s, tangential_force_outer in N) "
-        "by the estimate (NaN: no full run)")})
+    for q, (quantity, unit) in enumerate(_STD_UNITS.items()):
+        data[f"std_{quantity}"] = (dims[:-1], std[..., q], {"units": unit, "long_name": (
+            f"steady std of {quantity} by the estimate (NaN: no full run)")})
     with np.errstate(divide="ignore", invalid="ignore"):
         data["log_std_ratio"] = (dims[:1] + dims[2:], np.log(std[:, 1] / std[:, 0]), {
             "units": one, "long_name": "log std(SBG) / std(LSBG) of the pair (> 0: the LSBG "

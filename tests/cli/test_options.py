@@ -49,6 +49,9 @@ COMMANDS = {
     "converge-front": "--geometry {geo} --front {text} --release {root}/r.nc --out {out}",
     "cutter-point": "--roles nominal --radius-mm 76.2 --out {out}",
     "kernels": "--out {root}/kernels.json",
+    "matched-pairs": "--converged {text} {text} --geometry {geo} {geo} --release {text} {text} "
+                     "--compliance-file {root}/c.nc {root}/c.nc --rating {text} {text} "
+                     "--front {text} --trace-fronts {text} --out {out}",
 }
 
 #: Commands that read files only (no configuration, no --set) and a command line of each.

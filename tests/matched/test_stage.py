@@ -51,7 +51,8 @@ def test_one_pair_answered(tmp_path):
     releases = [xr.Dataset(attrs={"fe_aligned_positions": 8}) for _ in TRACES]
     ds = answer_pairs(settings, geometry, releases,
                       [tmp_path / f"{t}_compliance.nc" for t in TRACES], matched, sets, fronts)
-    std = ds["std"].values                       # (pair, trace, estimate, boundary, quantity)
+    std = np.stack([ds[f"std_{q}"].values for q in ds["quantity"].values], axis=-1)
+    assert ds["std_gear_speed"].attrs["units"] == "deg/s"
     assert np.all(np.isfinite(std)) and np.all(std > 0)
     for b, boundary in enumerate(BOUNDARIES):
         for q, quantity in enumerate(ds["quantity"].values):

@@ -453,8 +453,10 @@ def test_a_changed_setting_reruns_only_the_runs_that_use_it(study, tmp_path):
     assert rules_of(jobs) == sorted(["summary", "rating_sweep", "report_sweep", "all"]), output
     extra = write_yaml(tmp_path / "steady.yaml", {"statistics": {"steady_state_after_s": 0.008}})
     jobs, output = dry_run(study, extra)
+    # (and the matched designs' runs: their steady state starts there)
     assert rules_of(jobs) == sorted(_CONVERGENCE + ["rating"] * 2 + ["practice_rating"] * 2
-                                    + ["best_rating"] * 2 + _CHECKS + _AGGREGATES), output
+                                    + ["best_rating"] * 2 + ["matched_pairs"] + _CHECKS
+                                    + _AGGREGATES), output
     # The rating's own settings: its jobs and the reports that show them
     extra = write_yaml(tmp_path / "rating.yaml", {"rating": {"application_factor": 1.25}})
     jobs, output = dry_run(study, extra)

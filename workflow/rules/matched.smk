@@ -7,11 +7,15 @@
 # few full runs (indicative); workflow/config-trace.yaml asks for 30 pairs.
 
 #: What `lsbg matched-pairs` reads beyond its inputs: its section (optimise.matched), the
-#: searches', the runs' and the steady state's start.
+#: searches', the compiled engine's runs' (not PyBullet's or scipy's keys) and the steady
+#: state's start.
 MATCHED_SETTINGS = plan.canonical({
     **OPTIMISE_SETTINGS,
     "matched": config["optimise"]["matched"],
-    **{k: config[k] for k in ("simulation", "driveline", "statistics", "tooth")}})
+    "simulation": {k: v for k, v in config["simulation"].items()
+                   if "compiled" in ENGINE_ONLY_KEYS.get(k, ("compiled",))},
+    "statistics": {"steady_state_after_s": config["statistics"]["steady_state_after_s"]},
+    **{k: config[k] for k in ("driveline", "tooth")}})
 
 
 rule matched_pairs:
