@@ -111,21 +111,22 @@ def trace_cells(config):
         cutter, since the LSBG has no cutter).
     """
     paper = paper_cell_label(config)
-    cells = []
-    for angle in _angles(config):
-        for cutter in _cutters_at(config, angle):
-            label = cell_label(angle, cutter)
-            cells.append({"label": label, "spiral_deg": angle, "spiral": number_label(angle),
-                          "spiral_angle": math.radians(angle), "cutter_mm": cutter,
-                          "cutter_radius": None if cutter is None else cutter * 1e-3,
-                          "paper": label == paper, "lsbg_cell": cell_label(angle)})
+    cells = [_cell(angle, cutter, paper) for angle in _angles(config)
+             for cutter in _cutters_at(config, angle)]
     if paper not in {c["label"] for c in cells}:  # (the default study's cell always runs)
-        angle = float(config["paper_spiral_angle_deg"])
-        cells.append({"label": paper, "spiral_deg": angle, "spiral": number_label(angle),
-                      "spiral_angle": math.radians(angle), "cutter_mm": None,
-                      "cutter_radius": None, "paper": True, "lsbg_cell": paper})
+        cells.append(_cell(float(config["paper_spiral_angle_deg"]), None, paper))
     cells.sort(key=lambda c: not c["paper"])
     return list({c["label"]: c for c in cells}.values())
+
+
+def _cell(angle, cutter, paper):
+    """One of :func:`trace_cells`' cells: ``angle`` [deg], ``cutter`` [mm] or None, ``paper``
+    the default study's cell's label."""
+    label = cell_label(angle, cutter)
+    return {"label": label, "spiral_deg": angle, "spiral": number_label(angle),
+            "spiral_angle": math.radians(angle), "cutter_mm": cutter,
+            "cutter_radius": None if cutter is None else cutter * 1e-3,
+            "paper": label == paper, "lsbg_cell": cell_label(angle)}
 
 
 def trace_study_problems(config):

@@ -19,7 +19,7 @@ from lsbg.study.points import map_steps
 
 __all__ = ["FLANK_SECTIONS", "CONTACT_STATE_SECTIONS", "STUDY_SECTIONS", "ENGINE_ONLY_KEYS",
            "MODEL_ONLY_KEYS", "canonical", "yaml_text", "write_study_config",
-           "simulation_params", "contact_state_params", "BUDGET_PER_SECOND",
+           "engine_simulation", "simulation_params", "contact_state_params", "BUDGET_PER_SECOND",
            "simulation_runtime"]
 
 #: The contact state: the flanks every line-model analysis and run reads
@@ -85,6 +85,25 @@ def write_study_config(path, config, only_if_missing=False):
     part.replace(path)
 
 
+def engine_simulation(config, engine):
+    """The ``simulation`` section without the keys only other engines read
+    (:data:`ENGINE_ONLY_KEYS`).
+
+    Parameters
+    ----------
+    config : dict
+        A checked configuration.
+    engine : str
+        ``compiled``, ``scipy`` or ``pybullet``.
+
+    Returns
+    -------
+    dict
+    """
+    return {k: v for k, v in config["simulation"].items()
+            if engine in ENGINE_ONLY_KEYS.get(k, (engine,))}
+
+
 def simulation_params(config, engine, model):
     """The simulation and contact settings a run of ``engine`` and ``model`` depends on
     (the rules' rerun trigger).
@@ -98,8 +117,7 @@ def simulation_params(config, engine, model):
     driveline, with the ``driveline`` section (the prescribed pinion's runs keep
     the trigger they had before the boundary was a setting).
     """
-    simulation = {k: v for k, v in config["simulation"].items()
-                  if engine in ENGINE_ONLY_KEYS.get(k, (engine,))}
+    simulation = engine_simulation(config, engine)
     if simulation.get("boundary", "prescribed_pinion") == "prescribed_pinion":
         simulation.pop("boundary", None)
     else:

@@ -30,7 +30,7 @@ from lsbg.config import SCHEMA_PATH, load_schema
 from lsbg.files import duplicate_key_problems
 from lsbg.study import checks as config_check
 from lsbg.study import plan
-from lsbg.study.params import ENGINE_ONLY_KEYS
+from lsbg.study.params import engine_simulation
 
 #: The repository: the directory of the top-level Snakefile.
 REPO = Path(workflow.basedir).resolve()

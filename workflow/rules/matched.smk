@@ -12,8 +12,7 @@
 MATCHED_SETTINGS = plan.canonical({
     **OPTIMISE_SETTINGS,
     "matched": config["optimise"]["matched"],
-    "simulation": {k: v for k, v in config["simulation"].items()
-                   if "compiled" in ENGINE_ONLY_KEYS.get(k, ("compiled",))},
+    "simulation": engine_simulation(config, "compiled"),
     "statistics": {"steady_state_after_s": config["statistics"]["steady_state_after_s"]},
     **{k: config[k] for k in ("driveline", "tooth")}})
 
