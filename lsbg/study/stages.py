@@ -27,11 +27,10 @@ import as they are now.
 from __future__ import annotations
 
 import ast
-import dis
 import functools
 import json
 import os
-import types
+import re
 from pathlib import Path
 
 from lsbg.files import kept_file_digest
@@ -46,8 +45,12 @@ PACKAGE = Path(__file__).resolve().parents[1]
 COMMAND_PACKAGE = "cli"
 
 
+@functools.lru_cache(maxsize=None)
 def _path(name, package):
-    """The source file of an lsbg module or package (its ``__init__.py``), or None."""
+    """The source file of an lsbg module or package (its ``__init__.py``), or None.
+
+    Kept per process: a dry run asks for the same modules' files thousands of times.
+    """
     base = package.joinpath(*name.split(".")) if name else package
     if base.is_dir() and (base / "__init__.py").is_file():
         return base / "__init__.py"
@@ -181,41 +184,78 @@ def import_statements(path):
 def _statements(data):
     """:func:`import_statements` of a source's content (bytes), once per process.
 
-    Read from the compiled code, not the syntax tree: compiling builds no Python
-    objects for the tree's nodes, which took most of a dry run's listing time. Every
-    import statement compiles to an ``IMPORT_NAME`` instruction after its level and
-    its names (``LOAD_CONST``); module level is the module's own code, the functions'
-    and classes' bodies are the code objects among its constants.
+    Read by one pass of a scanner over the text (:data:`_TOKEN`), not by building
+    its syntax tree or compiling it: a dry run reads every lsbg source, and
+    compiling them was most of the time its listings took. The
+    scanner steps over strings and comments, counts brackets, and at the start
+    of each logical line reads an ``import`` or ``from ... import`` statement
+    (:func:`_imported`); a line at column 0 that starts a ``def``, ``class`` or
+    decorator opens a top-level definition, any other line at column 0 closes it.
+    A test checks that it names what the syntax tree names for every lsbg source.
     """
+    text = data.decode("utf-8")
     everywhere, level = [], []
-    todo = [(compile(data, "<lsbg source>", "exec", dont_inherit=True), True)]
-    while todo:
-        code, module_level = todo.pop()
-        if _IMPORT_NAME in code.co_code[::2]:    # the opcodes: most code imports nothing
-            names = _code_imports(code)
+    depth, in_definition = 0, False
+    for token in _TOKEN.finditer(text):
+        kind = token.lastgroup
+        if kind == "open":
+            depth += 1
+        elif kind == "close":
+            depth -= 1
+        elif kind == "line" and depth <= 0:
+            start = token.end()
+            if start == token.start():
+                in_definition = _TOP_DEFINITION.match(text, start) is not None
+            names = _imported(text, start)
             everywhere += names
-            if module_level:
+            if not in_definition:
                 level += names
-        todo.extend((const, False) for const in code.co_consts
-                    if isinstance(const, types.CodeType))
     return tuple(dict.fromkeys(everywhere)), tuple(dict.fromkeys(level))
 
 
-_IMPORT_NAME = dis.opmap["IMPORT_NAME"]
+#: What the scanner of :func:`_statements` steps over or stops at, in this order: a
+#: string (triple-quoted ones across lines, with their prefixes), a comment, a
+#: bracket, and the start of a line's code.
+_TOKEN = re.compile(r"""
+    (?P<string>[rRbBuUfF]{0,2}(?:'''(?:\\[\s\S]|[^\\])*?'''|\"\"\"(?:\\[\s\S]|[^\\])*?\"\"\"
+                              |'(?:\\.|[^\\'\n])*'|"(?:\\.|[^\\"\n])*"))
+   |(?P<comment>\#[^\n]*)
+   |(?P<open>[(\[{])|(?P<close>[)\]}])
+   |(?P<line>^[ \t]*(?=[^\s#]))
+""", re.M | re.X)
+_TOP_DEFINITION = re.compile(r"(?:async\s+def|def|class)\b|@")
+# a blank within a statement: spaces, tabs and backslash-continued line ends
+_BLANK = r"(?:[ \t]|\\\n)"
+_NAME = r"[A-Za-z_]\w*"
+_DOTTED = rf"{_NAME}(?:{_BLANK}*\.{_BLANK}*{_NAME})*"
+_ALIASED = rf"{_DOTTED}(?:{_BLANK}+as{_BLANK}+{_NAME})?"
+_IMPORT = re.compile(rf"import{_BLANK}+(?P<names>{_ALIASED}(?:{_BLANK}*,{_BLANK}*{_ALIASED})*)")
+_FROM = re.compile(rf"from{_BLANK}*(?P<level>\.*){_BLANK}*(?P<module>{_DOTTED})?{_BLANK}+"
+                   rf"import{_BLANK}*(?:\((?P<group>[^)]*)\)|(?P<names>\*|{_ALIASED}"
+                   rf"(?:{_BLANK}*,{_BLANK}*{_ALIASED})*))")
+_ALIAS = re.compile(r"\s+as\s+")
 
 
-def _code_imports(code):
-    """The absolute imports of one code object (not its nested ones), as
-    :func:`_import_names` names them."""
-    names, previous = [], [None, None]
-    for instruction in dis.get_instructions(code):
-        if instruction.opname == "IMPORT_NAME":
-            level, imported = (item.argval for item in previous)
-            if level == 0:
-                module = instruction.argval
-                names += [f"{module}.{name}" for name in imported] if imported else [module]
-        previous = [previous[1], instruction]
-    return names
+def _imported(text, start):
+    """The absolute imports of the statement at ``start``, as :func:`_import_names`
+    names them (``from a import b``: ``a.b``), or [] if it imports nothing or relatively."""
+    if text.startswith("import", start):
+        found = _IMPORT.match(text, start)
+        return [_ALIAS.split(name)[0] for name in _items(found["names"])] if found else []
+    if not text.startswith("from", start):
+        return []
+    found = _FROM.match(text, start)
+    if found is None or found["level"]:
+        return []
+    listed = found["group"] if found["group"] is not None else found["names"]
+    module = re.sub(r"[\s\\]", "", found["module"])
+    return [f"{module}.{_ALIAS.split(name)[0]}" for name in _items(listed)]
+
+
+def _items(listed):
+    """The items of an import's comma-separated list, blanks, comments and continuations out."""
+    listed = re.sub(r"#[^\n]*", "", listed).replace("\\\n", " ")
+    return [re.sub(r"\s*\.\s*", ".", item.strip()) for item in listed.split(",") if item.strip()]
 
 
 def module_imports(name, package=PACKAGE):

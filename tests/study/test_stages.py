@@ -1,5 +1,6 @@
 """The lsbg sources a command runs, from the imports: what reruns a rule when edited."""
 
+import ast
 import json
 from pathlib import Path
 
@@ -125,13 +126,9 @@ def test_import_statements_come_from_the_source_as_it_is_now(tmp_path):
     assert stages.import_statements(source)[1] == ("lsbg.b",)
 
 
-
-
-def test_import_statements_read_from_the_code_agree_with_the_syntax_tree():
-    """Every lsbg source: the names its compiled code imports (everywhere, and in the
-    module's own code) are those the syntax tree's import statements name."""
-    import ast
-
+def test_import_statements_read_by_the_scanner_agree_with_the_syntax_tree():
+    """Every lsbg source: the names its scanned text imports (everywhere, and at module
+    level) are those the syntax tree's import statements name."""
     for path in sorted(stages.PACKAGE.rglob("*.py")):
         tree = ast.parse(path.read_text(encoding="utf-8"))
         level = {name for node in tree.body
@@ -140,12 +137,31 @@ def test_import_statements_read_from_the_code_agree_with_the_syntax_tree():
         everywhere, module_level = stages.import_statements(path)
         assert set(everywhere) == set(stages._import_names(tree)), path
         assert set(module_level) == level, path
+
+
+@pytest.mark.parametrize("source, everywhere, module_level", [
     # nested blocks, a class body, a relative import and a star
-    source = ("import os.path as p\nfrom . import sibling\nif p:\n    from lsbg.a import (b,\n"
-              "        c)\nfrom lsbg.z import *\nclass K:\n    import lsbg.k\n    def f(self):\n"
-              "        try:\n            import lsbg.t\n        finally:\n"
-              "            import lsbg.f\n")
-    everywhere, module_level = stages._statements(source.encode())
-    assert set(everywhere) == {"os.path", "lsbg.a.b", "lsbg.a.c", "lsbg.z.*", "lsbg.k", "lsbg.t",
-                               "lsbg.f"}
-    assert set(module_level) == {"os.path", "lsbg.a.b", "lsbg.a.c", "lsbg.z.*"}
+    ("import os.path as p\nfrom . import sibling\nif p:\n    from lsbg.a import (b,\n"
+     "        c)\nfrom lsbg.z import *\nclass K:\n    import lsbg.k\n    def f(self):\n"
+     "        try:\n            import lsbg.t\n        finally:\n"
+     "            import lsbg.f\n",
+     {"os.path", "lsbg.a.b", "lsbg.a.c", "lsbg.z.*", "lsbg.k", "lsbg.t", "lsbg.f"},
+     {"os.path", "lsbg.a.b", "lsbg.a.c", "lsbg.z.*"}),
+    # strings and comments that read like imports, one at column 0 inside a function
+    ('"""Docs.\n\nimport lsbg.nodoc\n"""\n# import lsbg.nocomment\ns = "from lsbg.x import y"\n'
+     "def f():\n    t = '''\nimport lsbg.notemplate\n'''\n    import lsbg.inner\n",
+     {"lsbg.inner"}, set()),
+    # a decorated definition, a bracket closed at column 0, comments and continuations
+    ("@decorate(\n    1)\ndef f():\n    x = [\n1,\n]\n    import lsbg.late\n"
+     "from lsbg.m import (one,  # the first\n    two as second)\n"
+     "from lsbg.n import three, \\\n    four\nimport lsbg . spaced, lsbg.other as o\n",
+     {"lsbg.late", "lsbg.m.one", "lsbg.m.two", "lsbg.n.three", "lsbg.n.four", "lsbg.spaced",
+      "lsbg.other"},
+     {"lsbg.m.one", "lsbg.m.two", "lsbg.n.three", "lsbg.n.four", "lsbg.spaced", "lsbg.other"}),
+])
+def test_the_scanner_reads_statements_not_strings(source, everywhere, module_level):
+    tree = ast.parse(source)
+    assert set(stages._import_names(tree)) == everywhere     # the cases as Python reads them
+    found, level = stages._statements(source.encode())
+    assert set(found) == everywhere
+    assert set(level) == module_level
