@@ -93,7 +93,7 @@ class ReleaseSettings:
         "transmission_error": 1.0, "peak_contact_pressure": 0.02, "root_stress": 0.02,
         "pattern_movement": 1.0, "mesh_loss": 10.0})
     convergence: float = 0.01
-    largest_positions: int = 384
+    largest_positions: int = 768
     candidates: int = 12
     fe_candidates: int = 2
 
