@@ -2,7 +2,7 @@
 
 The paper report opens with the three claims against each level the study
 ran (the pair as published, as a designer would make it, each type at its best
-ease-off), each cell coloured by its verdict (:data:`lsbg.tables.claims.VERDICT_WORDS`)
+ease-off, the trace: front against front and matched designs), each cell coloured by its verdict (:data:`lsbg.tables.claims.VERDICT_WORDS`)
 and carrying the number of model-form cells behind it, with a legend that
 defines every verdict word. Every report of a configuration coarser than the
 study's defaults (the schema's, which ``workflow/config.yaml`` keeps for every
@@ -31,7 +31,8 @@ __all__ = ["LEVELS", "VERDICT_COLOURS", "verdict_matrix", "matrix_html", "legend
 
 #: The levels of the study, in the matrix's order: (key, column heading).
 LEVELS = {"published": "as published", "practice": "as a designer would make it",
-          "best": "each at its best ease-off"}
+          "best": "each at its best ease-off",
+          "trace": "the trace (front against front, matched designs)"}
 
 #: The claims, in the matrix's order: (name, row heading).
 CLAIM_ROWS = {"stability": "The LSBG meshes more stably",
@@ -52,8 +53,10 @@ def verdict_matrix(levels):
     levels : dict
         ``{level: (claims, cells)}`` for the levels of :data:`LEVELS` the study
         ran (a level left out, or with no claims, is not a column): ``claims``
-        ``{claim: verdict}`` (:func:`lsbg.tables.claims.claim_verdict`),
-        ``cells`` ``{claim: number of model-form cells}``.
+        ``{claim: verdict}``, each verdict :func:`lsbg.tables.claims.claim_verdict`'s
+        or already its word (a key of :data:`VERDICT_COLOURS`, as
+        :func:`lsbg.tables.trace_level.trace_claims` gives the trace level's), and
+        ``cells`` ``{claim: number of cells}``.
 
     Returns
     -------
@@ -71,12 +74,19 @@ def verdict_matrix(levels):
             continue
         claims, cells = levels[key]
         for name in CLAIM_ROWS:
-            tested = name in claims
-            rows.append({"claim": name, "level": heading,
-                         "verdict": claim_tables.claim_word(claims[name]) if tested
-                         else "not tested",
-                         "cells": int(cells.get(name, 0)) if tested else 0})
+            word = _word(claims[name]) if name in claims else "not tested"
+            rows.append({"claim": name, "level": heading, "verdict": word,
+                         "cells": int(cells.get(name, 0)) if word != "not tested" else 0})
     return pd.DataFrame(rows, columns=["claim", "level", "verdict", "cells"])
+
+
+def _word(verdict):
+    """A claim's verdict word: a word as given (checked), else :func:`claim_word` of it."""
+    if isinstance(verdict, str):
+        if verdict not in VERDICT_COLOURS:
+            raise ValueError(f"verdict {verdict!r}: not one of {list(VERDICT_COLOURS)}")
+        return verdict
+    return claim_tables.claim_word(verdict)
 
 
 def matrix_html(matrix):
