@@ -270,11 +270,19 @@ def test_paper_report_of_a_30_degree_pair_names_the_change(tmp_path):
         checks.append(tmp_path / "results" / "verification" / f"{trace}_beta30_checks.nc")
         assert cli.main(["checks", "--geometry", str(directory), "--mesh", str(meshes[-1]),
                          "--run", str(runs[-3]), "--out", str(checks[-1])]) == 0
+    # the trace level's files, constructed: the SBG's fronts better in the paper's cell, 3
+    # matched pairs (too few for any matched cell to resolve)
+    from tests.tables.test_trace_level import fronts_cell, matched
+
+    trace_files = {"trace_fronts_files": [tmp_path / "results" / "optimise" / "trace_fronts.nc"],
+                   "matched_pairs_files": [tmp_path / "results" / "optimise" / "matched_pairs.nc"]}
+    write_dataset(fronts_cell(0.3, 0.0, seed=8), trace_files["trace_fronts_files"][0])
+    write_dataset(matched(n=3), trace_files["matched_pairs_files"][0])
     out = tmp_path / "reports" / "paper.html"
     reports.render_report("paper", out, {"runs": runs, "mesh_files": meshes,
                                          "geometry_dirs": geometry, "paper_engine": "pybullet",
                                          "line_engine": "compiled", "checks_files": checks,
-                                         "sensitivity_runs": sensitivity,
+                                         "sensitivity_runs": sensitivity, **trace_files,
                                          **STATISTICS})
     html = out.read_text(encoding="utf-8")
     assert report_leaks(html) == []
@@ -289,6 +297,24 @@ def test_paper_report_of_a_30_degree_pair_names_the_change(tmp_path):
     assert (html.index("Coarse configuration") < html.index('class="lsbg-verdicts"')
             < html.index('class="lsbg-legend"') < html.index('class="lsbg-finding"'))
     assert "simulation.duration_s 0.05 (study: 1)" in html
+    # the matrix's columns: as published and the trace (no practice or best pair here), each
+    # trace cell with its count; under the matrix at most three sentences before the picture
+    matrix = html[html.index('class="lsbg-verdicts"'):html.index("</table>",
+                                                                 html.index('class="lsbg-verdicts"'))]
+    headers = re.findall(r"<th>([^<]*)</th>", matrix)
+    assert headers == ["the paper's claim", "as published",
+                       "the trace (front against front, matched designs)"]
+    cells = re.findall(r"<b>([^<]*)</b><br/?><small>([^<]*)</small>", matrix)
+    # per claim: as published, the trace (stability 4 cells; contact: the fronts and the FE TE)
+    assert cells[1::2] == [("not shown", "4 cells"), ("not shown", "3 cells"),
+                           ("not shown", "3 cells")]
+    below = html[html.index('class="lsbg-legend"'):html.index("The assembled pairs")]
+    below = re.sub(r"<[^>]+>", " ", below[below.index("</div>"):])
+    assert 1 <= len(re.findall(r"[.!?](?=\s|$)", below.strip())) <= 3, below
+    assert "3 matched pairs of 30 sought" in below
+    # the claims table's column and Section 20's cells of the trace level
+    assert '<th>the trace</th>' in html or 'the trace</th>' in html
+    assert "The trace level" in html and "FE root stress, pinion" in html
 
 
 @pytest.fixture(scope="module")

@@ -249,6 +249,10 @@ def trace_sentence(cells, trace_fronts=(), matched=None):
         As :func:`trace_claim_cells` took them.
     """
     fronts = len(trace_fronts)
+    decided = sum(bool(np.isfinite(float(ds["verdict"]))) for ds in trace_fronts)
+    where = (f"{fronts} cell{'' if fronts == 1 else 's'} of the trace study"
+             + ("" if decided == fronts else ", none with a verdict" if not decided
+                else f", {decided} with a verdict"))
     pairs = _pairs(matched)
     sought = int(matched.attrs.get("pairs_sought", 0)) if matched is not None else 0
     least = 2.0 ** (1 - pairs) if pairs else math.nan
@@ -258,7 +262,7 @@ def trace_sentence(cells, trace_fronts=(), matched=None):
              if pairs and least >= 0.05 else "" if pairs else ": no stability or life "
              "comparison over matched designs")
     return (f"**The trace** column sets each trace's fronts against the other's "
-            f"({fronts} cell{'' if fronts == 1 else 's'} of the trace study) and {said}{limit}"
+            f"({where}) and {said}{limit}"
             f" (docs/optimise.md, \"The trace level's verdict\").")
 
 
@@ -276,8 +280,8 @@ def trace_text(cells, claims, counts):
     for claim in CLAIMS:
         part = cells[cells["claim"] == claim]
         if claims[claim] == "not tested":
-            parts.append(f"{claim} **not tested** (no pair found and no front with a "
-                         f"feasible member)" if claim == "contact state" else
+            parts.append(f"{claim} **not tested** (no front comparison gave a verdict and no "
+                         f"pair was found)" if claim == "contact state" else
                          f"{claim} **not tested** (no matched pair)")
             continue
         sides = part["side"].value_counts()

@@ -185,13 +185,16 @@ def test_the_claims_table_gains_the_column_and_the_words_say_the_limits():
     assert list(out.columns) == ["the paper's claim", "lsbg's answer at 35°", "the trace",
                                  "baseline figures", "cells"]
     assert out["the trace"].tolist() == ["not shown (4 cells)", "not shown (3 cells)"]
-    cells = trace_level.trace_claim_cells([fronts_cell(0.3, 0.0, seed=8)], matched(n=3))
-    sentence = trace_level.trace_sentence(cells, [object()], matched(n=3))
-    assert "3 matched pairs of 30 sought" in sentence and "its least 0.25" in sentence
+    sets = [fronts_cell(0.3, 0.0, seed=8)]
+    cells = trace_level.trace_claim_cells(sets, matched(n=3))
+    sentence = trace_level.trace_sentence(cells, sets, matched(n=3))
+    assert "(1 cell of the trace study) and 3 matched pairs of 30 sought" in sentence
+    assert "its least 0.25" in sentence
     assert sentence.count(". ") == 0 and "indicative" in sentence
     text = trace_level.trace_text(cells, claims, counts)
     assert "stability **not shown** (4 cells: not resolved in 4)" in text
     assert "contact state **not shown** (3 cells: the SBG in 1, not resolved in 2)" in text
-    none = trace_level.trace_claim_cells([], matched(n=0))
-    assert "no stability or life comparison" in trace_level.trace_sentence(none, [],
-                                                                          matched(n=0))
+    sets[0]["verdict"] = np.nan
+    none = trace_level.trace_claim_cells(sets, matched(n=0))
+    sentence = trace_level.trace_sentence(none, sets, matched(n=0))
+    assert "none with a verdict" in sentence and "no stability or life comparison" in sentence
