@@ -238,15 +238,13 @@ def _pairs(matched):
     return int(matched.attrs.get("pairs_found", 0)) if matched is not None else 0
 
 
-def trace_sentence(cells, trace_fronts=(), matched=None):
+def trace_sentence(trace_fronts=(), matched=None):
     """What the trace column rests on, in one sentence (Markdown), for a first screen.
 
     Parameters
     ----------
-    cells : pandas.DataFrame
-        :func:`trace_claim_cells`.
     trace_fronts, matched
-        As :func:`trace_claim_cells` took them.
+        As :func:`trace_claim_cells` takes them.
     """
     fronts = len(trace_fronts)
     decided = sum(bool(np.isfinite(float(ds["verdict"]))) for ds in trace_fronts)
@@ -255,12 +253,18 @@ def trace_sentence(cells, trace_fronts=(), matched=None):
                 else f", {decided} with a verdict"))
     pairs = _pairs(matched)
     sought = int(matched.attrs.get("pairs_sought", 0)) if matched is not None else 0
-    least = 2.0 ** (1 - pairs) if pairs else math.nan
     said = (f"{pairs} matched pair{'' if pairs == 1 else 's'}"
             + (f" of {sought} sought" if sought else ""))
-    limit = (f", too few for Wilcoxon's p to reach 0.05 (its least {least:.2g}): indicative"
-             if pairs and least >= 0.05 else "" if pairs else ": no stability or life "
-             "comparison over matched designs")
+    # the least two-sided exact Wilcoxon p of n pairs, all of one sign: 2 / 2^n
+    least = 2.0 ** (1 - pairs) if pairs else math.nan
+    indicative = any(int(ds.attrs.get("indicative", 0)) for ds in trace_fronts) or (
+        matched is not None and int(matched.attrs.get("indicative", 0)))
+    if not pairs:
+        limit = ": no stability or life comparison over matched designs"
+    elif least >= 0.05:
+        limit = f", too few for Wilcoxon's p to reach 0.05 (its least {least:.2g}): indicative"
+    else:
+        limit = ": indicative (fewer than 5 seeds, or pairs than sought)" if indicative else ""
     return (f"**The trace** column sets each trace's fronts against the other's "
             f"({where}) and {said}{limit}"
             f" (docs/optimise.md, \"The trace level's verdict\").")

@@ -187,7 +187,7 @@ def test_the_claims_table_gains_the_column_and_the_words_say_the_limits():
     assert out["the trace"].tolist() == ["not shown (4 cells)", "not shown (3 cells)"]
     sets = [fronts_cell(0.3, 0.0, seed=8)]
     cells = trace_level.trace_claim_cells(sets, matched(n=3))
-    sentence = trace_level.trace_sentence(cells, sets, matched(n=3))
+    sentence = trace_level.trace_sentence(sets, matched(n=3))
     assert "(1 cell of the trace study) and 3 matched pairs of 30 sought" in sentence
     assert "its least 0.25" in sentence
     assert sentence.count(". ") == 0 and "indicative" in sentence
@@ -195,6 +195,8 @@ def test_the_claims_table_gains_the_column_and_the_words_say_the_limits():
     assert "stability **not shown** (4 cells: not resolved in 4)" in text
     assert "contact state **not shown** (3 cells: the SBG in 1, not resolved in 2)" in text
     sets[0]["verdict"] = np.nan
-    none = trace_level.trace_claim_cells(sets, matched(n=0))
-    sentence = trace_level.trace_sentence(none, sets, matched(n=0))
+    sentence = trace_level.trace_sentence(sets, matched(n=0))
     assert "none with a verdict" in sentence and "no stability or life comparison" in sentence
+    # enough pairs for Wilcoxon, fewer than sought: still indicative, said without the limit
+    sentence = trace_level.trace_sentence([], matched(n=10))
+    assert "10 matched pairs of 30 sought: indicative" in sentence and "least" not in sentence
